@@ -1,0 +1,17 @@
+# Every dependency is a Debian package that scripts/setup installs; nothing is downloaded here.
+find_package(Threads REQUIRED)
+find_package(nlohmann_json 3.10 REQUIRED)
+find_package(yaml-cpp REQUIRED)
+find_package(date REQUIRED)           # Howard Hinnant's date/tz (libhowardhinnant-date-dev)
+find_package(SQLiteCpp REQUIRED)      # libsqlitecpp-dev, over the system SQLite3
+find_package(SQLite3 REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(fmt REQUIRED)
+find_package(spdlog REQUIRED)
+if(RONDO_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+  find_package(rapidcheck REQUIRED)
+endif()
+if(RONDO_BUILD_BENCH)
+  find_package(benchmark REQUIRED)
+endif()

@@ -1,0 +1,29 @@
+# Compiler flags shared by every rondo target: warnings, optional -Werror and sanitizers.
+add_library(rondo_build_flags INTERFACE)
+target_compile_options(rondo_build_flags INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wsign-conversion -Wnon-virtual-dtor
+  -Wold-style-cast -Woverloaded-virtual -Wnull-dereference -Wimplicit-fallthrough)
+if(RONDO_WERROR)
+  target_compile_options(rondo_build_flags INTERFACE -Werror)
+endif()
+if(RONDO_SANITIZE)
+  target_compile_options(rondo_build_flags INTERFACE
+    -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
+  target_link_options(rondo_build_flags INTERFACE -fsanitize=address,undefined)
+endif()
+if(RONDO_FUZZ)
+  target_compile_options(rondo_build_flags INTERFACE -fsanitize=fuzzer-no-link,address,undefined)
+  target_link_options(rondo_build_flags INTERFACE -fsanitize=address,undefined)
+endif()
+
+# rondo_module(NAME SOURCES... DEPS...): one library per module folder, aliased rondo::NAME,
+# with the public headers under include/rondo/NAME/.
+function(rondo_module name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(rondo_${name} STATIC ${ARG_SOURCES})
+  add_library(rondo::${name} ALIAS rondo_${name})
+  target_include_directories(rondo_${name}
+    PUBLIC ${PROJECT_SOURCE_DIR}/include
+    PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  target_link_libraries(rondo_${name} PUBLIC ${ARG_DEPS} PRIVATE rondo_build_flags ${ARG_PRIVATE_DEPS})
+endfunction()

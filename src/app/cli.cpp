@@ -1,0 +1,67 @@
+#include "cli.h"
+
+#include <exception>
+
+#include "commands.h"
+
+#ifndef RONDO_VERSION
+#define RONDO_VERSION "unknown"
+#endif
+
+namespace rondo::app {
+
+int exit_code_for(const Error& error) {
+  switch (error.code) {
+    case ErrorCode::kInvalidInput:
+    case ErrorCode::kNotFound:
+      return 2;
+    default:
+      return 1;
+  }
+}
+
+int fail(CommandContext& ctx, const Error& error) {
+  ctx.err << "rondo: error: " << error.message << '\n';
+  ctx.exit_code = exit_code_for(error);
+  return ctx.exit_code;
+}
+
+int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  CommandContext ctx{out, err};
+  CLI::App app{"rondo: a long-term task executive for mobile service robots", "rondo"};
+  app.set_version_flag("--version", std::string("rondo ") + RONDO_VERSION);
+  app.require_subcommand(1);
+  app.footer("Exit codes: 0 ok, 1 the job failed, 2 bad input.\nRun 'rondo COMMAND --help' for a command's options.");
+
+  add_map_commands(app, ctx);
+  add_task_commands(app, ctx);
+  add_log_commands(app, ctx);
+
+  // CLI11 wants argv with the program name first and parses from the back.
+  std::vector<std::string> reversed(args.rbegin(), args.rend());
+  try {
+    app.parse(std::move(reversed));
+  } catch (const CLI::CallForHelp&) {
+    out << app.help();
+    return 0;
+  } catch (const CLI::CallForAllHelp&) {
+    out << app.help("", CLI::AppFormatMode::All);
+    return 0;
+  } catch (const CLI::CallForVersion&) {
+    out << "rondo " << RONDO_VERSION << '\n';
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    // Bad command-line input is bad input: exit code 2 with CLI11's message naming the option.
+    err << "rondo: error: " << e.what() << "\nRun 'rondo --help' for usage.\n";
+    return 2;
+  } catch (const std::exception& e) {
+    err << "rondo: internal error: " << e.what() << '\n';
+    return 1;
+  } catch (...) {
+    err << "rondo: internal error: unknown exception\n";
+    return 1;
+  }
+  return ctx.exit_code;
+}
+
+}  // namespace rondo::app

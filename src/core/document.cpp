@@ -1,0 +1,364 @@
+#include "rondo/core/document.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "rondo/core/timezone.h"
+
+namespace rondo {
+namespace {
+
+std::string join_key(const std::string& parent, std::string_view key) {
+  return parent.empty() ? std::string(key) : parent + "." + std::string(key);
+}
+std::string join_index(const std::string& parent, std::size_t i) {
+  return parent + "[" + std::to_string(i) + "]";
+}
+
+// YAML 1.2 core schema for plain (unquoted) scalars.
+Json plain_scalar(const std::string& s) {
+  if (s.empty() || s == "~" || s == "null" || s == "Null" || s == "NULL") return nullptr;
+  if (s == "true" || s == "True" || s == "TRUE") return true;
+  if (s == "false" || s == "False" || s == "FALSE") return false;
+  const char* first = s.data();
+  const char* last = s.data() + s.size();
+  if (*first == '+') ++first;
+  std::int64_t i = 0;
+  if (auto [p, ec] = std::from_chars(first, last, i); ec == std::errc{} && p == last) return i;
+  // Only text that looks like a number is tried as a float, so "1h30m" or "inf-ish" stay strings.
+  bool numeric = first != last;
+  for (const char* c = first; c != last && numeric; ++c) {
+    numeric = (std::isdigit(static_cast<unsigned char>(*c)) != 0) || *c == '.' || *c == 'e' || *c == 'E' ||
+              *c == '-' || *c == '+';
+  }
+  if (numeric) {
+    double d = 0;
+    if (auto [p, ec] = std::from_chars(first, last, d); ec == std::errc{} && p == last && std::isfinite(d)) {
+      return d;
+    }
+  }
+  return s;
+}
+
+class YamlConverter {
+ public:
+  YamlConverter(std::map<std::string, int>& lines, const std::string& source) : lines_(lines), source_(source) {}
+
+  Result<Json> convert(const YAML::Node& node, const std::string& path, int depth) {
+    if (depth > Document::kMaxDepth) {
+      return Error::invalid(where(node) + (path.empty() ? "" : path + ": ") + "nested deeper than " +
+                            std::to_string(Document::kMaxDepth) + " levels");
+    }
+    lines_[path] = node.Mark().line + 1;
+    switch (node.Type()) {
+      case YAML::NodeType::Undefined:
+      case YAML::NodeType::Null:
+        return Json(nullptr);
+      case YAML::NodeType::Scalar:
+        if (node.Tag() == "!" || node.Tag() == "tag:yaml.org,2002:str") return Json(node.Scalar());
+        return plain_scalar(node.Scalar());
+      case YAML::NodeType::Sequence: {
+        Json out = Json::array();
+        std::size_t i = 0;
+        for (const auto& item : node) {
+          auto v = convert(item, join_index(path, i++), depth + 1);
+          if (!v) return v.error();
+          out.push_back(std::move(*v));
+        }
+        return out;
+      }
+      case YAML::NodeType::Map: {
+        Json out = Json::object();
+        for (const auto& kv : node) {
+          if (!kv.first.IsScalar()) return Error::invalid(where(kv.first) + "keys must be plain text");
+          const std::string key = kv.first.Scalar();
+          if (out.contains(key)) {
+            return Error::invalid(where(kv.first) + join_key(path, key) + ": duplicate key '" + key + "'");
+          }
+          auto v = convert(kv.second, join_key(path, key), depth + 1);
+          if (!v) return v.error();
+          out[key] = std::move(*v);
+        }
+        return out;
+      }
+    }
+    return Json(nullptr);
+  }
+
+ private:
+  std::string where(const YAML::Node& node) const {
+    return source_ + ":" + std::to_string(node.Mark().line + 1) + ": ";
+  }
+  std::map<std::string, int>& lines_;
+  const std::string& source_;
+};
+
+// Rejects nesting deeper than the limit before any recursive parser sees the text: both YAML and
+// JSON flow collections open with '[' or '{', and YAML block nesting is bounded by indentation.
+Status check_flow_depth(std::string_view text, const std::string& source) {
+  int depth = 0;
+  int line = 1;
+  char quote = 0;
+  for (char c : text) {
+    if (c == '\n') ++line;
+    if (quote) {
+      if (c == quote) quote = 0;
+      continue;
+    }
+    if (c == '"') quote = c;  // single quotes are apostrophes too often to track safely
+    if (c == '[' || c == '{') {
+      if (++depth > Document::kMaxDepth) {
+        return Error::invalid(source + ":" + std::to_string(line) + ": nested deeper than " +
+                              std::to_string(Document::kMaxDepth) + " levels");
+      }
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+Result<Document> Document::parse(std::string_view text, DocumentFormat format, std::string source) {
+  Document doc;
+  doc.source_ = std::make_shared<std::string>(std::move(source));
+  doc.lines_ = std::make_shared<std::map<std::string, int>>();
+  if (auto s = check_flow_depth(text, *doc.source_); !s) return s.error();
+  if (format == DocumentFormat::kJson) {
+    try {
+      doc.json_ = std::make_shared<Json>(Json::parse(text));
+    } catch (const Json::exception& e) {
+      // nlohmann's message names the byte and line: "parse error at line 3, column 5: ..."
+      return Error::invalid(*doc.source_ + ": " + e.what());
+    }
+    return doc;
+  }
+  try {
+    const YAML::Node node = YAML::Load(std::string(text));
+    YamlConverter conv(*doc.lines_, *doc.source_);
+    auto json = conv.convert(node, "", 0);
+    if (!json) return json.error();
+    doc.json_ = std::make_shared<Json>(std::move(*json));
+  } catch (const YAML::Exception& e) {
+    return Error::invalid(*doc.source_ + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  } catch (const std::exception& e) {
+    return Error::invalid(*doc.source_ + ": " + e.what());
+  }
+  return doc;
+}
+
+Result<std::string> read_text_file(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return Error::not_found(file.string() + ": no such file");
+  if (std::filesystem::is_directory(file, ec)) return Error::invalid(file.string() + ": is a folder, not a file");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return Error::io(file.string() + ": cannot open: " + std::strerror(errno));
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) return Error::io(file.string() + ": read failed");
+  return ss.str();
+}
+
+Result<Document> Document::load(const std::filesystem::path& file) {
+  auto text = read_text_file(file);
+  if (!text) return text.error();
+  const auto format = file.extension() == ".json" ? DocumentFormat::kJson : DocumentFormat::kYaml;
+  return parse(*text, format, file.string());
+}
+
+Field Document::root() const { return Field(*this, json_.get(), ""); }
+
+std::optional<int> Document::line_of(const std::string& path) const {
+  auto it = lines_->find(path);
+  if (it == lines_->end()) return std::nullopt;
+  return it->second;
+}
+
+Field Field::child(const std::string& path, const Json* value) const { return Field(doc_, value, path); }
+
+bool Field::has(std::string_view key) const {
+  return value_->is_object() && value_->contains(std::string(key));
+}
+
+Result<Field> Field::required(std::string_view key) const {
+  if (!value_->is_object()) return error("expected a mapping with a field '" + std::string(key) + "'");
+  auto it = value_->find(std::string(key));
+  if (it == value_->end()) return error("missing field '" + std::string(key) + "'");
+  return child(join_key(path_, key), &*it);
+}
+
+std::optional<Field> Field::optional(std::string_view key) const {
+  if (!value_->is_object()) return std::nullopt;
+  auto it = value_->find(std::string(key));
+  if (it == value_->end() || it->is_null()) return std::nullopt;
+  return child(join_key(path_, key), &*it);
+}
+
+Result<std::vector<Field>> Field::items() const {
+  if (!value_->is_array()) return error("expected a list");
+  std::vector<Field> out;
+  out.reserve(value_->size());
+  for (std::size_t i = 0; i < value_->size(); ++i) out.push_back(child(join_index(path_, i), &(*value_)[i]));
+  return out;
+}
+
+Result<std::vector<std::pair<std::string, Field>>> Field::members() const {
+  if (!value_->is_object()) return error("expected a mapping");
+  std::vector<std::pair<std::string, Field>> out;
+  for (auto it = value_->begin(); it != value_->end(); ++it) {
+    out.emplace_back(it.key(), child(join_key(path_, it.key()), &it.value()));
+  }
+  return out;
+}
+
+Status Field::expect_keys(std::initializer_list<std::string_view> allowed) const {
+  if (!value_->is_object()) return error("expected a mapping");
+  for (auto it = value_->begin(); it != value_->end(); ++it) {
+    bool known = false;
+    for (auto a : allowed) known = known || a == it.key();
+    if (!known) {
+      std::string list;
+      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      return child(join_key(path_, it.key()), &it.value())
+          .error("unknown field '" + it.key() + "' (expected one of: " + list + ")");
+    }
+  }
+  return {};
+}
+
+namespace {
+const char* type_name(const Json& v) {
+  switch (v.type()) {
+    case Json::value_t::null: return "nothing";
+    case Json::value_t::object: return "a mapping";
+    case Json::value_t::array: return "a list";
+    case Json::value_t::string: return "text";
+    case Json::value_t::boolean: return "true/false";
+    case Json::value_t::number_integer:
+    case Json::value_t::number_unsigned: return "an integer";
+    case Json::value_t::number_float: return "a number";
+    default: return "a value";
+  }
+}
+}  // namespace
+
+Result<std::string> Field::as_string() const {
+  if (!value_->is_string()) return error(std::string("expected text, found ") + type_name(*value_));
+  return value_->get<std::string>();
+}
+
+Result<double> Field::as_number() const {
+  if (!value_->is_number()) return error(std::string("expected a number, found ") + type_name(*value_));
+  const double v = value_->get<double>();
+  if (!std::isfinite(v)) return error("expected a finite number");
+  return v;
+}
+
+Result<std::int64_t> Field::as_int() const {
+  if (value_->is_number_integer()) return value_->get<std::int64_t>();
+  if (value_->is_number_unsigned()) {
+    const auto u = value_->get<std::uint64_t>();
+    if (u > static_cast<std::uint64_t>(INT64_MAX)) return error("integer too large");
+    return static_cast<std::int64_t>(u);
+  }
+  return error(std::string("expected an integer, found ") + type_name(*value_));
+}
+
+Result<bool> Field::as_bool() const {
+  if (!value_->is_boolean()) return error(std::string("expected true or false, found ") + type_name(*value_));
+  return value_->get<bool>();
+}
+
+Result<Duration> Field::as_duration() const {
+  if (value_->is_number()) {
+    const double s = value_->get<double>();
+    if (!std::isfinite(s) || s < 0) return error("expected a duration of zero or more seconds");
+    if (s > 9.0e12) return error("duration is too long");
+    return from_seconds(s);
+  }
+  if (value_->is_string()) {
+    auto d = parse_duration(value_->get<std::string>());
+    if (!d) return error(d.error().message);
+    return *d;
+  }
+  return error(std::string("expected a duration such as 90, \"90s\" or \"1h30m\", found ") + type_name(*value_));
+}
+
+Result<Time> Field::as_time(const TimeZone* zone) const {
+  if (!value_->is_string()) {
+    return error(std::string("expected an ISO 8601 time such as \"2026-11-23T08:45:00Z\", found ") +
+                 type_name(*value_));
+  }
+  const std::string text = value_->get<std::string>();
+  auto t = zone ? zone->parse_time(text) : parse_time(text);
+  if (!t) {
+    std::string msg = t.error().message;
+    if (!zone && msg.find("has no zone") != std::string::npos) msg += ", or give the file a 'timezone'";
+    return error(msg);
+  }
+  return *t;
+}
+
+Error Field::error(std::string_view what) const {
+  std::string where = doc_.source();
+  if (auto line = doc_.line_of(path_)) where += ":" + std::to_string(*line);
+  where += ": ";
+  if (!path_.empty()) where += path_ + ": ";
+  return Error::invalid(where + std::string(what));
+}
+
+namespace {
+void emit(YAML::Emitter& out, const Json& v) {
+  switch (v.type()) {
+    case Json::value_t::object:
+      out << YAML::BeginMap;
+      for (auto it = v.begin(); it != v.end(); ++it) {
+        out << YAML::Key << it.key() << YAML::Value;
+        emit(out, it.value());
+      }
+      out << YAML::EndMap;
+      break;
+    case Json::value_t::array:
+      out << YAML::BeginSeq;
+      for (const auto& item : v) emit(out, item);
+      out << YAML::EndSeq;
+      break;
+    case Json::value_t::string: {
+      const auto& s = v.get_ref<const std::string&>();
+      // Quote text that would read back as another type (a number, true, null...).
+      if (!plain_scalar(s).is_string() || s.empty()) {
+        out << YAML::DoubleQuoted << s;
+      } else {
+        out << s;
+      }
+      break;
+    }
+    case Json::value_t::boolean: out << v.get<bool>(); break;
+    case Json::value_t::number_integer: out << v.get<std::int64_t>(); break;
+    case Json::value_t::number_unsigned: out << v.get<std::uint64_t>(); break;
+    case Json::value_t::number_float: {
+      // The shortest text that reads back as the same double.
+      const double d = v.get<double>();
+      std::string s = Json(d).dump();
+      out << s;
+      break;
+    }
+    default: out << YAML::Null; break;
+  }
+}
+}  // namespace
+
+std::string to_yaml(const Json& value) {
+  YAML::Emitter out;
+  emit(out, value);
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace rondo
