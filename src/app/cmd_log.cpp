@@ -1,10 +1,139 @@
+// `rondo log ...`: the traversal log in the SQLite store (import robot logs, summarise them).
+#include <fmt/format.h>
+
+#include <memory>
+#include <string>
+
 #include "commands.h"
+#include "rondo/core/document.h"
+#include "rondo/store/store.h"
+#include "rondo/store/traversal_stats.h"
+#include "rondo/store/witham_import.h"
 
 namespace rondo::app {
+namespace {
+
+struct ImportArgs {
+  std::string witham_dir;
+  std::string db;
+  bool json = false;
+};
+
+struct StatsArgs {
+  std::string db;
+  bool json = false;
+};
+
+void run_import(const ImportArgs& args, CommandContext& ctx) {
+  auto db = store::Store::open(args.db, {.mode = store::OpenMode::kCreateIfMissing});
+  if (!db) {
+    fail(ctx, db.error());
+    return;
+  }
+  auto report = store::import_witham_logs(*db, args.witham_dir);
+  if (!report) {
+    fail(ctx, report.error());
+    return;
+  }
+  if (args.json) {
+    Json j;
+    j["db"] = args.db;
+    j["source"] = args.witham_dir;
+    j["attempts"] = report->attempts;
+    j["successes"] = report->successes;
+    j["edges"] = report->edges;
+    j["inserted"] = report->stored.inserted;
+    j["already_present"] = report->stored.already_present;
+    ctx.out << j.dump(2) << '\n';
+    return;
+  }
+  ctx.out << fmt::format(
+      "imported {} into {}\n"
+      "  attempts:        {}\n"
+      "  successes:       {}\n"
+      "  edges:           {}\n"
+      "  inserted:        {}\n"
+      "  already present: {}\n",
+      args.witham_dir, args.db, report->attempts, report->successes, report->edges, report->stored.inserted,
+      report->stored.already_present);
+}
+
+Json stats_json(const std::string& db_file, const store::TraversalSummary& summary) {
+  Json j;
+  j["db"] = db_file;
+  j["attempts"] = summary.attempts;
+  j["successes"] = summary.successes;
+  j["edges"] = summary.edges.size();
+  Json per_edge = Json::array();
+  for (const store::EdgeSummary& e : summary.edges) {
+    Json row;
+    row["edge"] = e.edge_id;
+    row["from"] = e.from;
+    row["to"] = e.to;
+    row["attempts"] = e.attempts;
+    row["successes"] = e.successes;
+    row["first"] = format_time(e.first_start);
+    row["last"] = format_time(e.last_start);
+    row["mean_success_duration_s"] =
+        e.mean_success_duration ? Json(to_seconds(*e.mean_success_duration)) : Json(nullptr);
+    per_edge.push_back(std::move(row));
+  }
+  j["per_edge"] = std::move(per_edge);
+  return j;
+}
+
+void print_stats_table(std::ostream& out, const store::TraversalSummary& summary) {
+  constexpr const char* kRow = "{:<28} {:>8} {:>9} {:>8}  {:<20}  {:<20}\n";
+  out << fmt::format(kRow, "edge", "attempts", "successes", "mean ok", "first", "last");
+  for (const store::EdgeSummary& e : summary.edges) {
+    const std::string mean =
+        e.mean_success_duration ? fmt::format("{:.1f}s", to_seconds(*e.mean_success_duration)) : "-";
+    out << fmt::format(kRow, e.edge_id, e.attempts, e.successes, mean, format_time(e.first_start),
+                       format_time(e.last_start));
+  }
+  out << fmt::format("{:<28} {:>8} {:>9}\n", fmt::format("total ({} edges)", summary.edges.size()), summary.attempts,
+                     summary.successes);
+}
+
+void run_stats(const StatsArgs& args, CommandContext& ctx) {
+  // A read command never creates a database: a mistyped path is an error, not an empty store.
+  auto db = store::Store::open(args.db, {.mode = store::OpenMode::kMustExist});
+  if (!db) {
+    fail(ctx, db.error());
+    return;
+  }
+  auto summary = store::summarize_traversals(*db);
+  if (!summary) {
+    fail(ctx, summary.error());
+    return;
+  }
+  if (args.json) {
+    ctx.out << stats_json(args.db, *summary).dump(2) << '\n';
+  } else {
+    print_stats_table(ctx.out, *summary);
+  }
+}
+
+}  // namespace
 
 void add_log_commands(CLI::App& root, CommandContext& ctx) {
-  (void)root;
-  (void)ctx;
+  CLI::App* log = root.add_subcommand("log", "The traversal log in the rondo database: import robot logs, summarise");
+  log->require_subcommand(1);
+
+  auto import_args = std::make_shared<ImportArgs>();
+  CLI::App* import_cmd = log->add_subcommand(
+      "import", "Import robot logs into the database (atomic; running it again adds only what is missing)");
+  import_cmd->add_option("--witham", import_args->witham_dir, "Folder of Witham Wharf <From>_<To>.data edge logs")
+      ->required();
+  import_cmd->add_option("--db", import_args->db, "The SQLite database file (created if missing)")->required();
+  import_cmd->add_flag("--json", import_args->json, "Print the import report as JSON");
+  import_cmd->callback([import_args, &ctx] { run_import(*import_args, ctx); });
+
+  auto stats_args = std::make_shared<StatsArgs>();
+  CLI::App* stats = log->add_subcommand("stats", "Per-edge counts of the traversal log");
+  stats->add_option("--db", stats_args->db, "The SQLite database file (must exist)")->required();
+  stats->add_flag("--json", stats_args->json, "Print JSON: totals 'attempts', 'successes', 'edges' and 'per_edge'");
+  stats->callback([stats_args, &ctx] { run_stats(*stats_args, ctx); });
 }
 
 }  // namespace rondo::app

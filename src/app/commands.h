@@ -29,5 +29,9 @@ int fail(CommandContext& ctx, const Error& error);
 void add_map_commands(CLI::App& root, CommandContext& ctx);
 void add_task_commands(CLI::App& root, CommandContext& ctx);
 void add_log_commands(CLI::App& root, CommandContext& ctx);
+void add_schedule_commands(CLI::App& root, CommandContext& ctx);
+void add_eval_commands(CLI::App& root, CommandContext& ctx);
+void add_learn_commands(CLI::App& root, CommandContext& ctx);
+void add_plan_commands(CLI::App& root, CommandContext& ctx);
 
 }  // namespace rondo::app

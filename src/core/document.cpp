@@ -51,11 +51,11 @@ class YamlConverter {
   YamlConverter(std::map<std::string, int>& lines, const std::string& source) : lines_(lines), source_(source) {}
 
   Result<Json> convert(const YAML::Node& node, const std::string& path, int depth) {
-    if (depth > Document::kMaxDepth) {
+    if (depth >= Document::kMaxDepth && (node.IsSequence() || node.IsMap())) {  // the root is level 1
       return Error::invalid(where(node) + (path.empty() ? "" : path + ": ") + "nested deeper than " +
                             std::to_string(Document::kMaxDepth) + " levels");
     }
-    lines_[path] = node.Mark().line + 1;
+    if (node.Mark().line >= 0) lines_[path] = node.Mark().line + 1;  // an empty document has no mark
     switch (node.Type()) {
       case YAML::NodeType::Undefined:
       case YAML::NodeType::Null:
@@ -99,29 +99,99 @@ class YamlConverter {
   const std::string& source_;
 };
 
-// Rejects nesting deeper than the limit before any recursive parser sees the text: both YAML and
-// JSON flow collections open with '[' or '{', and YAML block nesting is bounded by indentation.
-Status check_flow_depth(std::string_view text, const std::string& source) {
+// Guards yaml-cpp's recursive parser: rejects YAML whose flow collections ('[', '{') open more
+// than kMaxFlowDepth levels deep before the parser sees it. A bracket counts only where YAML can
+// start a collection (first on its line, or after ':', '-', '?', ',', '[' or '{'), and quoted
+// scalars and comments are skipped, so text such as "Room [3" is never miscounted. This is only a
+// stack guard: the exact nesting limit (Document::kMaxDepth) is enforced on the parsed tree.
+constexpr int kMaxFlowDepth = 4 * Document::kMaxDepth;
+
+Status check_yaml_flow_depth(std::string_view text, const std::string& source) {
   int depth = 0;
   int line = 1;
-  char quote = 0;
-  for (char c : text) {
-    if (c == '\n') ++line;
-    if (quote) {
-      if (c == quote) quote = 0;
+  char previous = '\n';  // the last character that was not a space or tab
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      previous = '\n';
       continue;
     }
-    if (c == '"') quote = c;  // single quotes are apostrophes too often to track safely
-    if (c == '[' || c == '{') {
-      if (++depth > Document::kMaxDepth) {
+    if (c == ' ' || c == '\t' || c == '\r') continue;
+    const bool at_node_start = previous == '\n' || previous == ':' || previous == '-' || previous == '?' ||
+                               previous == ',' || previous == '[' || previous == '{';
+    if (c == '#' && (i == 0 || text[i - 1] == ' ' || text[i - 1] == '\t' || text[i - 1] == '\n')) {
+      while (i + 1 < text.size() && text[i + 1] != '\n') ++i;  // a comment runs to the end of the line
+      continue;
+    }
+    if (at_node_start && (c == '"' || c == '\'')) {  // skip a quoted scalar
+      for (++i; i < text.size(); ++i) {
+        if (text[i] == '\n') ++line;
+        if (c == '"' && text[i] == '\\') {
+          ++i;
+        } else if (text[i] == c) {
+          if (c == '\'' && i + 1 < text.size() && text[i + 1] == '\'') {
+            ++i;  // '' is an escaped quote
+          } else {
+            break;
+          }
+        }
+      }
+      previous = c;
+      continue;
+    }
+    if (at_node_start && (c == '[' || c == '{')) {
+      if (++depth > kMaxFlowDepth) {
         return Error::invalid(source + ":" + std::to_string(line) + ": nested deeper than " +
                               std::to_string(Document::kMaxDepth) + " levels");
       }
     } else if ((c == ']' || c == '}') && depth > 0) {
       --depth;
     }
+    previous = c;
   }
   return {};
+}
+
+// Thrown from nlohmann's parse callback to stop a JSON text that nests too deep; nlohmann's parser
+// is not recursive, so this is about the decoders and writers that walk the tree afterwards.
+struct TooDeep {
+  int depth;
+};
+
+// The line of the first byte that is not part of well-formed UTF-8, if any. Text files are UTF-8;
+// rejecting anything else here means no string that reaches a decoder can fail to print.
+std::optional<int> first_invalid_utf8_line(std::string_view text) {
+  int line = 1;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c == '\n') ++line;
+    std::size_t len = 0;
+    unsigned min = 0;
+    unsigned code = 0;
+    if (c < 0x80) {
+      ++i;
+      continue;
+    } else if ((c & 0xE0) == 0xC0) {
+      len = 2, min = 0x80, code = c & 0x1Fu;
+    } else if ((c & 0xF0) == 0xE0) {
+      len = 3, min = 0x800, code = c & 0x0Fu;
+    } else if ((c & 0xF8) == 0xF0) {
+      len = 4, min = 0x10000, code = c & 0x07u;
+    } else {
+      return line;
+    }
+    if (i + len > text.size()) return line;
+    for (std::size_t k = 1; k < len; ++k) {
+      const auto cc = static_cast<unsigned char>(text[i + k]);
+      if ((cc & 0xC0) != 0x80) return line;
+      code = (code << 6) | (cc & 0x3Fu);
+    }
+    if (code < min || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return line;
+    i += len;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -130,16 +200,25 @@ Result<Document> Document::parse(std::string_view text, DocumentFormat format, s
   Document doc;
   doc.source_ = std::make_shared<std::string>(std::move(source));
   doc.lines_ = std::make_shared<std::map<std::string, int>>();
-  if (auto s = check_flow_depth(text, *doc.source_); !s) return s.error();
+  if (auto line = first_invalid_utf8_line(text)) {
+    return Error::invalid(*doc.source_ + ":" + std::to_string(*line) + ": the text is not valid UTF-8");
+  }
   if (format == DocumentFormat::kJson) {
     try {
-      doc.json_ = std::make_shared<Json>(Json::parse(text));
+      const auto limit_depth = [](int depth, Json::parse_event_t, Json&) {
+        if (depth >= Document::kMaxDepth) throw TooDeep{depth};  // depth counts from 0
+        return true;
+      };
+      doc.json_ = std::make_shared<Json>(Json::parse(text, limit_depth));
     } catch (const Json::exception& e) {
       // nlohmann's message names the byte and line: "parse error at line 3, column 5: ..."
       return Error::invalid(*doc.source_ + ": " + e.what());
+    } catch (const TooDeep&) {
+      return Error::invalid(*doc.source_ + ": nested deeper than " + std::to_string(Document::kMaxDepth) + " levels");
     }
     return doc;
   }
+  if (auto s = check_yaml_flow_depth(text, *doc.source_); !s) return s.error();
   try {
     const YAML::Node node = YAML::Load(std::string(text));
     YamlConverter conv(*doc.lines_, *doc.source_);
@@ -306,11 +385,20 @@ Result<Time> Field::as_time(const TimeZone* zone) const {
   return *t;
 }
 
-Error Field::error(std::string_view what) const {
+Error Field::error(std::string_view what) const { return error_at("", what); }
+
+Error Field::error_at(std::string_view relative_path, std::string_view what) const {
+  std::string path = path_;
+  if (!relative_path.empty()) {
+    path = (path.empty() || relative_path.front() == '[') ? path + std::string(relative_path)
+                                                           : path + "." + std::string(relative_path);
+  }
   std::string where = doc_.source();
-  if (auto line = doc_.line_of(path_)) where += ":" + std::to_string(*line);
+  auto line = doc_.line_of(path);
+  if (!line) line = doc_.line_of(path_);
+  if (line) where += ":" + std::to_string(*line);
   where += ": ";
-  if (!path_.empty()) where += path_ + ": ";
+  if (!path.empty()) where += path + ": ";
   return Error::invalid(where + std::string(what));
 }
 

@@ -159,4 +159,10 @@ std::string format_duration(Duration d) {
   return out;
 }
 
+std::string format_time_of_day(Duration since_midnight) {
+  const auto s = std::chrono::duration_cast<std::chrono::seconds>(since_midnight).count();
+  if (s % 60 != 0) return fmt::format("{:02}:{:02}:{:02}", s / 3600, (s / 60) % 60, s % 60);
+  return fmt::format("{:02}:{:02}", s / 3600, (s / 60) % 60);
+}
+
 }  // namespace rondo

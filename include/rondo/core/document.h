@@ -99,6 +99,9 @@ class Field {
 
   // An invalid-input error located at this field: "file:line: path: what".
   Error error(std::string_view what) const;
+  // The same for a field below this one, named by a relative path such as "window.deadline";
+  // the line is that field's when the document has it, else this one's.
+  Error error_at(std::string_view relative_path, std::string_view what) const;
 
  private:
   friend class Document;

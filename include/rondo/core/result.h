@@ -36,6 +36,7 @@ struct Error {
   static Error not_found(std::string message) { return {ErrorCode::kNotFound, std::move(message)}; }
   static Error io(std::string message) { return {ErrorCode::kIo, std::move(message)}; }
   static Error storage(std::string message) { return {ErrorCode::kStorage, std::move(message)}; }
+  static Error unsupported(std::string message) { return {ErrorCode::kUnsupported, std::move(message)}; }
   static Error internal(std::string message) { return {ErrorCode::kInternal, std::move(message)}; }
 
   // The same error with "prefix: " in front of its message, e.g. the file it came from.
@@ -103,3 +104,18 @@ class [[nodiscard]] Result<void> {
 using Status = Result<void>;
 
 }  // namespace rondo
+
+// Early return of an error, for functions that return a Result:
+//   RONDO_ASSIGN_OR_RETURN(auto map, load_map(file));    // declares `map` on success
+//   RONDO_RETURN_IF_ERROR(validate(task));
+#define RONDO_CONCAT_INNER_(a, b) a##b
+#define RONDO_CONCAT_(a, b) RONDO_CONCAT_INNER_(a, b)
+#define RONDO_ASSIGN_OR_RETURN(lhs, expr) RONDO_ASSIGN_OR_RETURN_IMPL_(RONDO_CONCAT_(rondo_result_, __LINE__), lhs, expr)
+#define RONDO_ASSIGN_OR_RETURN_IMPL_(tmp, lhs, expr) \
+  auto tmp = (expr);                                  \
+  if (!tmp.ok()) return tmp.error();                  \
+  lhs = std::move(tmp).value()
+#define RONDO_RETURN_IF_ERROR(expr)                                          \
+  do {                                                                       \
+    if (auto rondo_status_ = (expr); !rondo_status_.ok()) return rondo_status_.error(); \
+  } while (false)

@@ -44,5 +44,7 @@ std::string format_time(Time t);
 Result<Duration> parse_duration(std::string_view text);
 // The shortest exact form: "1h30m", "45s", "1.5s", "0s".
 std::string format_duration(Duration d);
+// A time since midnight as a clock reading: "08:45", "24:00", "09:00:30".
+std::string format_time_of_day(Duration since_midnight);
 
 }  // namespace rondo

@@ -12,15 +12,15 @@
 namespace rondo {
 
 struct Traversal {
-  std::string edge_id;  // the map's edge id; "<from>_<to>" in the Witham Wharf logs
-  std::string from;     // node the attempt started at
-  std::string to;       // node it was meant to reach
-  Time start;
-  Duration duration;
+  std::string edge_id{};  // the map's edge id; "<from>_<to>" in the Witham Wharf logs
+  std::string from{};     // node the attempt started at
+  std::string to{};       // node it was meant to reach
+  Time start{};
+  Duration duration{};
   bool success = false;
   // Where the record came from, unique per record: "witham:Aisle1_Aisle2.data:17" for an imported
   // log line; empty for a traversal the robot just made.
-  std::string origin;
+  std::string origin{};
 
   bool operator==(const Traversal&) const = default;
 };

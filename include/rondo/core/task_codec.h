@@ -1,0 +1,43 @@
+// Reading and writing tasks and routines as YAML or JSON (the format is docs/task-format.md).
+//
+//   Result<TaskFile> file = load_task_file("day.yaml");
+//   if (!file) { std::cerr << file.error().message; return 2; }   // "day.yaml:7: tasks[1].window..."
+//   for (const Task& t : file->tasks) ...
+//   std::string yaml = to_yaml(encode(*file));
+//
+// Decoding validates: every value that reaches the caller passes validate().
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "rondo/core/document.h"
+#include "rondo/core/result.h"
+#include "rondo/core/routine.h"
+#include "rondo/core/task.h"
+#include "rondo/core/timezone.h"
+
+namespace rondo {
+
+// A file of tasks and routines, with the time zone its local times and routines are read in.
+struct TaskFile {
+  std::optional<TimeZone> zone;  // required when the file has routines or local times
+  std::vector<Task> tasks;
+  std::vector<Routine> routines;
+};
+
+// Times without an explicit zone are read in `zone`; with no zone they are an error.
+Result<Task> decode_task(const Field& field, const TimeZone* zone);
+Result<Routine> decode_routine(const Field& field);
+Result<TaskFile> decode_task_file(const Document& doc);
+Result<TaskFile> load_task_file(const std::filesystem::path& file);
+Result<TaskFile> parse_task_file(std::string_view text, DocumentFormat format, std::string source);
+
+// Times are written in UTC ("...Z"), durations in their human form ("1h30m"); fields that hold
+// their default value are left out, so decode(encode(x)) == x.
+Json encode(const Task& task);
+Json encode(const Routine& routine);
+Json encode(const TaskFile& file);
+
+}  // namespace rondo

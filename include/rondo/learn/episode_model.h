@@ -1,0 +1,190 @@
+// The episode model: rondo's own model of an edge's success and traversal time, built on what the
+// logs of real robots show. Attempts come in episodes: a first attempt, and after a failure quick
+// retries of the same edge that mostly fail again (a closed door stays closed) until one succeeds
+// or the robot gives up. So:
+//   - q(t), the success probability of an episode's first attempt, follows the building's daily
+//     rhythm: per-edge time-of-day histograms, each bin shrunk towards the edge's mean (itself
+//     shrunk towards the pooled mean), averaged over several bin widths and shifted bin edges
+//     (averaged shifted histograms: smooth, and no bin width to pick);
+//   - L, the typical number of attempts in a failed episode, is heavy-tailed: the edge's geometric
+//     mean, shrunk towards the pooled one;
+//   - offline, an attempt at t succeeds with q / (q + (1 − q) L) (successes among the attempts an
+//     episode produces); online, the probability is conditioned on the edge's state: the outcome of
+//     its last attempt and the time since it ended (a table per state, shrunk towards the pooled
+//     table, which is itself shrunk towards q(t));
+//   - durations: per time-of-day quantile tables of successful and of failed attempts, mixed with
+//     the model's own success probability; during a retry burst, the last duration times the
+//     pooled distribution of retry-to-retry ratios.
+//
+//   std::vector<std::vector<Attempt>> per_edge = ...;    // training attempts, each in start order
+//   auto fitted = fit_episode_models(per_edge, {});
+//   double p = fitted.edges[3]->probability(t);                       // offline
+//   EpisodePredictor live(fitted.edges[3]);                            // online, O(1) updates
+//   live.observe(attempt);  double p_now = live.probability(t);
+//
+// Nothing here is tuned to one building: the histogram family is fixed, the other constants are
+// weak priors (a few pseudo-observations).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "rondo/core/document.h"
+#include "rondo/core/result.h"
+#include "rondo/learn/edge_predictor.h"
+#include "rondo/learn/quantile_table.h"
+#include "rondo/learn/temporal_model.h"
+
+namespace rondo::learn {
+
+struct EpisodeOptions {
+  // An attempt that starts less than this after a failed attempt on the same edge ended is a retry.
+  Duration retry_gap = seconds(60);
+  // The time-of-day histograms averaged for q(t): bins per day. Each must divide 24 (so every
+  // shifted bin edge falls on the 15-minute grid the counts are kept on); others are ignored.
+  std::vector<int> day_resolutions = {1, 2, 3, 4, 6, 8, 12};
+  // Time-of-day bins of the duration tables (clamped to 1..1440).
+  int duration_bins = 6;
+  // Where the day starts, as an offset added to UTC (the deployment's UTC offset).
+  Duration day_offset = seconds(0);
+  // Prior strengths, in pseudo-observations.
+  double bin_prior = 10;          // a time-of-day bin towards the edge's first-attempt rate
+  double edge_prior = 2;          // an edge's first-attempt rate towards the pooled rate
+  double length_prior = 5;        // an edge's log retry length towards the pooled one
+  double state_prior = 10;        // an edge's state table towards the pooled state table
+  double pooled_state_prior = 5;  // the pooled state table towards q(t)
+  double duration_prior = 10;     // a bin's duration quantiles towards the edge's
+};
+
+// The edge's state for the online model: outcome of the last attempt and time since it ended.
+// 13 gap buckets per outcome: floor(log2(1 + gap / 4 s)), the last one open-ended (> ~4.5 h).
+inline constexpr int kGapBuckets = 13;
+inline constexpr int kStates = 2 * kGapBuckets;
+
+// Counts of first attempts are kept per 15 minutes of the day.
+inline constexpr int kDaySlots = 96;
+// Each histogram is averaged over this many shifts of its bin edges (by a quarter bin).
+inline constexpr int kHistogramShifts = 4;
+
+// What is pooled over all edges of a fit. Immutable once fitted.
+struct EpisodePriors {
+  EpisodeOptions options;
+  double first_success = 0.5;                     // pooled first-attempt success rate
+  double log_retry_length = 0;                    // pooled mean of log(attempts per failed episode)
+  std::array<double, kStates> state_successes{};  // pooled counts per state
+  std::array<double, kStates> state_attempts{};
+  QuantileTable retry_ratio;  // quantiles of (retry duration / previous duration), pooled
+  // Least-squares line of a retry's duration on the previous attempt's: the expected value.
+  double retry_intercept = 0, retry_slope = 1;
+
+  int day_slot(Time t) const;      // 0..kDaySlots-1
+  int duration_bin(Time t) const;  // 0..options.duration_bins-1
+  Json to_json() const;
+  static Result<EpisodePriors> from_json(const Json& j);
+};
+
+// Sufficient statistics of one edge, cheap to update: counts per time-of-day bin and per state,
+// failed-episode lengths, and the recency state. add() takes attempts in order of their end.
+struct EpisodeStats {
+  std::vector<double> first_successes, first_attempts;  // per 15-minute slot of the day
+  double failed_episodes = 0, log_length_sum = 0;
+  std::array<double, kStates> state_successes{}, state_attempts{};
+  // Recency: the last attempt seen, and the failed episode in progress.
+  bool has_last = false;
+  bool last_success = false;
+  Time last_end{};
+  double last_seconds = 0;
+  int episode_length = 0;  // attempts in the current episode so far
+  bool episode_first_failed = false;
+
+  EpisodeStats() : first_successes(kDaySlots, 0.0), first_attempts(kDaySlots, 0.0) {}
+  void add(const Attempt& a, const EpisodePriors& priors);
+  // True when an attempt starting at t would be a retry of a failure.
+  bool in_retry(Time t, const EpisodePriors& priors) const;
+  static int state_of(bool last_success, Duration gap);
+  Json to_json() const;
+  static Result<EpisodeStats> from_json(const Json& j);
+};
+
+// One edge's fitted model: shared priors, the edge's statistics and duration tables. Immutable.
+class EpisodeEdgeModel {
+ public:
+  struct DurationTables {
+    // Per time-of-day bin, durations of successful and of failed attempts.
+    std::vector<QuantileTable> success, failure;
+    std::vector<double> success_mean, failure_mean;
+  };
+  EpisodeEdgeModel(std::shared_ptr<const EpisodePriors> priors, EpisodeStats stats, DurationTables durations)
+      : priors_(std::move(priors)), stats_(std::move(stats)), durations_(std::move(durations)) {}
+
+  // Offline: success probability of an attempt starting at t, not knowing recent outcomes.
+  double probability(Time t) const { return probability(t, stats_, false); }
+  // With `live` statistics: online when `use_state` (conditioned on live's recency state).
+  double probability(Time t, const EpisodeStats& live, bool use_state) const;
+  // The first-attempt success probability q(t) from `live` counts (the histogram average).
+  double first_attempt_probability(Time t, const EpisodeStats& live) const;
+  // Offline attempt success q / (q + (1 − q) L), averaged over the histograms.
+  double offline_probability(Time t, const EpisodeStats& live) const;
+  // Typical attempts per failed episode, >= 1.
+  double retry_length(const EpisodeStats& live) const;
+
+  double expected_seconds(Time t) const { return expected_seconds(t, stats_, false); }
+  double quantile_seconds(Time t, double q) const { return quantile_seconds(t, q, stats_, false); }
+  double expected_seconds(Time t, const EpisodeStats& live, bool use_state) const;
+  double quantile_seconds(Time t, double q, const EpisodeStats& live, bool use_state) const;
+
+  const EpisodeStats& stats() const { return stats_; }
+  const std::shared_ptr<const EpisodePriors>& priors() const { return priors_; }
+  // The edge's part only (statistics and duration tables); the priors are saved once per set.
+  Json to_json() const;
+  static Result<EpisodeEdgeModel> from_json(const Json& j, std::shared_ptr<const EpisodePriors> priors);
+
+ private:
+  std::shared_ptr<const EpisodePriors> priors_;
+  EpisodeStats stats_;
+  DurationTables durations_;
+};
+
+struct EpisodeFit {
+  std::shared_ptr<const EpisodePriors> priors;
+  std::vector<std::shared_ptr<const EpisodeEdgeModel>> edges;  // same order as the input
+};
+
+// Fits every edge, pooling across them. Each inner vector: one edge's attempts in start order.
+EpisodeFit fit_episode_models(const std::vector<std::vector<Attempt>>& edges, const EpisodeOptions& options = {});
+
+// The online form: the fitted edge plus live statistics. observe() is O(1).
+class EpisodePredictor final : public EdgePredictor {
+ public:
+  explicit EpisodePredictor(std::shared_ptr<const EpisodeEdgeModel> model)
+      : model_(std::move(model)), live_(model_->stats()) {}
+  void observe(const Attempt& a) override { live_.add(a, *model_->priors()); }
+  double probability(Time t) const override { return model_->probability(t, live_, true); }
+  double expected_seconds(Time t) const override { return model_->expected_seconds(t, live_, true); }
+  double quantile_seconds(Time t, double q) const override { return model_->quantile_seconds(t, q, live_, true); }
+  const EpisodeStats& live() const { return live_; }
+
+ private:
+  std::shared_ptr<const EpisodeEdgeModel> model_;
+  EpisodeStats live_;
+};
+
+// A single binary series through the same model (the series is one "edge" whose attempts take no
+// time): the BinaryModel for `rondo eval binary` and for door-open facts.
+class EpisodeBinaryModel final : public BinaryModel {
+ public:
+  explicit EpisodeBinaryModel(std::shared_ptr<const EpisodeEdgeModel> model) : model_(std::move(model)) {}
+  double probability(Time t) const override { return model_->probability(t); }
+  Json to_json() const override;
+  const EpisodeEdgeModel& model() const { return *model_; }
+
+ private:
+  std::shared_ptr<const EpisodeEdgeModel> model_;
+};
+
+std::shared_ptr<const EpisodeBinaryModel> fit_episode_binary(std::span<const BinarySample> samples,
+                                                             const EpisodeOptions& options = {});
+
+}  // namespace rondo::learn

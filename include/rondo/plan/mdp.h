@@ -1,0 +1,65 @@
+// M_t, the navigation MDP at one departure time t (MISSION.md §4): states are the map's nodes,
+// actions are their out-edges; taking edge e = (i, j) reaches j with probability p_e(t) and stays
+// at i otherwise, and costs τ_e(t) seconds either way. An Mdp is a snapshot: the edge outcomes
+// are read once, at t, and sanitised so that the solvers never see NaN or negative numbers.
+//
+//   DistancePrior prior(map);
+//   Mdp mdp = Mdp::build(map, prior, depart_at);
+//   double c = mdp.expected_crossing_seconds(e);   // τ/p, retries included; +inf if unusable
+//
+// Lifetime: an Mdp refers to its map (topology and node names); the map must outlive it.
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include "rondo/core/result.h"
+#include "rondo/core/time.h"
+#include "rondo/map/topo_map.h"
+#include "rondo/plan/edge_model_view.h"
+
+namespace rondo::plan {
+
+using map::EdgeIndex;
+using map::NodeIndex;
+
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// The shortest attempt the planner believes in. Zero-cost edges would let value iteration settle
+// on zero-cost cycles that never reach the target; no real attempt takes less than a millisecond.
+inline constexpr double kMinAttemptSeconds = 1e-3;
+
+class Mdp {
+ public:
+  // Reads models.outcome(e, at) for every edge of `map`.
+  static Mdp build(const map::TopoMap& map, const EdgeModelView& models, Time at);
+  // The same from outcomes given directly, one per edge; an error if the count is wrong.
+  static Result<Mdp> from_outcomes(const map::TopoMap& map, std::vector<EdgeOutcome> outcomes, Time at);
+
+  const map::TopoMap& topology() const { return *map_; }
+  Time time() const { return at_; }
+  std::size_t node_count() const { return map_->node_count(); }
+  std::size_t edge_count() const { return outcomes_.size(); }
+
+  // The sanitised outcome of an attempt on `edge`: p in [0, 1]; τ >= kMinAttemptSeconds, or +inf
+  // for an edge whose model gave NaN or +inf. Precondition: edge < edge_count().
+  const EdgeOutcome& outcome(EdgeIndex edge) const { return outcomes_[edge]; }
+  // τ/p: the expected time to cross `edge` by trying until it succeeds; +inf when p = 0, τ is
+  // +inf, or the quotient overflows. Such edges are unusable: no policy takes them.
+  double expected_crossing_seconds(EdgeIndex edge) const { return crossing_[edge]; }
+  bool usable(EdgeIndex edge) const { return crossing_[edge] < kInfinity; }
+
+ private:
+  Mdp(const map::TopoMap& map, std::vector<EdgeOutcome> outcomes, Time at);
+
+  const map::TopoMap* map_;
+  Time at_;
+  std::vector<EdgeOutcome> outcomes_;
+  std::vector<double> crossing_;
+};
+
+// The sanitising rule of Mdp, exposed for tests and for callers that build costs themselves.
+EdgeOutcome sanitize(EdgeOutcome raw);
+double expected_crossing_seconds(const EdgeOutcome& sanitized);
+
+}  // namespace rondo::plan

@@ -1,0 +1,100 @@
+// Expected travel times E(a, b, t) between any two nodes for a departure time t: what the
+// scheduler uses as its travel durations. Two readings of the models:
+// - static per departure (the published system): M_t is built at the start of t's time slot and
+//   solved exactly; every edge is read at that one time. Cached per (slot, target).
+// - time-dependent: each edge is read at the time the robot reaches it, by a time-dependent
+//   Dijkstra over FIFO-repaired edge arrival functions (docs/planning.md): leaving later never
+//   arrives earlier, because the robot may wait at a node for a better slot.
+//
+//   auto models = std::make_shared<DistancePrior>(map);
+//   TravelOracle oracle(map, models, {.slot_width = minutes(15)});
+//   double e = oracle.expected_seconds(a, b, depart_at);          // +inf when b is unreachable
+//   const Policy& p = oracle.policy(b, depart_at);
+//   TimedRoute r = oracle.time_dependent_route(a, b, depart_at);  // r.arrival_seconds
+//
+// Not thread-safe: queries fill caches. Every query first compares models->version() with the
+// version the caches were filled with and drops them when it changed. The map must outlive the
+// oracle.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "rondo/core/time.h"
+#include "rondo/map/topo_map.h"
+#include "rondo/plan/edge_model_view.h"
+#include "rondo/plan/mdp.h"
+#include "rondo/plan/policy.h"
+
+namespace rondo::plan {
+
+struct TravelOracleOptions {
+  Duration slot_width = minutes(15);      // > 0; slots are aligned to 00:00 UTC (Unix time 0)
+  std::size_t max_cached_policies = 512;  // the policy cache is emptied when it would grow past this
+  std::size_t max_cached_slots = 1024;    // likewise for the per-slot MDPs
+  // How far ahead the time-dependent variant looks for a slot where waiting pays off (FIFO repair),
+  // and beyond which an edge closed now counts as closed for good.
+  Duration max_wait = hours(24);
+};
+
+// One step of a time-dependent route. Times are seconds after the departure.
+struct TimedStep {
+  EdgeIndex edge = 0;
+  NodeIndex from = 0;
+  NodeIndex to = 0;
+  double reach_seconds = 0.0;   // when the robot reaches `from`
+  double start_seconds = 0.0;   // when it starts trying the edge (later than reach_seconds if waiting pays)
+  double arrive_seconds = 0.0;  // start + τ/p read at start_seconds
+};
+
+struct TimedRoute {
+  bool reachable = false;
+  double arrival_seconds = kInfinity;  // expected seconds from departure to arrival; +inf if unreachable
+  std::vector<TimedStep> steps;
+};
+
+class TravelOracle {
+ public:
+  // Precondition: models is not null, options.slot_width > 0 (std::invalid_argument otherwise).
+  TravelOracle(const map::TopoMap& map, std::shared_ptr<const EdgeModelView> models,
+               const TravelOracleOptions& options = {});
+
+  // Static per departure: E(from, to) in M_t with t the start of depart's slot. 0 when from == to.
+  // Preconditions for every query: from, to < the map's node_count() (std::out_of_range otherwise).
+  double expected_seconds(NodeIndex from, NodeIndex to, Time depart);
+  // The optimal policy to `target` in the same M_t. The reference is valid until the next query.
+  const Policy& policy(NodeIndex target, Time depart);
+  // The snapshot for depart's slot. The pointer stays valid after the caches are emptied.
+  std::shared_ptr<const Mdp> mdp_at(Time depart);
+
+  // Time-dependent: each edge read in the slot in which the robot starts trying it.
+  TimedRoute time_dependent_route(NodeIndex from, NodeIndex to, Time depart);
+  double time_dependent_expected_seconds(NodeIndex from, NodeIndex to, Time depart) {
+    return time_dependent_route(from, to, depart).arrival_seconds;
+  }
+
+  // The start of the slot that contains t.
+  Time slot_start(Time t) const;
+  std::size_t cached_policy_count() const { return policies_.size(); }
+  std::size_t cached_slot_count() const { return slots_.size(); }
+
+ private:
+  std::int64_t slot_of(Time t) const;
+  void check_version();
+  const Mdp& slot_mdp(std::int64_t slot);
+  // Earliest expected arrival at the end of `edge` when reaching its start at `t` seconds after
+  // `depart` (FIFO-repaired); also when to start trying it.
+  double edge_arrival(EdgeIndex edge, Time depart, double t, double* start_out);
+
+  const map::TopoMap* map_;
+  std::shared_ptr<const EdgeModelView> models_;
+  TravelOracleOptions options_;
+  std::uint64_t version_ = 0;
+  std::map<std::int64_t, std::shared_ptr<const Mdp>> slots_;
+  std::map<std::pair<std::int64_t, NodeIndex>, Policy> policies_;
+};
+
+}  // namespace rondo::plan

@@ -1,0 +1,50 @@
+// The tasks the executive has accepted, each with its current state. A task is stored as the JSON
+// text its codec writes (rondo::Json), so the store does not change when Task gains fields; every
+// state change also appends to the task event log (task_events.h) in the same transaction.
+//
+//   TaskRecord r{.id = "t1", .task = task_json, .state = "queued", .created = now, .updated = now};
+//   if (Status s = add_task(db, r); !s) return s.error();   // durable once this returns
+//   Status s = set_task_state(db, "t1", "navigating", later, "scheduled start");
+//   Result<TaskRecord> back = get_task(db, "t1");           // state "navigating", updated later
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rondo/core/document.h"
+#include "rondo/core/result.h"
+#include "rondo/core/time.h"
+#include "rondo/store/store.h"
+
+namespace rondo::store {
+
+struct TaskRecord {
+  std::string id;     // unique in the store
+  Json task;          // the task as its JSON codec writes it
+  std::string state;  // the life-cycle state, e.g. "queued", "navigating", "succeeded"
+  Time created;       // when the task was accepted
+  Time updated;       // the last state change
+
+  bool operator==(const TaskRecord&) const = default;
+};
+
+// Accepts a new task: stores `task` and appends the event (task.created, task.id, task.state,
+// `reason`) in one transaction, committed (synchronous=FULL: on disk) before this returns, so a
+// crash right after never loses it. Errors: kInvalidInput (the id is already stored, or it is
+// empty), kStorage.
+Status add_task(Store& store, const TaskRecord& task, std::string_view reason = "accepted");
+
+// Moves task `id` to `state` at time `at` and appends the event (at, id, state, reason), in one
+// transaction. Errors: kNotFound (no such task), kStorage.
+Status set_task_state(Store& store, std::string_view id, std::string_view state, Time at, std::string_view reason);
+
+// Errors: kNotFound (no such task), kStorage (including stored JSON that no longer parses).
+Result<TaskRecord> get_task(const Store& store, std::string_view id);
+
+// Every stored task, in the order they were accepted (created time, then id).
+Result<std::vector<TaskRecord>> list_tasks(const Store& store);
+// The tasks whose current state is `state`, in the order they were accepted.
+Result<std::vector<TaskRecord>> list_tasks_in_state(const Store& store, std::string_view state);
+
+}  // namespace rondo::store

@@ -1,0 +1,512 @@
+#include "rondo/learn/episode_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "json_util.h"
+
+namespace rondo::learn {
+namespace {
+
+constexpr std::int64_t kDayMs = 86'400'000;
+
+std::size_t idx(int i) {
+  return static_cast<std::size_t>(i);
+}
+
+// Vincentisation: the quantile function of a mixture of "weight" of `a` and the rest of `b`.
+QuantileTable blend(const QuantileTable& a, const QuantileTable& b, double weight) {
+  std::vector<double> mixed(a.values().size());
+  for (std::size_t k = 0; k < mixed.size(); ++k) mixed[k] = weight * a.values()[k] + (1 - weight) * b.values()[k];
+  Json j(mixed);
+  return *QuantileTable::from_json(j);  // a blend of non-decreasing tables is non-decreasing
+}
+
+// The q-quantile of the mixture "weight_a of `a`, the rest of `b`": every knot of each table is a
+// point mass of its share; the two sorted knot lists are merged and read at cumulative weight q.
+double mixture_quantile(const QuantileTable& a, double weight_a, const QuantileTable& b, double q) {
+  const auto& va = a.values();
+  const auto& vb = b.values();
+  const double wa = std::clamp(weight_a, 0.0, 1.0) / static_cast<double>(va.size());
+  const double wb = (1 - std::clamp(weight_a, 0.0, 1.0)) / static_cast<double>(vb.size());
+  const double target = std::clamp(q, 0.0, 1.0);
+  std::size_t i = 0, j = 0;
+  double cumulative = 0, previous_mid = 0, previous_value = 0;
+  bool first = true;
+  while (i < va.size() || j < vb.size()) {
+    const bool take_a = j >= vb.size() || (i < va.size() && va[i] <= vb[j]);
+    const double value = take_a ? va[i++] : vb[j++];
+    const double w = take_a ? wa : wb;
+    if (w <= 0) continue;
+    const double mid = cumulative + w / 2;
+    cumulative += w;
+    if (mid >= target) {
+      if (first) return value;
+      const double frac = mid > previous_mid ? (target - previous_mid) / (mid - previous_mid) : 1.0;
+      return previous_value + frac * (value - previous_value);
+    }
+    previous_mid = mid;
+    previous_value = value;
+    first = false;
+  }
+  return previous_value;
+}
+
+double mean_of(const std::vector<double>& v) {
+  if (v.empty()) return 0;
+  double s = 0;
+  for (double x : v) s += x;
+  return s / static_cast<double>(v.size());
+}
+
+template <std::size_t N>
+Json array_json(const std::array<double, N>& a) {
+  return Json(std::vector<double>(a.begin(), a.end()));
+}
+
+template <std::size_t N>
+Status read_array(const Json& j, const char* key, std::array<double, N>& out) {
+  auto v = json_numbers(j, key);
+  if (!v) return v.error();
+  if (v->size() != N)
+    return Error::invalid(std::string("model: '") + key + "' must have " + std::to_string(N) + " numbers");
+  std::copy(v->begin(), v->end(), out.begin());
+  return {};
+}
+
+}  // namespace
+
+namespace {
+std::int64_t time_of_day_ms(Time t, Duration offset) {
+  const std::int64_t ms = (t + offset).time_since_epoch().count();
+  return ((ms % kDayMs) + kDayMs) % kDayMs;
+}
+}  // namespace
+
+int EpisodePriors::day_slot(Time t) const {
+  return static_cast<int>(time_of_day_ms(t, options.day_offset) * kDaySlots / kDayMs);
+}
+
+int EpisodePriors::duration_bin(Time t) const {
+  return static_cast<int>(time_of_day_ms(t, options.day_offset) * options.duration_bins / kDayMs);
+}
+
+int EpisodeStats::state_of(bool last_success, Duration gap) {
+  const double gap_s = std::max(0.0, to_seconds(gap));
+  const int bucket = std::min(kGapBuckets - 1, static_cast<int>(std::floor(std::log2(1.0 + gap_s / 4.0))));
+  return (last_success ? kGapBuckets : 0) + bucket;
+}
+
+bool EpisodeStats::in_retry(Time t, const EpisodePriors& priors) const {
+  return has_last && !last_success && t - last_end < priors.options.retry_gap;
+}
+
+void EpisodeStats::add(const Attempt& a, const EpisodePriors& priors) {
+  const bool retry = in_retry(a.start, priors);
+  if (has_last) {
+    const auto s = idx(state_of(last_success, a.start - last_end));
+    state_attempts[s] += 1;
+    state_successes[s] += a.success ? 1 : 0;
+  }
+  if (retry) {
+    ++episode_length;
+  } else {
+    if (episode_length > 0 && episode_first_failed) {
+      failed_episodes += 1;
+      log_length_sum += std::log(static_cast<double>(episode_length));
+    }
+    const auto slot = idx(priors.day_slot(a.start));
+    first_attempts[slot] += 1;
+    first_successes[slot] += a.success ? 1 : 0;
+    episode_length = 1;
+    episode_first_failed = !a.success;
+  }
+  has_last = true;
+  last_success = a.success;
+  last_end = a.end;
+  last_seconds = a.seconds;
+}
+
+namespace {
+
+// Calls f(q) for the first-attempt estimate of every shifted histogram at `t`.
+template <class F>
+void for_each_histogram(Time t, const EpisodePriors& priors, const EpisodeStats& live, F&& f) {
+  const auto& o = priors.options;
+  double successes = 0, attempts = 0;
+  for (std::size_t b = 0; b < live.first_attempts.size(); ++b) {
+    successes += live.first_successes[b];
+    attempts += live.first_attempts[b];
+  }
+  const double edge = (successes + o.edge_prior * priors.first_success) / (attempts + o.edge_prior);
+  const int slot = priors.day_slot(t);
+  for (int bins : o.day_resolutions) {
+    if (bins < 1 || 24 % bins != 0) continue;  // not on the 15-minute grid: ignored
+    const int width = kDaySlots / bins;
+    const int shifts = bins == 1 ? 1 : kHistogramShifts;
+    for (int shift = 0; shift < shifts; ++shift) {
+      const int offset = shift * width / kHistogramShifts;
+      const int first = slot - (((slot - offset) % width) + width) % width;
+      double s = 0, n = 0;
+      for (int k = 0; k < width; ++k) {
+        const auto i = idx((first + k + kDaySlots) % kDaySlots);
+        s += live.first_successes[i];
+        n += live.first_attempts[i];
+      }
+      f((s + o.bin_prior * edge) / (n + o.bin_prior));
+    }
+  }
+}
+
+}  // namespace
+
+double EpisodeEdgeModel::first_attempt_probability(Time t, const EpisodeStats& live) const {
+  double sum = 0;
+  int count = 0;
+  for_each_histogram(t, *priors_, live, [&](double q) {
+    sum += q;
+    ++count;
+  });
+  return count > 0 ? sum / count : priors_->first_success;
+}
+
+double EpisodeEdgeModel::retry_length(const EpisodeStats& live) const {
+  const auto& o = priors_->options;
+  const double log_length =
+      (live.log_length_sum + o.length_prior * priors_->log_retry_length) / (live.failed_episodes + o.length_prior);
+  return std::max(1.0, std::exp(log_length));
+}
+
+double EpisodeEdgeModel::offline_probability(Time t, const EpisodeStats& live) const {
+  const double length = retry_length(live);
+  double sum = 0;
+  int count = 0;
+  for_each_histogram(t, *priors_, live, [&](double q) {
+    sum += q / (q + (1 - q) * length);
+    ++count;
+  });
+  return count > 0 ? sum / count : priors_->first_success;
+}
+
+double EpisodeEdgeModel::probability(Time t, const EpisodeStats& live, bool use_state) const {
+  if (!use_state || !live.has_last) return offline_probability(t, live);
+  const double q = first_attempt_probability(t, live);
+  const auto& o = priors_->options;
+  const auto s = idx(EpisodeStats::state_of(live.last_success, t - live.last_end));
+  const double pooled =
+      (priors_->state_successes[s] + o.pooled_state_prior * q) / (priors_->state_attempts[s] + o.pooled_state_prior);
+  return std::clamp((live.state_successes[s] + o.state_prior * pooled) / (live.state_attempts[s] + o.state_prior), 0.0,
+                    1.0);
+}
+
+double EpisodeEdgeModel::expected_seconds(Time t, const EpisodeStats& live, bool use_state) const {
+  if (use_state && live.in_retry(t, *priors_)) {
+    return std::max(0.0, priors_->retry_intercept + priors_->retry_slope * live.last_seconds);
+  }
+  const auto bin = idx(priors_->duration_bin(t));
+  const double p = probability(t, live, use_state);
+  return p * durations_.success_mean[bin] + (1 - p) * durations_.failure_mean[bin];
+}
+
+double EpisodeEdgeModel::quantile_seconds(Time t, double q, const EpisodeStats& live, bool use_state) const {
+  if (use_state && live.in_retry(t, *priors_)) return live.last_seconds * priors_->retry_ratio.at(q);
+  const auto bin = idx(priors_->duration_bin(t));
+  return mixture_quantile(durations_.success[bin], probability(t, live, use_state), durations_.failure[bin], q);
+}
+
+namespace {
+
+struct PooledSums {
+  double first_successes = 0, first_attempts = 0, failed_episodes = 0, log_length_sum = 0;
+  std::array<double, kStates> state_successes{}, state_attempts{};
+  std::vector<double> retry_ratios;
+  std::array<std::vector<double>, 2> durations;    // of failed and of successful attempts
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;  // retry duration (y) on the previous one (x)
+};
+
+// The statistics of every edge under `priors` (only its options are read), and their pooled sums.
+std::vector<EpisodeStats> collect(const std::vector<std::vector<Attempt>>& edges, const EpisodePriors& priors,
+                                  PooledSums& pooled) {
+  std::vector<EpisodeStats> out;
+  out.reserve(edges.size());
+  for (const auto& attempts : edges) {
+    EpisodeStats stats;
+    for (const Attempt& a : attempts) {
+      pooled.durations[a.success ? 1 : 0].push_back(a.seconds);
+      if (stats.in_retry(a.start, priors)) {
+        if (stats.last_seconds > 0) pooled.retry_ratios.push_back(a.seconds / stats.last_seconds);
+        pooled.n += 1;
+        pooled.sx += stats.last_seconds;
+        pooled.sy += a.seconds;
+        pooled.sxx += stats.last_seconds * stats.last_seconds;
+        pooled.sxy += stats.last_seconds * a.seconds;
+      }
+      stats.add(a, priors);
+    }
+    for (std::size_t b = 0; b < stats.first_attempts.size(); ++b) {
+      pooled.first_successes += stats.first_successes[b];
+      pooled.first_attempts += stats.first_attempts[b];
+    }
+    pooled.failed_episodes += stats.failed_episodes;
+    pooled.log_length_sum += stats.log_length_sum;
+    for (std::size_t s = 0; s < idx(kStates); ++s) {
+      pooled.state_successes[s] += stats.state_successes[s];
+      pooled.state_attempts[s] += stats.state_attempts[s];
+    }
+    out.push_back(std::move(stats));
+  }
+  return out;
+}
+
+std::shared_ptr<EpisodePriors> pooled_priors(const EpisodeOptions& options, const PooledSums& sums) {
+  auto priors = std::make_shared<EpisodePriors>();
+  priors->options = options;
+  priors->first_success = sums.first_attempts > 0 ? sums.first_successes / sums.first_attempts : 0.5;
+  priors->log_retry_length = sums.failed_episodes > 0 ? sums.log_length_sum / sums.failed_episodes : 0.0;
+  priors->state_successes = sums.state_successes;
+  priors->state_attempts = sums.state_attempts;
+  // Without any retry seen, a retry is expected to take as long as the attempt before it.
+  priors->retry_ratio =
+      QuantileTable::from_samples(sums.retry_ratios.empty() ? std::vector<double>{1.0} : sums.retry_ratios);
+  const double var = sums.n * sums.sxx - sums.sx * sums.sx;
+  if (sums.n >= 2 && var > 0) {
+    priors->retry_slope = (sums.n * sums.sxy - sums.sx * sums.sy) / var;
+    priors->retry_intercept = (sums.sy - priors->retry_slope * sums.sx) / sums.n;
+  }
+  return priors;
+}
+
+// Duration tables of one edge per time-of-day bin, for successful and for failed attempts: each
+// bin shrunk towards the edge's table, the edge's towards the pooled one.
+EpisodeEdgeModel::DurationTables duration_tables(const std::vector<Attempt>& attempts, const EpisodePriors& priors,
+                                                 const std::array<std::vector<double>, 2>& pooled) {
+  const auto bins = idx(priors.options.duration_bins);
+  std::array<std::vector<std::vector<double>>, 2> by_bin{std::vector<std::vector<double>>(bins),
+                                                         std::vector<std::vector<double>>(bins)};
+  std::array<std::vector<double>, 2> edge;
+  for (const Attempt& a : attempts) {
+    const auto outcome = idx(a.success ? 1 : 0);
+    by_bin[outcome][idx(priors.duration_bin(a.start))].push_back(a.seconds);
+    edge[outcome].push_back(a.seconds);
+  }
+  const double k = priors.options.duration_prior;
+  auto weight = [k](const std::vector<double>& v) {
+    return static_cast<double>(v.size()) / (static_cast<double>(v.size()) + k);
+  };
+  EpisodeEdgeModel::DurationTables out;
+  for (std::size_t outcome = 0; outcome < 2; ++outcome) {
+    const double we = weight(edge[outcome]);
+    const auto edge_table =
+        blend(QuantileTable::from_samples(edge[outcome]), QuantileTable::from_samples(pooled[outcome]), we);
+    const double edge_mean = we * mean_of(edge[outcome]) + (1 - we) * mean_of(pooled[outcome]);
+    auto& tables = outcome == 1 ? out.success : out.failure;
+    auto& means = outcome == 1 ? out.success_mean : out.failure_mean;
+    for (std::size_t b = 0; b < bins; ++b) {
+      const double wb = weight(by_bin[outcome][b]);
+      tables.push_back(blend(QuantileTable::from_samples(by_bin[outcome][b]), edge_table, wb));
+      means.push_back(wb * mean_of(by_bin[outcome][b]) + (1 - wb) * edge_mean);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+EpisodeFit fit_episode_models(const std::vector<std::vector<Attempt>>& edges, const EpisodeOptions& given) {
+  EpisodeOptions options = given;
+  options.duration_bins = std::clamp(options.duration_bins, 1, 1440);
+  EpisodePriors shape;
+  shape.options = options;
+  PooledSums sums;
+  auto stats = collect(edges, shape, sums);
+  EpisodeFit fit;
+  auto priors = pooled_priors(options, sums);
+  fit.priors = priors;
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    auto tables = duration_tables(edges[e], *priors, sums.durations);
+    fit.edges.push_back(std::make_shared<const EpisodeEdgeModel>(priors, std::move(stats[e]), std::move(tables)));
+  }
+  return fit;
+}
+
+std::shared_ptr<const EpisodeBinaryModel> fit_episode_binary(std::span<const BinarySample> samples,
+                                                             const EpisodeOptions& options) {
+  std::vector<std::vector<Attempt>> edges(1);
+  for (const auto& s : samples) edges[0].push_back({s.time, s.time, 0.0, s.value});
+  std::stable_sort(edges[0].begin(), edges[0].end(), [](const auto& a, const auto& b) { return a.start < b.start; });
+  auto fit = fit_episode_models(edges, options);
+  return std::make_shared<const EpisodeBinaryModel>(fit.edges[0]);
+}
+
+// ---- JSON -------------------------------------------------------------------------------------
+
+Json EpisodePriors::to_json() const {
+  const auto& o = options;
+  return Json{{"retry_gap_s", to_seconds(o.retry_gap)},
+              {"day_offset_s", to_seconds(o.day_offset)},
+              {"bin_prior", o.bin_prior},
+              {"edge_prior", o.edge_prior},
+              {"length_prior", o.length_prior},
+              {"state_prior", o.state_prior},
+              {"pooled_state_prior", o.pooled_state_prior},
+              {"duration_prior", o.duration_prior},
+              {"day_resolutions", o.day_resolutions},
+              {"duration_bins", o.duration_bins},
+              {"first_success", first_success},
+              {"log_retry_length", log_retry_length},
+              {"state_successes", array_json(state_successes)},
+              {"state_attempts", array_json(state_attempts)},
+              {"retry_ratio", retry_ratio.to_json()},
+              {"retry_intercept", retry_intercept},
+              {"retry_slope", retry_slope}};
+}
+
+Result<EpisodePriors> EpisodePriors::from_json(const Json& j) {
+  EpisodePriors p;
+  struct NumberField {
+    const char* key;
+    double* out;
+  };
+  double retry_gap_s = 0, day_offset_s = 0, duration_bins = 0;
+  const NumberField numbers[] = {{"retry_gap_s", &retry_gap_s},
+                                 {"day_offset_s", &day_offset_s},
+                                 {"bin_prior", &p.options.bin_prior},
+                                 {"edge_prior", &p.options.edge_prior},
+                                 {"length_prior", &p.options.length_prior},
+                                 {"state_prior", &p.options.state_prior},
+                                 {"pooled_state_prior", &p.options.pooled_state_prior},
+                                 {"duration_prior", &p.options.duration_prior},
+                                 {"duration_bins", &duration_bins},
+                                 {"first_success", &p.first_success},
+                                 {"log_retry_length", &p.log_retry_length},
+                                 {"retry_intercept", &p.retry_intercept},
+                                 {"retry_slope", &p.retry_slope}};
+  for (const auto& f : numbers) {
+    auto v = json_number(j, f.key);
+    if (!v) return v.error();
+    *f.out = *v;
+  }
+  if (duration_bins < 1 || duration_bins > 1440 || duration_bins != std::floor(duration_bins)) {
+    return Error::invalid("model: 'duration_bins' must be a whole number in 1..1440");
+  }
+  p.options.duration_bins = static_cast<int>(duration_bins);
+  auto resolutions = json_numbers(j, "day_resolutions");
+  if (!resolutions) return resolutions.error();
+  p.options.day_resolutions.clear();
+  for (double r : *resolutions) {
+    if (r < 1 || r > 24 || r != std::floor(r) || 24 % static_cast<int>(r) != 0) {
+      return Error::invalid("model: 'day_resolutions' must hold divisors of 24");
+    }
+    p.options.day_resolutions.push_back(static_cast<int>(r));
+  }
+  p.options.retry_gap = from_seconds(retry_gap_s);
+  p.options.day_offset = from_seconds(day_offset_s);
+  if (auto s = read_array(j, "state_successes", p.state_successes); !s) return s.error();
+  if (auto s = read_array(j, "state_attempts", p.state_attempts); !s) return s.error();
+  if (!j.contains("retry_ratio")) return Error::invalid("model: missing 'retry_ratio'");
+  auto ratio = QuantileTable::from_json(j["retry_ratio"]);
+  if (!ratio) return ratio.error();
+  p.retry_ratio = *ratio;
+  return p;
+}
+
+Json EpisodeStats::to_json() const {
+  return Json{{"first_successes", first_successes},
+              {"first_attempts", first_attempts},
+              {"failed_episodes", failed_episodes},
+              {"log_length_sum", log_length_sum},
+              {"state_successes", array_json(state_successes)},
+              {"state_attempts", array_json(state_attempts)},
+              {"has_last", has_last},
+              {"last_success", last_success},
+              {"last_end_ms", last_end.time_since_epoch().count()},
+              {"last_seconds", last_seconds},
+              {"episode_length", episode_length},
+              {"episode_first_failed", episode_first_failed}};
+}
+
+Result<EpisodeStats> EpisodeStats::from_json(const Json& j) {
+  EpisodeStats s;
+  auto fs = json_numbers(j, "first_successes");
+  auto fa = json_numbers(j, "first_attempts");
+  if (!fs) return fs.error();
+  if (!fa) return fa.error();
+  if (fs->size() != idx(kDaySlots) || fa->size() != idx(kDaySlots)) {
+    return Error::invalid("model: 'first_successes'/'first_attempts' must have one number per 15 minutes of the day");
+  }
+  s.first_successes = *fs;
+  s.first_attempts = *fa;
+  auto failed = json_number(j, "failed_episodes");
+  auto log_sum = json_number(j, "log_length_sum");
+  auto last_end = json_number(j, "last_end_ms");
+  auto last_seconds = json_number(j, "last_seconds");
+  auto length = json_number(j, "episode_length");
+  if (!failed) return failed.error();
+  if (!log_sum) return log_sum.error();
+  if (!last_end) return last_end.error();
+  if (!last_seconds) return last_seconds.error();
+  if (!length) return length.error();
+  s.failed_episodes = *failed;
+  s.log_length_sum = *log_sum;
+  s.last_end = Time{Duration{static_cast<std::int64_t>(*last_end)}};
+  s.last_seconds = *last_seconds;
+  s.episode_length = static_cast<int>(*length);
+  for (auto [key, out] : {std::pair{"has_last", &s.has_last}, std::pair{"last_success", &s.last_success},
+                          std::pair{"episode_first_failed", &s.episode_first_failed}}) {
+    if (!j.contains(key) || !j[key].is_boolean())
+      return Error::invalid(std::string("model: '") + key + "' must be true or false");
+    *out = j[key].get<bool>();
+  }
+  if (auto st = read_array(j, "state_successes", s.state_successes); !st) return st.error();
+  if (auto st = read_array(j, "state_attempts", s.state_attempts); !st) return st.error();
+  return s;
+}
+
+Json EpisodeEdgeModel::to_json() const {
+  Json success = Json::array(), failure = Json::array();
+  for (const auto& t : durations_.success) success.push_back(t.to_json());
+  for (const auto& t : durations_.failure) failure.push_back(t.to_json());
+  return Json{{"stats", stats_.to_json()},
+              {"durations",
+               {{"success", success},
+                {"failure", failure},
+                {"success_mean", durations_.success_mean},
+                {"failure_mean", durations_.failure_mean}}}};
+}
+
+Result<EpisodeEdgeModel> EpisodeEdgeModel::from_json(const Json& j, std::shared_ptr<const EpisodePriors> priors) {
+  if (!j.is_object() || !j.contains("stats") || !j.contains("durations")) {
+    return Error::invalid("model: an episode edge needs 'stats' and 'durations'");
+  }
+  auto stats = EpisodeStats::from_json(j["stats"]);
+  const auto bins = idx(priors->options.duration_bins);
+  if (!stats) return stats.error();
+  const Json& d = j["durations"];
+  DurationTables tables;
+  for (auto [key, out] : {std::pair{"success", &tables.success}, std::pair{"failure", &tables.failure}}) {
+    if (!d.contains(key) || !d[key].is_array() || d[key].size() != bins) {
+      return Error::invalid(std::string("model: 'durations.") + key + "' must have one table per day bin");
+    }
+    for (const Json& t : d[key]) {
+      auto table = QuantileTable::from_json(t);
+      if (!table) return table.error();
+      out->push_back(*table);
+    }
+  }
+  auto success_mean = json_numbers(d, "success_mean");
+  auto failure_mean = json_numbers(d, "failure_mean");
+  if (!success_mean) return success_mean.error();
+  if (!failure_mean) return failure_mean.error();
+  if (success_mean->size() != bins || failure_mean->size() != bins) {
+    return Error::invalid("model: duration means must have one number per duration bin");
+  }
+  tables.success_mean = *success_mean;
+  tables.failure_mean = *failure_mean;
+  return EpisodeEdgeModel(std::move(priors), std::move(*stats), std::move(tables));
+}
+
+Json EpisodeBinaryModel::to_json() const {
+  return Json{{"type", "episode"}, {"priors", model_->priors()->to_json()}, {"edge", model_->to_json()}};
+}
+
+}  // namespace rondo::learn

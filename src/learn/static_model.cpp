@@ -1,0 +1,32 @@
+#include "rondo/learn/static_model.h"
+
+namespace rondo::learn {
+
+Json StaticBinaryModel::to_json() const {
+  return Json{{"type", "static"}, {"mean", mean_}};
+}
+
+Json StaticDurationModel::to_json() const {
+  return Json{{"type", "static"}, {"mean", mean_}, {"quantiles", quantiles_.to_json()}};
+}
+
+std::shared_ptr<const StaticBinaryModel> fit_static_binary(std::span<const BinarySample> samples) {
+  if (samples.empty()) return std::make_shared<const StaticBinaryModel>(0.5);
+  double successes = 0;
+  for (const auto& s : samples) successes += s.value ? 1.0 : 0.0;
+  return std::make_shared<const StaticBinaryModel>(successes / static_cast<double>(samples.size()));
+}
+
+std::shared_ptr<const StaticDurationModel> fit_static_duration(std::span<const DurationSample> samples) {
+  std::vector<double> values;
+  values.reserve(samples.size());
+  double sum = 0;
+  for (const auto& s : samples) {
+    values.push_back(s.seconds);
+    sum += s.seconds;
+  }
+  const double mean = samples.empty() ? 0.0 : sum / static_cast<double>(samples.size());
+  return std::make_shared<const StaticDurationModel>(mean, QuantileTable::from_samples(std::move(values)));
+}
+
+}  // namespace rondo::learn

@@ -1,0 +1,85 @@
+#include "rondo/map/map_loader.h"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+#include "rondo/core/document.h"
+#include "rondo/map/map_yaml.h"
+#include "rondo/map/strands_import.h"
+
+namespace rondo::map {
+
+const char* to_string(MapFormat format) {
+  switch (format) {
+    case MapFormat::kRondo:
+      return "rondo";
+    case MapFormat::kStrandsTmap:
+      return "strands-tmap";
+    case MapFormat::kStrandsYaml:
+      return "strands-yaml";
+    case MapFormat::kStrandsJson:
+      return "strands-json";
+  }
+  return "unknown";
+}
+
+Result<LoadedMap> load_map_file(const std::filesystem::path& file) {
+  const std::string ext = file.extension().string();
+  const bool is_tmap = ext == ".tmap";
+  const bool is_json = ext == ".json";
+  const bool is_yaml = ext == ".yaml" || ext == ".yml";
+  if (!is_tmap && !is_json && !is_yaml) {
+    return Error::invalid(fmt::format(
+        "{}: unknown map file type '{}': expected .yaml or .yml (rondo or STRANDS YAML), .tmap or .json (STRANDS)",
+        file.string(), ext));
+  }
+  auto text = read_text_file(file);
+  if (!text) return text.error();
+  if (is_tmap) {
+    auto map = parse_strands_tmap(*text, file.string());
+    if (!map) return map.error();
+    return LoadedMap{std::move(*map), MapFormat::kStrandsTmap};
+  }
+  auto doc = Document::parse(*text, is_json ? DocumentFormat::kJson : DocumentFormat::kYaml, file.string());
+  if (!doc) return doc.error();
+  if (is_rondo_map_document(*doc)) {
+    auto map = map_from_document(*doc);
+    if (!map) return map.error();
+    return LoadedMap{std::move(*map), MapFormat::kRondo};
+  }
+  auto map = strands_map_from_document(*doc);
+  if (!map) return map.error();
+  return LoadedMap{std::move(*map), is_json ? MapFormat::kStrandsJson : MapFormat::kStrandsYaml};
+}
+
+Result<TopoMap> load_map(const std::filesystem::path& file) {
+  auto loaded = load_map_file(file);
+  if (!loaded) return loaded.error();
+  return std::move(loaded->map);
+}
+
+Status save_map(const TopoMap& map, const std::filesystem::path& file) {
+  const std::string text = write_map_yaml(map);
+  std::filesystem::path partial = file;
+  partial += ".partial";
+  {
+    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
+    if (!out) return Error::io(fmt::format("{}: cannot write: {}", partial.string(), std::strerror(errno)));
+    out << text;
+    out.flush();
+    if (!out) return Error::io(fmt::format("{}: write failed", partial.string()));
+  }
+  std::error_code ec;
+  std::filesystem::rename(partial, file, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);
+    return Error::io(fmt::format("{}: cannot write: {}", file.string(), ec.message()));
+  }
+  return {};
+}
+
+}  // namespace rondo::map

@@ -1,0 +1,62 @@
+#include "strands_common.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "rondo/map/map_geometry.h"
+#include "rondo/map/strands_import.h"
+#include "utf8.h"
+
+namespace rondo::map {
+
+double yaw_from_quaternion(double x, double y, double z, double w) {
+  // Scale first so that large components cannot overflow into inf - inf. The formula below is
+  // homogeneous (both arguments scale with the squared norm), so it needs no unit quaternion:
+  // STRANDS files hold unnormalised ones, and the zero quaternion.
+  const double scale = std::max({std::abs(x), std::abs(y), std::abs(z), std::abs(w)});
+  if (!(scale > 0) || !std::isfinite(scale)) return 0.0;
+  x /= scale;
+  y /= scale;
+  z /= scale;
+  w /= scale;
+  return std::atan2(2.0 * (w * z + x * y), w * w + x * x - y * y - z * z);
+}
+
+std::string door_id_between(std::string_view a, std::string_view b) {
+  return a < b ? fmt::format("{}_{}", a, b) : fmt::format("{}_{}", b, a);
+}
+
+void complete_strands_edges(std::vector<Edge>& edges) {
+  std::unordered_set<std::string> taken;
+  for (const Edge& e : edges) {
+    if (!e.id.empty()) taken.insert(e.id);
+  }
+  // The next suffix to try per "<from>_<to>", so that many parallel edges stay linear, not quadratic.
+  std::unordered_map<std::string, int> next_suffix;
+  for (Edge& e : edges) {
+    if (e.id.empty()) {
+      const std::string base = e.from + "_" + e.to;
+      std::string id = base;
+      if (taken.contains(id)) {
+        int& n = next_suffix.try_emplace(base, 2).first->second;
+        do {
+          id = fmt::format("{}_{}", base, n++);
+        } while (taken.contains(id));
+      }
+      taken.insert(id);
+      e.id = std::move(id);
+    }
+    if (!e.door && action_kind(e.action) == ActionKind::kDoor) e.door = door_id_between(e.from, e.to);
+  }
+}
+
+std::string name_from_source(const std::string& source) {
+  return replace_invalid_utf8(std::filesystem::path(source).stem().string());
+}
+
+}  // namespace rondo::map

@@ -1,0 +1,24 @@
+// Private helpers shared by the STRANDS importers (.tmap text and YAML/JSON documents).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "rondo/map/topo_map.h"
+
+namespace rondo::map {
+
+// The heading of a quaternion about the z axis, in [-pi, pi]. The quaternion need not be of unit
+// length; any finite one gives a finite yaw, and the zero quaternion (found in real STRANDS maps)
+// gives 0.
+double yaw_from_quaternion(double x, double y, double z, double w);
+
+// Gives every edge with an empty id the id "<from>_<to>", or "<from>_<to>_2", "_3"... when that id
+// is taken by another edge; and gives door edges (action_kind kDoor) without a door their
+// door_id_between(from, to).
+void complete_strands_edges(std::vector<Edge>& edges);
+
+// The map name of a .tmap file: the stem of its path ("maps/g4s_y2.tmap" gives "g4s_y2").
+std::string name_from_source(const std::string& source);
+
+}  // namespace rondo::map

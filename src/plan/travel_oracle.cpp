@@ -1,0 +1,165 @@
+#include "rondo/plan/travel_oracle.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <queue>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "rondo/plan/exact_solver.h"
+
+namespace rondo::plan {
+namespace {
+
+void check_node(const map::TopoMap& map, NodeIndex node) {
+  if (node >= map.node_count()) {
+    throw std::out_of_range("TravelOracle: node index " + std::to_string(node) + " is not in the map");
+  }
+}
+
+}  // namespace
+
+TravelOracle::TravelOracle(const map::TopoMap& map, std::shared_ptr<const EdgeModelView> models,
+                           const TravelOracleOptions& options)
+    : map_(&map), models_(std::move(models)), options_(options) {
+  if (!models_) throw std::invalid_argument("TravelOracle: no edge models");
+  if (options_.slot_width <= Duration::zero()) throw std::invalid_argument("TravelOracle: slot width must be > 0");
+  options_.max_cached_policies = std::max<std::size_t>(options_.max_cached_policies, 1);
+  options_.max_cached_slots = std::max<std::size_t>(options_.max_cached_slots, 1);
+  version_ = models_->version();
+}
+
+std::int64_t TravelOracle::slot_of(Time t) const {
+  const std::int64_t ms = t.time_since_epoch().count();
+  const std::int64_t w = options_.slot_width.count();
+  return ms >= 0 ? ms / w : -((-ms + w - 1) / w);  // floor division
+}
+
+Time TravelOracle::slot_start(Time t) const {
+  return Time{options_.slot_width * slot_of(t)};
+}
+
+void TravelOracle::check_version() {
+  const std::uint64_t now = models_->version();
+  if (now == version_) return;
+  version_ = now;
+  slots_.clear();
+  policies_.clear();
+}
+
+const Mdp& TravelOracle::slot_mdp(std::int64_t slot) {
+  auto it = slots_.find(slot);
+  if (it == slots_.end()) {
+    if (slots_.size() >= options_.max_cached_slots) slots_.clear();
+    const Time at{options_.slot_width * slot};
+    it = slots_.emplace(slot, std::make_shared<const Mdp>(Mdp::build(*map_, *models_, at))).first;
+  }
+  return *it->second;
+}
+
+std::shared_ptr<const Mdp> TravelOracle::mdp_at(Time depart) {
+  check_version();
+  const std::int64_t slot = slot_of(depart);
+  slot_mdp(slot);
+  return slots_.at(slot);
+}
+
+const Policy& TravelOracle::policy(NodeIndex target, Time depart) {
+  check_node(*map_, target);
+  check_version();
+  const std::int64_t slot = slot_of(depart);
+  const auto key = std::make_pair(slot, target);
+  if (auto it = policies_.find(key); it != policies_.end()) return it->second;
+  const std::shared_ptr<const Mdp> mdp = mdp_at(depart);          // kept alive while solving
+  Solution solution = ExactSolver{}.solve(*mdp, target).value();  // target checked above
+  if (policies_.size() >= options_.max_cached_policies) policies_.clear();
+  return policies_.emplace(key, std::move(solution.policy)).first->second;
+}
+
+double TravelOracle::expected_seconds(NodeIndex from, NodeIndex to, Time depart) {
+  check_node(*map_, from);
+  check_node(*map_, to);
+  if (from == to) return 0.0;
+  return policy(to, depart).expected_seconds(from);
+}
+
+double TravelOracle::edge_arrival(EdgeIndex edge, Time depart, double t, double* start_out) {
+  // Times are seconds after `depart`; slot j spans [s_j, s_{j+1}) with s_j = j w − depart.
+  const std::int64_t depart_ms = depart.time_since_epoch().count();
+  const std::int64_t w = options_.slot_width.count();
+  auto slot_begin = [&](std::int64_t j) { return static_cast<double>(j * w - depart_ms) / 1000.0; };
+  const double absolute_ms = static_cast<double>(depart_ms) + t * 1000.0;
+  std::int64_t slot = static_cast<std::int64_t>(std::floor(absolute_ms / static_cast<double>(w)));
+  // Guard the floating-point floor: t must lie inside slot `slot`.
+  if (slot_begin(slot) > t) --slot;
+  if (slot_begin(slot + 1) <= t) ++slot;
+
+  // FIFO repair: a(t) = min over t' >= t of t' + c(t'). Inside t's slot the minimum is at t; in a
+  // later slot j it is at s_j. Slots starting after the best arrival so far cannot improve it.
+  double best = t + slot_mdp(slot).expected_crossing_seconds(edge);
+  double start = t;
+  const double max_wait = to_seconds(options_.max_wait);
+  for (std::int64_t j = slot + 1;; ++j) {
+    const double s = slot_begin(j);
+    if (!(s < best) || s - t > max_wait) break;
+    const double candidate = s + slot_mdp(j).expected_crossing_seconds(edge);
+    if (candidate < best) {
+      best = candidate;
+      start = s;
+    }
+  }
+  if (start_out != nullptr) *start_out = start;
+  return best;
+}
+
+TimedRoute TravelOracle::time_dependent_route(NodeIndex from, NodeIndex to, Time depart) {
+  check_node(*map_, from);
+  check_node(*map_, to);
+  check_version();
+  TimedRoute route;
+  if (from == to) {
+    route.reachable = true;
+    route.arrival_seconds = 0.0;
+    return route;
+  }
+  const std::size_t n = map_->node_count();
+  std::vector<double> arrival(n, kInfinity);
+  std::vector<TimedStep> via(n);
+  std::vector<bool> has_via(n, false);
+  std::vector<bool> done(n, false);
+  using Entry = std::pair<double, NodeIndex>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  arrival[from] = 0.0;
+  queue.emplace(0.0, from);
+  // Time-dependent Dijkstra: correct because every repaired edge arrival function is FIFO
+  // (non-decreasing) and never earlier than its start time.
+  while (!queue.empty()) {
+    const auto [t, u] = queue.top();
+    queue.pop();
+    if (done[u]) continue;
+    done[u] = true;
+    if (u == to) break;
+    for (EdgeIndex e : map_->out_edges(u)) {
+      const NodeIndex v = map_->to_index(e);
+      if (done[v]) continue;
+      double start = t;
+      const double a = edge_arrival(e, depart, t, &start);
+      if (a < arrival[v]) {
+        arrival[v] = a;
+        via[v] = {.edge = e, .from = u, .to = v, .reach_seconds = t, .start_seconds = start, .arrive_seconds = a};
+        has_via[v] = true;
+        queue.emplace(a, v);
+      }
+    }
+  }
+  if (!(arrival[to] < kInfinity)) return route;
+  route.reachable = true;
+  route.arrival_seconds = arrival[to];
+  for (NodeIndex at = to; at != from && has_via[at]; at = via[at].from) route.steps.push_back(via[at]);
+  std::reverse(route.steps.begin(), route.steps.end());
+  return route;
+}
+
+}  // namespace rondo::plan

@@ -1,0 +1,198 @@
+#include "rondo/schedule/try_schedule.h"
+
+#include <algorithm>
+#include <set>
+
+#include <fmt/format.h>
+
+namespace rondo::schedule {
+
+namespace {
+
+bool complete(const Schedule& s) { return s.status == SolveStatus::kOptimal || s.status == SolveStatus::kFeasible; }
+
+// The problem restricted to the kept tasks; `index` maps its tasks back to the original ones.
+Problem subproblem(const Problem& p, const std::vector<bool>& keep, std::vector<std::size_t>& index) {
+  Problem q = p;
+  q.tasks.clear();
+  index.clear();
+  std::vector<std::size_t> remap(p.tasks.size(), SIZE_MAX);
+  for (std::size_t i = 0; i < p.tasks.size(); ++i)
+    if (keep[i]) {
+      remap[i] = q.tasks.size();
+      index.push_back(i);
+      q.tasks.push_back(p.tasks[i]);
+    }
+  for (auto& t : q.tasks) {
+    std::vector<std::size_t> after;
+    for (std::size_t a : t.after)
+      if (remap[a] != SIZE_MAX) after.push_back(remap[a]);
+    t.after = std::move(after);
+  }
+  return q;
+}
+
+// A pickup and its drop stand or fall together; so do tasks chained by `after`.
+void close_drops(const Problem& p, std::vector<bool>& keep) {
+  bool changed = true;
+  while (changed) {
+    changed = false;
+    for (std::size_t i = 0; i < p.tasks.size(); ++i) {
+      if (!keep[i]) continue;
+      for (std::size_t a : p.tasks[i].after)
+        if (!keep[a]) keep[i] = false, changed = true;
+      const auto& x = p.tasks[i].transfer;
+      if (!keep[i] || !x) continue;
+      for (std::size_t j = 0; j < p.tasks.size(); ++j)
+        if (j != i && !keep[j] && p.tasks[j].transfer && p.tasks[j].transfer->job == x->job)
+          keep[i] = false, changed = true;
+    }
+  }
+}
+
+std::string clock_of(Time t) {
+  const std::string s = format_time(t);  // 2026-03-02T10:05:00Z
+  return s.size() >= 16 ? s.substr(11, 5) : s;
+}
+
+std::string reason_for(const Problem& p, std::size_t i, const Schedule& kept, const std::vector<std::size_t>& index) {
+  const ProblemTask& t = p.tasks[i];
+  const std::string window = fmt::format("window {}–{}", clock_of(t.release), clock_of(t.deadline));
+  // Alone from the robot's position?
+  const Duration first_travel = p.travel->travel(p.robot.location, t.start_location, p.robot.time);
+  if (p.robot.time + first_travel > t.latest_start())
+    return fmt::format("{} cannot be reached from the robot's position at {} (travel {})", window,
+                       clock_of(p.robot.time), format_duration(first_travel));
+  // Where would it go? After the last kept task that starts before its latest start.
+  std::vector<std::string> stronger;
+  for (const auto& e : kept.entries) {
+    const ProblemTask& k = p.tasks[index[e.task]];
+    if (k.priority > t.priority && e.end > t.release && e.start < t.deadline) stronger.push_back(k.id);
+  }
+  std::string where;
+  const ScheduledTask* before = nullptr;
+  for (const auto& e : kept.entries)
+    if (e.end <= t.latest_start()) before = &e;
+  if (before != nullptr) {
+    const ProblemTask& b = p.tasks[index[before->task]];
+    const Duration leg = p.travel->travel(b.end_location, t.start_location, before->end);
+    if (before->end + leg > t.latest_start())
+      where = fmt::format("{} cannot be reached after task {} ends at {} (travel {})", window, b.id,
+                          clock_of(before->end), format_duration(leg));
+  }
+  if (where.empty()) where = fmt::format("{} does not fit between the kept tasks", window);
+  if (!stronger.empty()) {
+    std::string list;
+    for (const auto& s : stronger) list += (list.empty() ? "" : ", ") + s;
+    return fmt::format("{}; dropped for higher-priority tasks {}", where, list);
+  }
+  return fmt::format("{}; lowest priority ({}) among the new tasks that did not fit", where, t.priority);
+}
+
+}  // namespace
+
+TryScheduleResult try_schedule(const TryScheduleRequest& request, Scheduler& solver, const StopCondition& stop,
+                               std::mt19937_64& rng) {
+  const Problem& p = request.problem;
+  TryScheduleResult out;
+  std::vector<bool> keep(p.tasks.size(), true);
+  std::vector<std::size_t> remaining = request.new_tasks;  // new tasks not dropped yet
+  std::vector<std::size_t> dropped_order;
+  std::vector<std::size_t> index;
+  Schedule found;
+  std::string blocked_by;  // set when a non-interruptible running task forced drops
+
+  auto attempt = [&]() {
+    ++out.attempts;
+    const Problem q = subproblem(p, keep, index);
+    found = solver.solve(q, stop);
+    return complete(found);
+  };
+
+  while (!attempt()) {
+    if (remaining.empty()) {
+      out.outcome = TryScheduleOutcome::kOldTasksInfeasible;
+      out.schedule.status = found.status;
+      for (std::size_t i : request.new_tasks)
+        out.schedule.dropped.push_back({i, "the tasks already accepted leave no room for it"});
+      return out;
+    }
+    // The lowest-priority 20 % (at least one), ties broken at random.
+    std::shuffle(remaining.begin(), remaining.end(), rng);
+    std::stable_sort(remaining.begin(), remaining.end(),
+                     [&](std::size_t a, std::size_t b) { return p.tasks[a].priority < p.tasks[b].priority; });
+    const std::size_t count = std::max<std::size_t>(1, (remaining.size() + 4) / 5);
+    std::vector<std::size_t> victims(remaining.begin(), remaining.begin() + static_cast<std::ptrdiff_t>(count));
+    if (request.running) {
+      std::vector<std::string> higher;
+      for (std::size_t v : victims)
+        if (p.tasks[v].priority > request.running->priority) higher.push_back(p.tasks[v].id);
+      if (!higher.empty()) {
+        std::string list;
+        for (const auto& h : higher) list += (list.empty() ? "" : ", ") + h;
+        if (request.running->interruptible) {
+          out.outcome = TryScheduleOutcome::kPreemptRunning;
+          out.preempt_reason = fmt::format("tasks {} outrank the running task {} (priority {} > {}) and do not fit "
+                                           "while it runs: interrupt it and schedule again",
+                                           list, request.running->id, p.tasks[victims.front()].priority,
+                                           request.running->priority);
+          return out;
+        }
+        blocked_by = request.running->id;
+      }
+    }
+    remaining.erase(remaining.begin(), remaining.begin() + static_cast<std::ptrdiff_t>(count));
+    for (std::size_t v : victims) {
+      keep[v] = false;
+      dropped_order.push_back(v);
+    }
+    close_drops(p, keep);
+    std::erase_if(remaining, [&](std::size_t i) { return !keep[i]; });
+  }
+  Schedule best = found;
+  std::vector<std::size_t> best_index = index;
+
+  if (request.policy == DropPolicy::kPaperThenRestore && !dropped_order.empty()) {
+    std::vector<std::size_t> back = dropped_order;
+    std::stable_sort(back.begin(), back.end(),
+                     [&](std::size_t a, std::size_t b) { return p.tasks[a].priority > p.tasks[b].priority; });
+    for (std::size_t v : back) {
+      if (keep[v]) continue;
+      keep[v] = true;
+      // Its delivery partner comes back with it.
+      std::vector<std::size_t> partners;
+      for (std::size_t j = 0; j < p.tasks.size(); ++j)
+        if (!keep[j] && p.tasks[v].transfer && p.tasks[j].transfer && p.tasks[j].transfer->job == p.tasks[v].transfer->job) {
+          keep[j] = true;
+          partners.push_back(j);
+        }
+      std::vector<bool> closed = keep;
+      close_drops(p, closed);
+      if (closed == keep && attempt()) {
+        best = found;
+        best_index = index;
+      } else {
+        keep[v] = false;
+        for (std::size_t j : partners) keep[j] = false;
+      }
+    }
+  }
+
+  // Map back to the original task indices and explain each drop.
+  Schedule s = best;
+  for (auto& e : s.entries) e.task = best_index[e.task];
+  s.dropped.clear();
+  for (std::size_t i = 0; i < p.tasks.size(); ++i) {
+    if (keep[i]) continue;
+    std::string reason = reason_for(p, i, best, best_index);
+    if (!blocked_by.empty() && request.running && p.tasks[i].priority > request.running->priority)
+      reason += fmt::format("; the running task {} cannot be interrupted", blocked_by);
+    s.dropped.push_back({i, std::move(reason)});
+  }
+  // The objective covers the scheduled tasks only (as the checker recomputes it).
+  out.outcome = s.dropped.empty() ? TryScheduleOutcome::kAllScheduled : TryScheduleOutcome::kSomeDropped;
+  out.schedule = std::move(s);
+  return out;
+}
+
+}  // namespace rondo::schedule

@@ -1,0 +1,107 @@
+#include "rondo/store/store.h"
+
+#include <SQLiteCpp/Database.h>
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <system_error>
+
+#include "migrations.h"
+#include "sqlite_error.h"
+
+namespace rondo::store {
+namespace {
+
+// Every SQLite 3 file starts with these 16 bytes.
+constexpr std::string_view kSqliteMagic{"SQLite format 3\0", 16};
+
+// Whether a non-empty file starts like an SQLite database. SQLite itself treats a 1-byte file as
+// empty and would overwrite it; we never write over a file that is not already a database.
+// A file we cannot read passes: SQLite then reports why it cannot open it.
+bool has_sqlite_header(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return true;
+  std::string head(kSqliteMagic.size(), '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  return in.gcount() == static_cast<std::streamsize>(head.size()) && head == kSqliteMagic;
+}
+
+Status check_path(const std::filesystem::path& file, OpenMode mode) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(file, ec);
+  if (std::filesystem::is_directory(status)) {
+    return Error::invalid(file.string() + ": is a folder, not a database file");
+  }
+  if (!std::filesystem::exists(status)) {
+    if (mode == OpenMode::kMustExist) return Error::not_found(file.string() + ": no such database file");
+    return {};
+  }
+  // An empty file is a new database to SQLite, and to us.
+  if (std::filesystem::is_regular_file(status) && std::filesystem::file_size(file, ec) > 0 && !ec &&
+      !has_sqlite_header(file)) {
+    return Error::invalid(file.string() + ": not an SQLite database (it does not start with the SQLite header)");
+  }
+  return {};
+}
+
+int busy_timeout_ms(Duration timeout) {
+  const auto ms = timeout.count();
+  if (ms <= 0) return 0;
+  return ms > std::numeric_limits<int>::max() ? std::numeric_limits<int>::max() : static_cast<int>(ms);
+}
+
+// Connection settings; see docs/storage.md for why each is what it is.
+Status configure(SQLite::Database& db, const std::filesystem::path& file) {
+  return guarded(file, "setting the connection up", [&]() -> Status {
+    const std::string journal = db.execAndGet("PRAGMA journal_mode = WAL").getString();
+    if (journal != "wal") {
+      return Error::storage(
+          fmt::format("{}: cannot switch to WAL journal mode (SQLite kept '{}')", file.string(), journal));
+    }
+    db.exec("PRAGMA synchronous = FULL");
+    db.exec("PRAGMA foreign_keys = ON");
+    if (db.execAndGet("PRAGMA foreign_keys").getInt() != 1) {
+      return Error::storage(file.string() + ": this SQLite build cannot enforce foreign keys");
+    }
+    return {};
+  });
+}
+
+}  // namespace
+
+int Store::latest_schema_version() {
+  return schema_migrations().back().version;
+}
+
+Result<Store> Store::open(const std::filesystem::path& file, const StoreOptions& options) {
+  if (auto ok = check_path(file, options.mode); !ok) return ok.error();
+  const int flags = SQLite::OPEN_READWRITE | (options.mode == OpenMode::kCreateIfMissing ? SQLite::OPEN_CREATE : 0);
+  std::unique_ptr<SQLite::Database> db;
+  try {
+    db = std::make_unique<SQLite::Database>(file, flags, busy_timeout_ms(options.busy_timeout));
+  } catch (const SQLite::Exception& e) {
+    return sqlite_error(file, "opening", e);
+  }
+  // Before any setting is written: a foreign file is refused untouched (not even switched to WAL).
+  if (auto ok = check_rondo_file(*db, file); !ok) return ok.error();
+  if (auto ok = configure(*db, file); !ok) return ok.error();
+  if (auto ok = migrate(*db, schema_migrations(), file); !ok) return ok.error();
+  return Store(file, std::move(db));
+}
+
+Store::Store(std::filesystem::path file, std::unique_ptr<SQLite::Database> db)
+    : file_(std::move(file)), db_(std::move(db)) {}
+Store::Store(Store&& other) noexcept = default;
+Store& Store::operator=(Store&& other) noexcept = default;
+Store::~Store() = default;
+
+Result<int> Store::schema_version() const {
+  return guarded(*this, "reading the schema version",
+                 [&]() -> Result<int> { return db_->execAndGet("PRAGMA user_version").getInt(); });
+}
+
+}  // namespace rondo::store

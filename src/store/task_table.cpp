@@ -1,0 +1,103 @@
+#include "rondo/store/task_table.h"
+
+#include <SQLiteCpp/Statement.h>
+#include <SQLiteCpp/Transaction.h>
+
+#include <fmt/format.h>
+
+#include "event_rows.h"
+#include "sqlite_error.h"
+
+namespace rondo::store {
+namespace {
+
+constexpr const char* kSelectTask = "SELECT id, state, task_json, created_ms, updated_ms FROM tasks";
+
+Result<TaskRecord> task_from_row(const Store& store, const SQLite::Statement& row) {
+  TaskRecord r;
+  r.id = row.getColumn(0).getString();
+  r.state = row.getColumn(1).getString();
+  const std::string text = row.getColumn(2).getString();
+  r.task = Json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (r.task.is_discarded()) {
+    return Error::storage(fmt::format("{}: task '{}': the stored JSON does not parse", store.file().string(), r.id));
+  }
+  r.created = time_from_db(row.getColumn(3).getInt64());
+  r.updated = time_from_db(row.getColumn(4).getInt64());
+  return r;
+}
+
+Result<std::vector<TaskRecord>> read_tasks(const Store& store, SQLite::Statement& query) {
+  std::vector<TaskRecord> out;
+  while (query.executeStep()) {
+    auto r = task_from_row(store, query);
+    if (!r) return r.error();
+    out.push_back(std::move(*r));
+  }
+  return out;
+}
+
+}  // namespace
+
+Status add_task(Store& store, const TaskRecord& task, std::string_view reason) {
+  if (task.id.empty()) return Error::invalid(store.file().string() + ": a task needs a non-empty id");
+  return guarded(store, fmt::format("adding task '{}'", task.id), [&]() -> Status {
+    SQLite::Database& db = connection(store);
+    SQLite::Transaction tx(db, SQLite::TransactionBehavior::IMMEDIATE);
+    SQLite::Statement insert(db,
+                             "INSERT INTO tasks (id, state, task_json, created_ms, updated_ms) VALUES (?, ?, ?, ?, ?) "
+                             "ON CONFLICT (id) DO NOTHING");
+    insert.bind(1, task.id);
+    insert.bind(2, task.state);
+    insert.bind(3, task.task.dump());
+    insert.bind(4, to_db(task.created));
+    insert.bind(5, to_db(task.updated));
+    if (insert.exec() == 0) {
+      return Error::invalid(fmt::format("{}: task '{}' is already stored", store.file().string(), task.id));
+    }
+    insert_event_row(db, task.created, task.id, task.state, reason);
+    tx.commit();  // with synchronous=FULL the WAL is synced to disk here
+    return {};
+  });
+}
+
+Status set_task_state(Store& store, std::string_view id, std::string_view state, Time at, std::string_view reason) {
+  return guarded(store, fmt::format("changing the state of task '{}'", id), [&]() -> Status {
+    SQLite::Database& db = connection(store);
+    SQLite::Transaction tx(db, SQLite::TransactionBehavior::IMMEDIATE);
+    SQLite::Statement update(db, "UPDATE tasks SET state = ?, updated_ms = ? WHERE id = ?");
+    update.bind(1, std::string(state));
+    update.bind(2, to_db(at));
+    update.bind(3, std::string(id));
+    if (update.exec() == 0) return Error::not_found(fmt::format("{}: no task '{}'", store.file().string(), id));
+    insert_event_row(db, at, id, state, reason);
+    tx.commit();
+    return {};
+  });
+}
+
+Result<TaskRecord> get_task(const Store& store, std::string_view id) {
+  return guarded(store, fmt::format("reading task '{}'", id), [&]() -> Result<TaskRecord> {
+    SQLite::Statement query(connection(store), std::string(kSelectTask) + " WHERE id = ?");
+    query.bind(1, std::string(id));
+    if (!query.executeStep()) return Error::not_found(fmt::format("{}: no task '{}'", store.file().string(), id));
+    return task_from_row(store, query);
+  });
+}
+
+Result<std::vector<TaskRecord>> list_tasks(const Store& store) {
+  return guarded(store, "listing tasks", [&]() -> Result<std::vector<TaskRecord>> {
+    SQLite::Statement query(connection(store), std::string(kSelectTask) + " ORDER BY created_ms, id");
+    return read_tasks(store, query);
+  });
+}
+
+Result<std::vector<TaskRecord>> list_tasks_in_state(const Store& store, std::string_view state) {
+  return guarded(store, fmt::format("listing tasks in state '{}'", state), [&]() -> Result<std::vector<TaskRecord>> {
+    SQLite::Statement query(connection(store), std::string(kSelectTask) + " WHERE state = ? ORDER BY created_ms, id");
+    query.bind(1, std::string(state));
+    return read_tasks(store, query);
+  });
+}
+
+}  // namespace rondo::store

@@ -1,0 +1,135 @@
+// Invariants of every model, checked on generated series (RapidCheck).
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <algorithm>
+
+#include "rondo/learn/edge_models.h"
+#include "rondo/learn/episode_model.h"
+#include "rondo/learn/fremen.h"
+#include "rondo/learn/static_model.h"
+#include "series.h"
+
+namespace rondo::learn {
+namespace {
+
+using testing::monday;
+
+// A time-ordered series of attempts: gaps from 1 s to 3 days, durations 0..600 s.
+rc::Gen<std::vector<Attempt>> gen_attempts() {
+  return rc::gen::map(rc::gen::container<std::vector<std::tuple<int, int, bool>>>(rc::gen::tuple(
+                          rc::gen::inRange(1, 3 * 86400), rc::gen::inRange(0, 600000), rc::gen::arbitrary<bool>())),
+                      [](const std::vector<std::tuple<int, int, bool>>& raw) {
+                        std::vector<Attempt> out;
+                        Time t = monday();
+                        for (auto [gap, ms, ok] : raw) {
+                          t = t + seconds(gap);
+                          const double secs = ms / 1000.0;
+                          out.push_back({t, t + from_seconds(secs), secs, ok});
+                          t = t + from_seconds(secs);
+                        }
+                        return out;
+                      });
+}
+
+std::vector<BinarySample> flags_of(const std::vector<Attempt>& attempts) {
+  std::vector<BinarySample> out;
+  for (const auto& a : attempts) out.push_back({a.start, a.success});
+  return out;
+}
+
+std::vector<DurationSample> durations_of(const std::vector<Attempt>& attempts) {
+  std::vector<DurationSample> out;
+  for (const auto& a : attempts) out.push_back({a.start, a.seconds});
+  return out;
+}
+
+Time gen_time() {
+  return monday() + seconds(*rc::gen::inRange(0, 60 * 86400));
+}
+
+RC_GTEST_PROP(LearnProperties, ProbabilitiesStayInZeroOne, ()) {
+  const auto attempts = *gen_attempts();
+  const int order = *rc::gen::inRange(0, 6);
+  const auto flags = flags_of(attempts);
+  auto fremen = fit_fremen_binary(flags, {.order = order});
+  auto fixed = fit_static_binary(flags);
+  auto episode = fit_episode_models({attempts});
+  EpisodePredictor live(episode.edges[0]);
+  for (int i = 0; i < 20; ++i) {
+    const Time t = gen_time();
+    for (double p :
+         {fremen->probability(t), fixed->probability(t), episode.edges[0]->probability(t), live.probability(t)}) {
+      RC_ASSERT(p >= 0.0);
+      RC_ASSERT(p <= 1.0);
+    }
+    live.observe({t, t + seconds(5), 5.0, *rc::gen::arbitrary<bool>()});
+  }
+}
+
+RC_GTEST_PROP(LearnProperties, QuantilesAreMonotone, ()) {
+  const auto attempts = *gen_attempts();
+  auto fremen = fit_fremen_duration(durations_of(attempts), {.order = *rc::gen::inRange(0, 4)});
+  auto fixed = fit_static_duration(durations_of(attempts));
+  auto episode = fit_episode_models({attempts});
+  EpisodePredictor live(episode.edges[0]);
+  if (!attempts.empty()) live.observe(attempts.back());
+  const Time t = attempts.empty() ? gen_time() : attempts.back().end + seconds(*rc::gen::inRange(0, 120));
+  auto check = [](auto&& quantile) {
+    double previous = 0;
+    for (double q = 0.01; q < 1.0; q += 0.01) {
+      const double v = quantile(q);
+      RC_ASSERT(v >= 0.0);
+      RC_ASSERT(v >= previous - 1e-9);
+      previous = v;
+    }
+  };
+  check([&](double q) { return fremen->quantile_seconds(t, q); });
+  check([&](double q) { return fixed->quantile_seconds(t, q); });
+  check([&](double q) { return episode.edges[0]->quantile_seconds(t, q); });
+  check([&](double q) { return live.quantile_seconds(t, q); });
+}
+
+RC_GTEST_PROP(LearnProperties, AConstantSeriesPredictsThatConstant, ()) {
+  const auto raw = *rc::gen::nonEmpty(gen_attempts());
+  const bool value = *rc::gen::arbitrary<bool>();
+  const double secs = *rc::gen::inRange(1, 500);
+  std::vector<Attempt> attempts;
+  for (auto a : raw) {
+    a.success = value;
+    a.seconds = secs;
+    a.end = a.start + from_seconds(secs);
+    attempts.push_back(a);
+  }
+  const Time t = gen_time();
+  const double expected = value ? 1.0 : 0.0;
+  RC_ASSERT(fit_static_binary(flags_of(attempts))->probability(t) == expected);
+  // FreMEn clamps its probabilities to [0.01, 0.99].
+  RC_ASSERT(std::abs(fit_fremen_binary(flags_of(attempts), {.order = 2})->probability(t) -
+                     std::clamp(expected, 0.01, 0.99)) < 1e-6);
+  RC_ASSERT(std::abs(fit_fremen_duration(durations_of(attempts), {.order = 2})->expected_seconds(t) - secs) <
+            1e-3 * secs);
+  auto episode = fit_episode_models({attempts});
+  const auto& model = *episode.edges[0];
+  RC_ASSERT(std::abs(model.probability(t) - expected) < 1e-12);
+  RC_ASSERT(std::abs(model.expected_seconds(t) - secs) < 1e-9 * secs);
+  RC_ASSERT(std::abs(model.quantile_seconds(t, 0.9) - secs) < 1e-9 * secs);
+  EpisodePredictor live(episode.edges[0]);
+  const Time later = attempts.back().end + seconds(*rc::gen::inRange(0, 7200));
+  RC_ASSERT(std::abs(live.probability(later) - expected) < 1e-12);
+  RC_ASSERT(std::abs(live.quantile_seconds(later, 0.5) - secs) < 1e-9 * secs);
+}
+
+RC_GTEST_PROP(LearnProperties, FittingIsDeterministic, ()) {
+  const auto attempts = *gen_attempts();
+  RC_ASSERT(fit_fremen_binary(flags_of(attempts), {.order = 3})->to_json() ==
+            fit_fremen_binary(flags_of(attempts), {.order = 3})->to_json());
+  RC_ASSERT(fit_episode_binary(flags_of(attempts))->to_json() == fit_episode_binary(flags_of(attempts))->to_json());
+  std::vector<Traversal> log;
+  for (const auto& a : attempts) log.push_back({"A_B", "A", "B", a.start, from_seconds(a.seconds), a.success, ""});
+  const std::vector<EdgeSpec> edges = {{"A_B", 10}, {"B_A", 0}};
+  RC_ASSERT((*EdgeModels::fit(edges, log))->to_json() == (*EdgeModels::fit(edges, log))->to_json());
+}
+
+}  // namespace
+}  // namespace rondo::learn

@@ -1,0 +1,47 @@
+// Shared by the rondo::map tests: where the fixtures live and a quick way to build small maps.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rondo/map/topo_map.h"
+
+namespace rondo::map::testing {
+
+// tests/data/maps of this project.
+inline std::filesystem::path fixture(const std::string& name) {
+  return std::filesystem::path(RONDO_SOURCE_DIR) / "tests" / "data" / "maps" / name;
+}
+// The real STRANDS maps, read in place beside the project.
+inline std::filesystem::path real_map(const std::string& name) {
+  return std::filesystem::path(RONDO_SOURCE_DIR) / ".." / "shared" / "data" / "maps" / name;
+}
+
+inline Node node_at(std::string name, double x, double y, double yaw = 0) {
+  Node n;
+  n.name = std::move(name);
+  n.pose = {x, y, yaw};
+  return n;
+}
+
+inline Edge edge(std::string from, std::string to, std::string action = "move_base") {
+  Edge e;
+  e.id = from + "_" + to;
+  e.from = std::move(from);
+  e.to = std::move(to);
+  e.action = std::move(action);
+  return e;
+}
+
+// A map that must build; fails the test (and returns an empty map) otherwise.
+inline TopoMap build_or_fail(std::vector<Node> nodes, std::vector<Edge> edges, std::string name = "test") {
+  auto map = TopoMap::build(std::move(name), std::move(nodes), std::move(edges));
+  EXPECT_TRUE(map.ok()) << (map.ok() ? "" : map.error().message);
+  return map.ok() ? *map : TopoMap{};
+}
+
+}  // namespace rondo::map::testing

@@ -1,0 +1,177 @@
+#include "rondo/store/task_table.h"
+
+#include <gtest/gtest.h>
+
+#include "rondo/store/task_events.h"
+#include "store/child_process.h"
+#include "store/temp_db.h"
+
+namespace rondo::store {
+namespace {
+
+using testing::run_in_child;
+using testing::TempDb;
+
+Time at(int s) {
+  return Time{seconds(s)};
+}
+
+TaskRecord sample(std::string id, int created_s = 100) {
+  Json task = Json::parse(R"({
+    "id": "ID", "name": "check the fire extinguisher", "kind": "standard",
+    "window": {"release": "2014-09-02T08:00:00Z", "deadline": "2014-09-02T11:45:00Z"},
+    "duration": "2m", "priority": 3, "start": "WayPoint3", "interruptible": true,
+    "actions": [{"name": "look", "args": {"at": "extinguisher 2", "zoom": 1.5}}],
+    "note": "caf\u00e9 \u2013 2nd floor"
+  })");
+  task["id"] = id;
+  return TaskRecord{std::move(id), std::move(task), "queued", at(created_s), at(created_s)};
+}
+
+class TaskTable : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    auto opened = Store::open(tmp_.path());
+    ASSERT_TRUE(opened.ok()) << opened.error().message;
+    db_.emplace(std::move(*opened));
+  }
+  Store& db() { return *db_; }
+
+  TempDb tmp_;
+  std::optional<Store> db_;
+};
+
+TEST_F(TaskTable, RoundTripsEveryField) {
+  const TaskRecord r = sample("t1");
+  ASSERT_TRUE(add_task(db(), r).ok());
+  auto back = get_task(db(), "t1");
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  EXPECT_EQ(*back, r);
+  EXPECT_EQ(back->task.dump(), r.task.dump());  // key order is kept too
+}
+
+TEST_F(TaskTable, AnAcceptedTaskIsVisibleToAnotherConnectionAtOnce) {
+  auto other = Store::open(tmp_.path(), {.mode = OpenMode::kMustExist});
+  ASSERT_TRUE(other.ok());
+  EXPECT_EQ(get_task(*other, "t1").error().code, ErrorCode::kNotFound);
+  ASSERT_TRUE(add_task(db(), sample("t1")).ok());
+  auto seen = get_task(*other, "t1");
+  ASSERT_TRUE(seen.ok()) << seen.error().message;
+  EXPECT_EQ(seen->state, "queued");
+}
+
+TEST_F(TaskTable, AddingWritesTheAcceptanceEvent) {
+  ASSERT_TRUE(add_task(db(), sample("t1", 42), "from the web page").ok());
+  auto events = read_task_events_of(db(), "t1");
+  ASSERT_TRUE(events.ok());
+  ASSERT_EQ(events->size(), 1u);
+  EXPECT_EQ((*events)[0].time, at(42));
+  EXPECT_EQ((*events)[0].event, "queued");
+  EXPECT_EQ((*events)[0].reason, "from the web page");
+}
+
+TEST_F(TaskTable, RefusesADuplicateIdAndKeepsTheFirst) {
+  ASSERT_TRUE(add_task(db(), sample("t1")).ok());
+  TaskRecord second = sample("t1", 200);
+  second.state = "dropped";
+  Status s = add_task(db(), second);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.error().code, ErrorCode::kInvalidInput);
+  EXPECT_NE(s.error().message.find("'t1' is already stored"), std::string::npos) << s.error().message;
+  EXPECT_EQ(get_task(db(), "t1")->state, "queued");
+  EXPECT_EQ(read_task_events_of(db(), "t1")->size(), 1u);  // no event for the refused one
+}
+
+TEST_F(TaskTable, RefusesAnEmptyId) {
+  Status s = add_task(db(), sample(""));
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.error().code, ErrorCode::kInvalidInput);
+}
+
+TEST_F(TaskTable, StateChangesUpdateTheTaskAndAppendEvents) {
+  ASSERT_TRUE(add_task(db(), sample("t1", 100)).ok());
+  ASSERT_TRUE(set_task_state(db(), "t1", "navigating", at(150), "scheduled start").ok());
+  ASSERT_TRUE(set_task_state(db(), "t1", "failed", at(180), "door A-110 closed").ok());
+  auto r = get_task(db(), "t1");
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r->state, "failed");
+  EXPECT_EQ(r->created, at(100));
+  EXPECT_EQ(r->updated, at(180));
+  auto events = read_task_events_of(db(), "t1");
+  ASSERT_TRUE(events.ok());
+  ASSERT_EQ(events->size(), 3u);
+  EXPECT_EQ((*events)[1].event, "navigating");
+  EXPECT_EQ((*events)[2].event, "failed");
+  EXPECT_EQ((*events)[2].reason, "door A-110 closed");
+  EXPECT_EQ((*events)[2].time, at(180));
+}
+
+TEST_F(TaskTable, StateChangeOfAnUnknownTaskIsNotFoundAndLogsNothing) {
+  Status s = set_task_state(db(), "ghost", "failed", at(1), "");
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.error().code, ErrorCode::kNotFound);
+  EXPECT_TRUE(read_task_events(db())->empty());
+}
+
+TEST_F(TaskTable, GetOfAnUnknownTaskIsNotFound) {
+  auto r = get_task(db(), "ghost");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kNotFound);
+  EXPECT_NE(r.error().message.find("ghost"), std::string::npos);
+}
+
+TEST_F(TaskTable, ListsInAcceptanceOrderAndByState) {
+  ASSERT_TRUE(add_task(db(), sample("b", 20)).ok());
+  ASSERT_TRUE(add_task(db(), sample("c", 10)).ok());
+  ASSERT_TRUE(add_task(db(), sample("a", 20)).ok());
+  ASSERT_TRUE(set_task_state(db(), "b", "succeeded", at(30), "").ok());
+
+  auto all = list_tasks(db());
+  ASSERT_TRUE(all.ok());
+  std::vector<std::string> ids;
+  for (const auto& r : *all) ids.push_back(r.id);
+  EXPECT_EQ(ids, (std::vector<std::string>{"c", "a", "b"}));
+
+  auto queued = list_tasks_in_state(db(), "queued");
+  ASSERT_TRUE(queued.ok());
+  ASSERT_EQ(queued->size(), 2u);
+  EXPECT_EQ((*queued)[0].id, "c");
+  EXPECT_EQ((*queued)[1].id, "a");
+  EXPECT_TRUE(list_tasks_in_state(db(), "preempted")->empty());
+}
+
+// The acceptance promise: once add_task returns, the task is on disk. The child process adds a
+// task and is killed at once, without closing the connection; the task is still there after.
+TEST(TaskTableDurability, AnAcceptedTaskSurvivesTheProcessDyingRightAfter) {
+  TempDb tmp;
+  ASSERT_TRUE(Store::open(tmp.path()).ok());
+  auto end = run_in_child([&] {
+    auto db = Store::open(tmp.path());
+    if (!db || !add_task(*db, sample("survivor"))) ::_exit(4);
+    ::raise(SIGKILL);
+  });
+  ASSERT_TRUE(end.killed_by(SIGKILL)) << "child status " << end.status;
+
+  auto db = Store::open(tmp.path(), {.mode = OpenMode::kMustExist});
+  ASSERT_TRUE(db.ok()) << db.error().message;
+  auto r = get_task(*db, "survivor");
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(*r, sample("survivor"));
+  EXPECT_EQ(read_task_events_of(*db, "survivor")->size(), 1u);
+}
+
+TEST(TaskTableDurability, SurvivesAnExitWithoutClosing) {
+  TempDb tmp;
+  auto end = run_in_child([&] {
+    auto db = Store::open(tmp.path());
+    if (!db || !add_task(*db, sample("t1"))) ::_exit(4);
+    ::_exit(0);  // no destructor: the connection is never closed, the WAL never checkpointed
+  });
+  ASSERT_TRUE(end.exited_with(0)) << "child status " << end.status;
+  auto db = Store::open(tmp.path(), {.mode = OpenMode::kMustExist});
+  ASSERT_TRUE(db.ok()) << db.error().message;
+  EXPECT_TRUE(get_task(*db, "t1").ok());
+}
+
+}  // namespace
+}  // namespace rondo::store
