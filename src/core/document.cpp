@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <sstream>
 
 #include "rondo/core/timezone.h"
+#include "rondo/core/utf8.h"
 
 namespace rondo {
 namespace {
@@ -162,36 +164,9 @@ struct TooDeep {
 // The line of the first byte that is not part of well-formed UTF-8, if any. Text files are UTF-8;
 // rejecting anything else here means no string that reaches a decoder can fail to print.
 std::optional<int> first_invalid_utf8_line(std::string_view text) {
-  int line = 1;
-  std::size_t i = 0;
-  while (i < text.size()) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (c == '\n') ++line;
-    std::size_t len = 0;
-    unsigned min = 0;
-    unsigned code = 0;
-    if (c < 0x80) {
-      ++i;
-      continue;
-    } else if ((c & 0xE0) == 0xC0) {
-      len = 2, min = 0x80, code = c & 0x1Fu;
-    } else if ((c & 0xF0) == 0xE0) {
-      len = 3, min = 0x800, code = c & 0x0Fu;
-    } else if ((c & 0xF8) == 0xF0) {
-      len = 4, min = 0x10000, code = c & 0x07u;
-    } else {
-      return line;
-    }
-    if (i + len > text.size()) return line;
-    for (std::size_t k = 1; k < len; ++k) {
-      const auto cc = static_cast<unsigned char>(text[i + k]);
-      if ((cc & 0xC0) != 0x80) return line;
-      code = (code << 6) | (cc & 0x3Fu);
-    }
-    if (code < min || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return line;
-    i += len;
-  }
-  return std::nullopt;
+  const auto at = first_invalid_utf8(text);
+  if (!at) return std::nullopt;
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(*at), '\n'));
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 #include <unordered_map>
 
 #include "map_locate.h"
-#include "utf8.h"
+#include "rondo/core/utf8.h"
 
 namespace rondo::map {
 namespace {

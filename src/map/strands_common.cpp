@@ -10,7 +10,7 @@
 
 #include "rondo/map/map_geometry.h"
 #include "rondo/map/strands_import.h"
-#include "utf8.h"
+#include "rondo/core/utf8.h"
 
 namespace rondo::map {
 

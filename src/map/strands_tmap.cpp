@@ -23,7 +23,7 @@
 #include "rondo/map/map_validation.h"
 #include "rondo/map/strands_import.h"
 #include "strands_common.h"
-#include "utf8.h"
+#include "rondo/core/utf8.h"
 
 namespace rondo::map {
 namespace {

@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "rondo/map/map_validation.h"
-#include "utf8.h"
+#include "rondo/core/utf8.h"
 
 namespace rondo::map {
 namespace {

@@ -1,6 +1,6 @@
-#include "utf8.h"
+#include "rondo/core/utf8.h"
 
-namespace rondo::map {
+namespace rondo {
 namespace {
 
 // The length of the well-formed UTF-8 sequence at text[i], or 0 if there is none.
@@ -56,4 +56,4 @@ std::string replace_invalid_utf8(std::string_view text) {
   return out;
 }
 
-}  // namespace rondo::map
+}  // namespace rondo
