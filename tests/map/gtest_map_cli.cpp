@@ -1,9 +1,7 @@
 // `rondo map info|check|convert`, run in-process through rondo::app::run.
 #include <gtest/gtest.h>
 
-#include <sstream>
-
-#include "cli.h"
+#include "app/cli_runner.h"
 #include "map_test_support.h"
 #include "rondo/map/map_loader.h"
 
@@ -13,18 +11,8 @@ namespace {
 using testing::fixture;
 using testing::real_map;
 
-struct CliRun {
-  int code;
-  std::string out;
-  std::string err;
-};
-
-CliRun rondo(const std::vector<std::string>& args) {
-  std::ostringstream out;
-  std::ostringstream err;
-  const int code = app::run(args, out, err);
-  return {code, out.str(), err.str()};
-}
+using CliRun = rondo::test::CliResult;
+using rondo::test::run_cli;
 
 TEST(MapCli, InfoJsonOfTheRealMaps) {
   struct Case {
@@ -37,8 +25,8 @@ TEST(MapCli, InfoJsonOfTheRealMaps) {
                                    {"g4s_y2.tmap", 40, 84, "strands-tmap"},
                                    {"aaf_winter.json", 48, 124, "strands-json"}};
   for (const Case& c : cases) {
-    const CliRun r = rondo({"map", "info", real_map(c.file).string(), "--json"});
-    ASSERT_EQ(r.code, 0) << c.file << ": " << r.err;
+    const CliRun r = run_cli({"map", "info", real_map(c.file).string(), "--json"});
+    ASSERT_EQ(r.exit_code, 0) << c.file << ": " << r.err;
     const Json j = Json::parse(r.out);
     EXPECT_EQ(j["nodes"], c.nodes) << c.file;
     EXPECT_EQ(j["edges"], c.edges) << c.file;
@@ -52,8 +40,8 @@ TEST(MapCli, InfoJsonOfTheRealMaps) {
 }
 
 TEST(MapCli, InfoTableShowsTheEssentials) {
-  const CliRun r = rondo({"map", "info", fixture("office.yaml").string()});
-  ASSERT_EQ(r.code, 0) << r.err;
+  const CliRun r = run_cli({"map", "info", fixture("office.yaml").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* expected : {"office (rondo,", "nodes      5", "edges      8", "doorPassing", "kitchen_door",
                                "warnings   none", "connected  yes"}) {
     EXPECT_NE(r.out.find(expected), std::string::npos) << expected << "\n" << r.out;
@@ -61,15 +49,15 @@ TEST(MapCli, InfoTableShowsTheEssentials) {
 }
 
 TEST(MapCli, CheckValidMapExitsZero) {
-  const CliRun r = rondo({"map", "check", real_map("tsc_1605.yaml").string()});
-  EXPECT_EQ(r.code, 0) << r.err;
+  const CliRun r = run_cli({"map", "check", real_map("tsc_1605.yaml").string()});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("valid strands-yaml map, 67 nodes, 232 edges, 0 warnings"), std::string::npos) << r.out;
   EXPECT_EQ(r.err, "");
 }
 
 TEST(MapCli, CheckWithWarningsStillExitsZero) {
-  const CliRun r = rondo({"map", "check", fixture("dead_end.yaml").string()});
-  EXPECT_EQ(r.code, 0);
+  const CliRun r = run_cli({"map", "check", fixture("dead_end.yaml").string()});
+  EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.out.find("3 warnings"), std::string::npos) << r.out;
   EXPECT_NE(r.err.find("rondo: warning: node 'Lift' is a dead end"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("rondo: warning: node 'Island' is cut off"), std::string::npos) << r.err;
@@ -92,8 +80,8 @@ TEST(MapCli, BadInputExitsTwoNamingFileLineAndProblem) {
       {{"map"}, "A subcommand is required"},
   };
   for (const Case& c : cases) {
-    const CliRun r = rondo(c.args);
-    EXPECT_EQ(r.code, 2) << c.expected;
+    const CliRun r = run_cli(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.expected;
     EXPECT_NE(r.err.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in:\n" << r.err;
   }
   EXPECT_FALSE(std::filesystem::exists("/tmp/never-written.yaml"));
@@ -103,8 +91,8 @@ TEST(MapCli, ConvertWritesAMapThatReadsBackTheSame) {
   const auto out =
       std::filesystem::temp_directory_path() / ("rondo_cli_convert_" + std::to_string(::getpid()) + ".yaml");
   for (const char* file : {"g4s_y2.tmap", "tsc_1605.yaml", "aaf_winter.json"}) {
-    const CliRun r = rondo({"map", "convert", real_map(file).string(), "-o", out.string()});
-    ASSERT_EQ(r.code, 0) << file << ": " << r.err;
+    const CliRun r = run_cli({"map", "convert", real_map(file).string(), "-o", out.string()});
+    ASSERT_EQ(r.exit_code, 0) << file << ": " << r.err;
     EXPECT_NE(r.out.find("wrote " + out.string()), std::string::npos) << r.out;
     auto original = load_map(real_map(file));
     auto converted = load_map_file(out);
@@ -112,23 +100,23 @@ TEST(MapCli, ConvertWritesAMapThatReadsBackTheSame) {
     EXPECT_EQ(converted->format, MapFormat::kRondo);
     EXPECT_EQ(converted->map, *original) << file;
     // Converting the converted file again changes nothing.
-    const CliRun again = rondo({"map", "convert", out.string(), "-o", out.string()});
-    ASSERT_EQ(again.code, 0) << again.err;
+    const CliRun again = run_cli({"map", "convert", out.string(), "-o", out.string()});
+    ASSERT_EQ(again.exit_code, 0) << again.err;
     EXPECT_EQ(*load_map(out), *original) << file;
   }
   std::filesystem::remove(out);
 }
 
 TEST(MapCli, ConvertToStandardOutput) {
-  const CliRun r = rondo({"map", "convert", fixture("small.tmap").string(), "-o", "-"});
-  ASSERT_EQ(r.code, 0) << r.err;
+  const CliRun r = run_cli({"map", "convert", fixture("small.tmap").string(), "-o", "-"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out.rfind("# rondo topological map", 0), 0u);
   EXPECT_NE(r.out.find("name: ChargingPoint"), std::string::npos);
 }
 
 TEST(MapCli, HelpListsTheMapCommands) {
-  const CliRun r = rondo({"map", "--help"});
-  EXPECT_EQ(r.code, 0);
+  const CliRun r = run_cli({"map", "--help"});
+  EXPECT_EQ(r.exit_code, 0);
   for (const char* cmd : {"info", "check", "convert"}) EXPECT_NE(r.out.find(cmd), std::string::npos) << r.out;
 }
 

@@ -2,9 +2,7 @@
 #include <SQLiteCpp/Database.h>
 #include <gtest/gtest.h>
 
-#include <sstream>
-
-#include "cli.h"
+#include "app/cli_runner.h"
 #include "rondo/core/document.h"
 #include "rondo/store/store.h"
 #include "store/temp_db.h"
@@ -17,30 +15,20 @@ using testing::kWithamSuccesses;
 using testing::TempDb;
 using testing::witham_dir;
 
-struct CliRun {
-  int code;
-  std::string out;
-  std::string err;
-};
-
-CliRun rondo(const std::vector<std::string>& args) {
-  std::ostringstream out;
-  std::ostringstream err;
-  const int code = app::run(args, out, err);
-  return {code, out.str(), err.str()};
-}
+using CliRun = rondo::test::CliResult;
+using rondo::test::run_cli;
 
 TEST(LogCommands, ImportThenStatsJsonCountsEveryAttempt) {
   TempDb tmp;
-  CliRun imported = rondo({"log", "import", "--witham", witham_dir().string(), "--db", tmp.str()});
-  ASSERT_EQ(imported.code, 0) << imported.err;
+  CliRun imported = run_cli({"log", "import", "--witham", witham_dir().string(), "--db", tmp.str()});
+  ASSERT_EQ(imported.exit_code, 0) << imported.err;
   EXPECT_NE(imported.out.find("attempts:        32078"), std::string::npos) << imported.out;
   EXPECT_NE(imported.out.find("successes:       21916"), std::string::npos) << imported.out;
   EXPECT_NE(imported.out.find("inserted:        32078"), std::string::npos) << imported.out;
   EXPECT_NE(imported.out.find("already present: 0"), std::string::npos) << imported.out;
 
-  CliRun stats = rondo({"log", "stats", "--db", tmp.str(), "--json"});
-  ASSERT_EQ(stats.code, 0) << stats.err;
+  CliRun stats = run_cli({"log", "stats", "--db", tmp.str(), "--json"});
+  ASSERT_EQ(stats.exit_code, 0) << stats.err;
   const Json j = Json::parse(stats.out);
   EXPECT_EQ(j["attempts"], kWithamAttempts);
   EXPECT_EQ(j["successes"], kWithamSuccesses);
@@ -59,9 +47,9 @@ TEST(LogCommands, ImportThenStatsJsonCountsEveryAttempt) {
 
 TEST(LogCommands, ImportTwiceReportsWhatWasAlreadyThere) {
   TempDb tmp;
-  ASSERT_EQ(rondo({"log", "import", "--witham", witham_dir().string(), "--db", tmp.str()}).code, 0);
-  CliRun again = rondo({"log", "import", "--witham", witham_dir().string(), "--db", tmp.str(), "--json"});
-  ASSERT_EQ(again.code, 0) << again.err;
+  ASSERT_EQ(run_cli({"log", "import", "--witham", witham_dir().string(), "--db", tmp.str()}).exit_code, 0);
+  CliRun again = run_cli({"log", "import", "--witham", witham_dir().string(), "--db", tmp.str(), "--json"});
+  ASSERT_EQ(again.exit_code, 0) << again.err;
   const Json j = Json::parse(again.out);
   EXPECT_EQ(j["attempts"], kWithamAttempts);
   EXPECT_EQ(j["inserted"], 0);
@@ -70,9 +58,9 @@ TEST(LogCommands, ImportTwiceReportsWhatWasAlreadyThere) {
 
 TEST(LogCommands, StatsTableHasARowPerEdgeAndATotal) {
   TempDb tmp;
-  ASSERT_EQ(rondo({"log", "import", "--witham", witham_dir().string(), "--db", tmp.str()}).code, 0);
-  CliRun stats = rondo({"log", "stats", "--db", tmp.str()});
-  ASSERT_EQ(stats.code, 0) << stats.err;
+  ASSERT_EQ(run_cli({"log", "import", "--witham", witham_dir().string(), "--db", tmp.str()}).exit_code, 0);
+  CliRun stats = run_cli({"log", "stats", "--db", tmp.str()});
+  ASSERT_EQ(stats.exit_code, 0) << stats.err;
   EXPECT_NE(stats.out.find("Aisle1_Aisle2"), std::string::npos);
   EXPECT_NE(stats.out.find("total (62 edges)"), std::string::npos) << stats.out;
   EXPECT_NE(stats.out.find("32078"), std::string::npos);
@@ -82,8 +70,8 @@ TEST(LogCommands, StatsTableHasARowPerEdgeAndATotal) {
 TEST(LogCommands, StatsOfAnEmptyStoreIsZero) {
   TempDb tmp;
   ASSERT_TRUE(Store::open(tmp.path()).ok());
-  CliRun stats = rondo({"log", "stats", "--db", tmp.str(), "--json"});
-  ASSERT_EQ(stats.code, 0) << stats.err;
+  CliRun stats = run_cli({"log", "stats", "--db", tmp.str(), "--json"});
+  ASSERT_EQ(stats.exit_code, 0) << stats.err;
   const Json j = Json::parse(stats.out);
   EXPECT_EQ(j["attempts"], 0);
   EXPECT_EQ(j["successes"], 0);
@@ -92,8 +80,8 @@ TEST(LogCommands, StatsOfAnEmptyStoreIsZero) {
 
 TEST(LogCommands, StatsOfAMissingFileIsBadInputAndCreatesNothing) {
   TempDb tmp;
-  CliRun stats = rondo({"log", "stats", "--db", tmp.str(), "--json"});
-  EXPECT_EQ(stats.code, 2);
+  CliRun stats = run_cli({"log", "stats", "--db", tmp.str(), "--json"});
+  EXPECT_EQ(stats.exit_code, 2);
   EXPECT_TRUE(stats.out.empty());
   EXPECT_NE(stats.err.find(tmp.str() + ": no such database file"), std::string::npos) << stats.err;
   EXPECT_FALSE(std::filesystem::exists(tmp.path()));
@@ -102,8 +90,8 @@ TEST(LogCommands, StatsOfAMissingFileIsBadInputAndCreatesNothing) {
 TEST(LogCommands, StatsOfAFileThatIsNotADatabaseIsBadInput) {
   TempDb tmp;
   tmp.write("edge,attempts\nA_B,3\nthis is a csv file, not a database, and it is long enough.........\n");
-  CliRun stats = rondo({"log", "stats", "--db", tmp.str()});
-  EXPECT_EQ(stats.code, 2);
+  CliRun stats = run_cli({"log", "stats", "--db", tmp.str()});
+  EXPECT_EQ(stats.exit_code, 2);
   EXPECT_NE(stats.err.find("not an SQLite database"), std::string::npos) << stats.err;
   EXPECT_NE(stats.err.find(tmp.str()), std::string::npos) << stats.err;
 }
@@ -115,8 +103,8 @@ TEST(LogCommands, StatsOfANewerStoreFailsClearly) {
     SQLite::Database raw(tmp.path(), SQLite::OPEN_READWRITE);
     raw.exec("PRAGMA user_version = 999");
   }
-  CliRun stats = rondo({"log", "stats", "--db", tmp.str()});
-  EXPECT_EQ(stats.code, 1);
+  CliRun stats = run_cli({"log", "stats", "--db", tmp.str()});
+  EXPECT_EQ(stats.exit_code, 1);
   EXPECT_NE(stats.err.find("schema version 999 is newer"), std::string::npos) << stats.err;
 }
 
@@ -134,8 +122,8 @@ TEST(LogCommands, BadArgumentsAreBadInput) {
       {"stats without --db", {"log", "stats"}},
   };
   for (const Case& c : cases) {
-    CliRun r = rondo(c.args);
-    EXPECT_EQ(r.code, 2) << c.name << ": " << r.err;
+    CliRun r = run_cli(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.name << ": " << r.err;
     EXPECT_NE(r.err.find("rondo: error: "), std::string::npos) << c.name;
   }
 }
