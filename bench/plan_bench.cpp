@@ -1,5 +1,6 @@
-// Speed of the planner on a generated building-like map (1,000 places, about 3,800 directed edges,
-// daily-rhythm models): prints one table of medians. Checks issue 4's targets: the exact
+// Speed of the planner on two generated 1,000-place maps with daily-rhythm models: a floor grid
+// (building_map) and a corridor building (corridor_building_map: floors of long corridors with
+// rooms, like real deployment maps); prints tables of medians. Checks issue 4's targets: the exact
 // single-target policy under 1 ms; the exact solver at least 100× faster than value iteration at
 // 1e-6 in the same run; a 50 × 50 travel matrix for 96 quarter-hour slots under 1 s on one core.
 //
@@ -49,44 +50,39 @@ double median(std::vector<double> v) {
 // Keeps results alive so the optimiser cannot drop the work.
 volatile double g_sink = 0;
 
-}  // namespace
+void row(const std::string& what, double seconds, std::size_t samples) {
+  const std::string value = seconds < 1e-3  ? fmt::format("{:.1f} us", seconds * 1e6)
+                            : seconds < 1.0 ? fmt::format("{:.3f} ms", seconds * 1e3)
+                                            : fmt::format("{:.3f} s", seconds);
+  fmt::print("{:<52} {:>14} {:>8}\n", what, value, samples);
+}
 
-int main(int argc, char** argv) {
-  const int repetitions = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
-  const map::TopoMap m = testing::building_map({.rows = 25, .columns = 40, .seed = 1});
-  auto models = std::make_shared<FunctionEdgeModels>(testing::daily_models(m));
-  const Time day = *parse_time("2014-09-02T00:00:00Z");
-  const Time noon = day + hours(12);
-  std::mt19937_64 rng(7);
-  std::uniform_int_distribution<NodeIndex> any(0, m.node_count() - 1);
-
-  fmt::print("map: {} nodes, {} edges (building_map 25 x 40), daily-rhythm models\n", m.node_count(), m.edge_count());
-  fmt::print("{:<52} {:>14} {:>8}\n", "measurement", "median", "samples");
-  auto row = [](const std::string& what, double seconds, std::size_t samples) {
-    const std::string value = seconds < 1e-3  ? fmt::format("{:.1f} us", seconds * 1e6)
-                              : seconds < 1.0 ? fmt::format("{:.3f} ms", seconds * 1e3)
-                                              : fmt::format("{:.3f} s", seconds);
-    fmt::print("{:<52} {:>14} {:>8}\n", what, value, samples);
-  };
-
-  // M_t construction: one model read per edge.
+// M_t construction, the exact solver and value iteration (Jacobi and Gauss-Seidel) at 1e-6 on
+// one map, all on the same M_t and targets.
+void solver_rows(const map::TopoMap& m, const std::string& label, int repetitions) {
+  const FunctionEdgeModels models = testing::daily_models(m);
+  const Time noon = *parse_time("2014-09-02T12:00:00Z");
+  fmt::print("\nmap: {}: {} nodes, {} edges, hop diameter {}\n", label, m.node_count(), m.edge_count(),
+             testing::hop_diameter(m));
   std::vector<double> build;
   for (int r = 0; r < 50 * repetitions; ++r)
-    build.push_back(seconds_of([&] { g_sink = g_sink + Mdp::build(m, *models, noon).expected_crossing_seconds(0); }));
+    build.push_back(seconds_of([&] { g_sink = g_sink + Mdp::build(m, models, noon).expected_crossing_seconds(0); }));
   row("build M_t (read every edge's model once)", median(build), build.size());
 
-  const Mdp mdp = Mdp::build(m, *models, noon);
+  const Mdp mdp = Mdp::build(m, models, noon);
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<NodeIndex> any(0, m.node_count() - 1);
   std::vector<NodeIndex> targets;
   for (int i = 0; i < 40 * repetitions; ++i) targets.push_back(any(rng));
-
+  const ExactSolver solver;  // reuses its scratch space, as TravelOracle does
   std::vector<double> exact;
   for (NodeIndex t : targets)
-    exact.push_back(seconds_of([&] { g_sink = g_sink + ExactSolver{}.solve(mdp, t)->policy.expected_seconds(0); }));
+    exact.push_back(seconds_of([&] { g_sink = g_sink + solver.solve(mdp, t)->policy.expected_seconds(0); }));
   const double exact_median = median(exact);
   row("exact single-target policy (reverse Dijkstra)", exact_median, exact.size());
 
-  // Value iteration at 1e-6 on the same M_t, on a subset of the same targets: Jacobi (PRISM's
-  // value iteration, the published system's solver) and Gauss-Seidel.
+  // Value iteration on a subset of the same targets: Jacobi (PRISM's value iteration, the
+  // published system's solver) and Gauss-Seidel.
   for (const bool gauss_seidel : {false, true}) {
     std::vector<double> vi;
     std::size_t sweeps = 0;
@@ -103,6 +99,24 @@ int main(int argc, char** argv) {
         vi_median, vi.size());
     fmt::print("{:<52} {:>13.0f}x\n", "  exact speed-up over it (ratio of medians)", vi_median / exact_median);
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int repetitions = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
+  fmt::print("{:<52} {:>14} {:>8}\n", "measurement (thread CPU time)", "median", "samples");
+  solver_rows(testing::building_map({.rows = 25, .columns = 40, .seed = 1}), "floor grid (building_map 25 x 40)",
+              repetitions);
+  const map::TopoMap m = testing::corridor_building_map({});
+  solver_rows(m, "corridor building (corridor_building_map)", repetitions);
+
+  auto models = std::make_shared<FunctionEdgeModels>(testing::daily_models(m));
+  const Time day = *parse_time("2014-09-02T00:00:00Z");
+  const Time noon = day + hours(12);
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<NodeIndex> any(0, m.node_count() - 1);
+  const Mdp mdp = Mdp::build(m, *models, noon);
 
   // Policy distribution along the route (the probability of arriving on time).
   const Policy policy = ExactSolver{}.solve(mdp, 0)->policy;

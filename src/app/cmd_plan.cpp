@@ -1,6 +1,7 @@
 // `rondo plan`: the optimal navigation policy between two nodes of a map at a departure time: the
 // route it takes, the expected travel time (retries included) and quantiles of the travel time.
-// Without --models the edges follow the distance prior (the paper's W0).
+// Without --models the edges follow the distance prior (the paper's W0); with --models, the learned
+// models (plan::LearnedEdgeModels), the prior for edges they do not know.
 #include <fmt/format.h>
 
 #include <memory>
@@ -12,8 +13,10 @@
 #include "rondo/core/document.h"
 #include "rondo/core/time.h"
 #include "rondo/map/map_loader.h"
+#include "rondo/learn/edge_models.h"
 #include "rondo/plan/distance_prior.h"
 #include "rondo/plan/exact_solver.h"
+#include "rondo/plan/learned_edge_models.h"
 #include "rondo/plan/mdp.h"
 #include "rondo/plan/travel_oracle.h"
 #include "time_parsing_cli.h"
@@ -47,12 +50,6 @@ std::string seconds_text(double s) {
 }
 
 Status run_plan(CommandContext& ctx, const PlanOptions& o) {
-  if (!o.models_file.empty()) {
-    return Error{ErrorCode::kUnsupported,
-                 fmt::format("--models {}: learned edge models are not supported yet (the learn module's edge "
-                             "model API is not settled); omit --models to plan with the distance prior",
-                             o.models_file)};
-  }
   if (!(o.prior_probability > 0.0 && o.prior_probability <= 1.0)) {
     return Error::invalid(fmt::format("--prior-probability: must be in (0, 1], got {}", o.prior_probability));
   }
@@ -70,8 +67,15 @@ Status run_plan(CommandContext& ctx, const PlanOptions& o) {
   RONDO_ASSIGN_OR_RETURN(map::NodeIndex from, find_node(m, "--from", o.from, o.map_file));
   RONDO_ASSIGN_OR_RETURN(map::NodeIndex to, find_node(m, "--to", o.to, o.map_file));
 
-  auto models =
-      std::make_shared<plan::DistancePrior>(m, plan::DistancePriorOptions{.success_probability = o.prior_probability});
+  std::shared_ptr<const learn::EdgeModels> learned;
+  if (!o.models_file.empty()) {
+    if (!depart) return Error::invalid("--models needs --at: learned models depend on the departure time");
+    auto loaded = learn::EdgeModels::load(o.models_file);
+    if (!loaded) return loaded.error().with_context("--models");
+    learned = *loaded;
+  }
+  auto models = std::make_shared<plan::LearnedEdgeModels>(
+      m, learned, plan::DistancePriorOptions{.success_probability = o.prior_probability});
   plan::TravelOracle oracle(m, models);
   const Time at = depart.value_or(Time{});
   const plan::Policy& policy = oracle.policy(to, at);
@@ -79,7 +83,9 @@ Status run_plan(CommandContext& ctx, const PlanOptions& o) {
   const plan::TravelTimeDistribution distribution = policy.travel_time_distribution(from);
   const bool reachable = policy.reaches_target(from);
   const std::string models_text =
-      fmt::format("distance prior (p = {:g} per attempt, no learned data)", o.prior_probability);
+      learned ? fmt::format("learned ({}: {} of {} map edges; the others: distance prior, p = {:g})", o.models_file,
+                            models->known_edge_count(), m.edge_count(), o.prior_probability)
+              : fmt::format("distance prior (p = {:g} per attempt, no learned data)", o.prior_probability);
 
   if (o.json) {
     Json j = Json::object();
@@ -87,7 +93,11 @@ Status run_plan(CommandContext& ctx, const PlanOptions& o) {
     j["from"] = o.from;
     j["to"] = o.to;
     j["depart"] = depart ? Json(format_time(*depart)) : Json(nullptr);
-    j["models"] = "prior";
+    j["models"] = learned ? "learned" : "prior";
+    if (learned) {
+      j["models_file"] = o.models_file;
+      j["learned_edges"] = models->known_edge_count();
+    }
     j["prior_probability"] = o.prior_probability;
     j["reachable"] = reachable;
     j["expected_seconds"] = reachable ? Json(policy.expected_seconds(from)) : Json(nullptr);
@@ -165,7 +175,8 @@ void add_plan_commands(CLI::App& root, CommandContext& ctx) {
   CLI::App* cmd = root.add_subcommand(
       "plan", "The optimal route between two nodes: expected travel time (retries included) and its quantiles");
   cmd->add_option("--map", opts->map_file, "Map file: rondo .yaml, STRANDS .tmap, .yaml or .json")->required();
-  cmd->add_option("--models", opts->models_file, "Learned edge models (not supported yet: the distance prior is used)");
+  cmd->add_option("--models", opts->models_file,
+                  "Learned edge models (JSON from 'rondo learn'); edges they lack follow the distance prior");
   cmd->add_option("--from", opts->from, "Start node name")->required();
   cmd->add_option("--to", opts->to, "Target node name")->required();
   cmd->add_option("--at", opts->at, "Departure time, ISO 8601 with a zone (e.g. 2014-09-02T16:24:00Z)");

@@ -33,5 +33,6 @@ void add_schedule_commands(CLI::App& root, CommandContext& ctx);
 void add_eval_commands(CLI::App& root, CommandContext& ctx);
 void add_learn_commands(CLI::App& root, CommandContext& ctx);
 void add_plan_commands(CLI::App& root, CommandContext& ctx);
+void add_run_commands(CLI::App& root, CommandContext& ctx);
 
 }  // namespace rondo::app

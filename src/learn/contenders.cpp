@@ -167,11 +167,12 @@ class OfflineEpisodePredictor final : public EdgePredictor {
 
 class EpisodeContender final : public Contender {
  public:
+  explicit EpisodeContender(EpisodeOptions options) : options_(std::move(options)) {}
   std::string name() const override { return "episode"; }
   std::vector<std::unique_ptr<EdgePredictor>> fit(const std::vector<EdgeHistory>& edges, bool online) const override {
     std::vector<std::vector<Attempt>> attempts;
     for (const auto& e : edges) attempts.push_back(e.train);
-    auto fitted = fit_episode_models(attempts);
+    auto fitted = fit_episode_models(attempts, options_);
     std::vector<std::unique_ptr<EdgePredictor>> out;
     for (auto& m : fitted.edges) {
       if (online) {
@@ -182,17 +183,20 @@ class EpisodeContender final : public Contender {
     }
     return out;
   }
+
+ private:
+  EpisodeOptions options_;
 };
 
 }  // namespace
 
-std::vector<std::unique_ptr<Contender>> all_contenders() {
+std::vector<std::unique_ptr<Contender>> all_contenders(const EpisodeOptions& episode) {
   std::vector<std::unique_ptr<Contender>> out;
   for (bool dedup : {false, true}) {
     out.push_back(std::make_unique<StaticContender>(dedup));
     for (int order : {1, 2, 3, -1}) out.push_back(std::make_unique<FremenContender>(order, dedup));
   }
-  out.push_back(std::make_unique<EpisodeContender>());
+  out.push_back(std::make_unique<EpisodeContender>(episode));
   return out;
 }
 

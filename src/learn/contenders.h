@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rondo/learn/edge_predictor.h"
+#include "rondo/learn/episode_model.h"
 
 namespace rondo::learn {
 
@@ -26,7 +27,8 @@ class Contender {
   virtual std::vector<std::unique_ptr<EdgePredictor>> fit(const std::vector<EdgeHistory>& edges, bool online) const = 0;
 };
 
-// static, fremen-1..3 and fremen-auto, without and with de-duplication, then our models.
-std::vector<std::unique_ptr<Contender>> all_contenders();
+// static, fremen-1..3 and fremen-auto, without and with de-duplication, then our models (fitted
+// with `episode`).
+std::vector<std::unique_ptr<Contender>> all_contenders(const EpisodeOptions& episode = {});
 
 }  // namespace rondo::learn

@@ -19,6 +19,22 @@ std::vector<BinarySample> presence_at_node(const std::vector<Traversal>& log, st
   return out;
 }
 
+std::vector<BinarySample> arrivals_in_slot(const std::vector<Traversal>& log, std::string_view node, Time from,
+                                           Time to, Duration step) {
+  std::vector<BinarySample> out;
+  if (step <= Duration::zero()) return out;
+  std::size_t next = 0;  // the first traversal that starts at or after the current slot
+  for (Time t = from; t < to; t += step) {
+    while (next < log.size() && log[next].start < t) ++next;
+    bool arrived = false;
+    for (std::size_t i = next; i < log.size() && log[i].start < t + step && !arrived; ++i) {
+      arrived = log[i].success && log[i].to == node;
+    }
+    out.push_back({t, arrived});
+  }
+  return out;
+}
+
 std::vector<BinarySample> edge_outcomes(const std::vector<Traversal>& log, std::string_view edge_id) {
   std::vector<BinarySample> out;
   for (const Traversal& t : log) {

@@ -11,7 +11,7 @@ namespace rondo::learn {
 namespace {
 
 constexpr const char* kFormat = "rondo.edge_models";
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;  // 2: time zone, offline duration tables
 
 double mean_of(const std::vector<double>& v) {
   double s = 0;
@@ -69,13 +69,15 @@ Result<std::size_t> EdgeModels::index_of(std::string_view edge_id) const {
   return it->second;
 }
 
+// With a prior time: prior × the pooled actual/prior ratio, or the prior itself when no edge has
+// both data and a prior. Without: the pooled durations.
 double EdgeModels::prior_quantile(const Entry& e, double q) const {
-  if (have_ratio_ && e.spec.prior_seconds > 0) return e.spec.prior_seconds * prior_ratio_.at(q);
+  if (e.spec.prior_seconds > 0) return e.spec.prior_seconds * (have_ratio_ ? prior_ratio_.at(q) : 1.0);
   return pooled_durations_.at(q);
 }
 
 double EdgeModels::prior_mean(const Entry& e) const {
-  if (have_ratio_ && e.spec.prior_seconds > 0) return e.spec.prior_seconds * prior_ratio_mean_;
+  if (e.spec.prior_seconds > 0) return e.spec.prior_seconds * (have_ratio_ ? prior_ratio_mean_ : 1.0);
   return pooled_mean_;
 }
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "json_util.h"
+#include "offline_durations.h"
 
 namespace rondo::learn {
 namespace {
@@ -12,14 +12,6 @@ constexpr std::int64_t kDayMs = 86'400'000;
 
 std::size_t idx(int i) {
   return static_cast<std::size_t>(i);
-}
-
-// Vincentisation: the quantile function of a mixture of "weight" of `a` and the rest of `b`.
-QuantileTable blend(const QuantileTable& a, const QuantileTable& b, double weight) {
-  std::vector<double> mixed(a.values().size());
-  for (std::size_t k = 0; k < mixed.size(); ++k) mixed[k] = weight * a.values()[k] + (1 - weight) * b.values()[k];
-  Json j(mixed);
-  return *QuantileTable::from_json(j);  // a blend of non-decreasing tables is non-decreasing
 }
 
 // The q-quantile of the mixture "weight_a of `a`, the rest of `b`": every knot of each table is a
@@ -59,36 +51,22 @@ double mean_of(const std::vector<double>& v) {
   return s / static_cast<double>(v.size());
 }
 
-template <std::size_t N>
-Json array_json(const std::array<double, N>& a) {
-  return Json(std::vector<double>(a.begin(), a.end()));
-}
-
-template <std::size_t N>
-Status read_array(const Json& j, const char* key, std::array<double, N>& out) {
-  auto v = json_numbers(j, key);
-  if (!v) return v.error();
-  if (v->size() != N)
-    return Error::invalid(std::string("model: '") + key + "' must have " + std::to_string(N) + " numbers");
-  std::copy(v->begin(), v->end(), out.begin());
-  return {};
-}
-
 }  // namespace
 
 namespace {
-std::int64_t time_of_day_ms(Time t, Duration offset) {
-  const std::int64_t ms = (t + offset).time_since_epoch().count();
-  return ((ms % kDayMs) + kDayMs) % kDayMs;
+// Milliseconds since local midnight, in [0, kDayMs) (a 25-hour autumn day folds its last hour).
+std::int64_t time_of_day_ms(Time t, const TimeZone& zone) {
+  const std::int64_t ms = zone.time_of_day(t).count();
+  return std::clamp<std::int64_t>(ms, 0, kDayMs - 1);
 }
 }  // namespace
 
 int EpisodePriors::day_slot(Time t) const {
-  return static_cast<int>(time_of_day_ms(t, options.day_offset) * kDaySlots / kDayMs);
+  return static_cast<int>(time_of_day_ms(t, options.zone) * kDaySlots / kDayMs);
 }
 
 int EpisodePriors::duration_bin(Time t) const {
-  return static_cast<int>(time_of_day_ms(t, options.day_offset) * options.duration_bins / kDayMs);
+  return static_cast<int>(time_of_day_ms(t, options.zone) * options.duration_bins / kDayMs);
 }
 
 int EpisodeStats::state_of(bool last_success, Duration gap) {
@@ -210,6 +188,7 @@ double EpisodeEdgeModel::expected_seconds(Time t, const EpisodeStats& live, bool
 
 double EpisodeEdgeModel::quantile_seconds(Time t, double q, const EpisodeStats& live, bool use_state) const {
   if (use_state && live.in_retry(t, *priors_)) return live.last_seconds * priors_->retry_ratio.at(q);
+  if (!use_state || !live.has_last) return durations_.offline[idx(priors_->day_slot(t))].at(q);
   const auto bin = idx(priors_->duration_bin(t));
   return mixture_quantile(durations_.success[bin], probability(t, live, use_state), durations_.failure[bin], q);
 }
@@ -297,13 +276,13 @@ EpisodeEdgeModel::DurationTables duration_tables(const std::vector<Attempt>& att
   for (std::size_t outcome = 0; outcome < 2; ++outcome) {
     const double we = weight(edge[outcome]);
     const auto edge_table =
-        blend(QuantileTable::from_samples(edge[outcome]), QuantileTable::from_samples(pooled[outcome]), we);
+        QuantileTable::blend(QuantileTable::from_samples(edge[outcome]), QuantileTable::from_samples(pooled[outcome]), we);
     const double edge_mean = we * mean_of(edge[outcome]) + (1 - we) * mean_of(pooled[outcome]);
     auto& tables = outcome == 1 ? out.success : out.failure;
     auto& means = outcome == 1 ? out.success_mean : out.failure_mean;
     for (std::size_t b = 0; b < bins; ++b) {
       const double wb = weight(by_bin[outcome][b]);
-      tables.push_back(blend(QuantileTable::from_samples(by_bin[outcome][b]), edge_table, wb));
+      tables.push_back(QuantileTable::blend(QuantileTable::from_samples(by_bin[outcome][b]), edge_table, wb));
       means.push_back(wb * mean_of(by_bin[outcome][b]) + (1 - wb) * edge_mean);
     }
   }
@@ -322,8 +301,10 @@ EpisodeFit fit_episode_models(const std::vector<std::vector<Attempt>>& edges, co
   EpisodeFit fit;
   auto priors = pooled_priors(options, sums);
   fit.priors = priors;
+  auto offline = offline_duration_tables(edges, *priors);
   for (std::size_t e = 0; e < edges.size(); ++e) {
     auto tables = duration_tables(edges[e], *priors, sums.durations);
+    tables.offline = std::move(offline[e]);
     fit.edges.push_back(std::make_shared<const EpisodeEdgeModel>(priors, std::move(stats[e]), std::move(tables)));
   }
   return fit;
@@ -336,177 +317,6 @@ std::shared_ptr<const EpisodeBinaryModel> fit_episode_binary(std::span<const Bin
   std::stable_sort(edges[0].begin(), edges[0].end(), [](const auto& a, const auto& b) { return a.start < b.start; });
   auto fit = fit_episode_models(edges, options);
   return std::make_shared<const EpisodeBinaryModel>(fit.edges[0]);
-}
-
-// ---- JSON -------------------------------------------------------------------------------------
-
-Json EpisodePriors::to_json() const {
-  const auto& o = options;
-  return Json{{"retry_gap_s", to_seconds(o.retry_gap)},
-              {"day_offset_s", to_seconds(o.day_offset)},
-              {"bin_prior", o.bin_prior},
-              {"edge_prior", o.edge_prior},
-              {"length_prior", o.length_prior},
-              {"state_prior", o.state_prior},
-              {"pooled_state_prior", o.pooled_state_prior},
-              {"duration_prior", o.duration_prior},
-              {"day_resolutions", o.day_resolutions},
-              {"duration_bins", o.duration_bins},
-              {"first_success", first_success},
-              {"log_retry_length", log_retry_length},
-              {"state_successes", array_json(state_successes)},
-              {"state_attempts", array_json(state_attempts)},
-              {"retry_ratio", retry_ratio.to_json()},
-              {"retry_intercept", retry_intercept},
-              {"retry_slope", retry_slope}};
-}
-
-Result<EpisodePriors> EpisodePriors::from_json(const Json& j) {
-  EpisodePriors p;
-  struct NumberField {
-    const char* key;
-    double* out;
-  };
-  double retry_gap_s = 0, day_offset_s = 0, duration_bins = 0;
-  const NumberField numbers[] = {{"retry_gap_s", &retry_gap_s},
-                                 {"day_offset_s", &day_offset_s},
-                                 {"bin_prior", &p.options.bin_prior},
-                                 {"edge_prior", &p.options.edge_prior},
-                                 {"length_prior", &p.options.length_prior},
-                                 {"state_prior", &p.options.state_prior},
-                                 {"pooled_state_prior", &p.options.pooled_state_prior},
-                                 {"duration_prior", &p.options.duration_prior},
-                                 {"duration_bins", &duration_bins},
-                                 {"first_success", &p.first_success},
-                                 {"log_retry_length", &p.log_retry_length},
-                                 {"retry_intercept", &p.retry_intercept},
-                                 {"retry_slope", &p.retry_slope}};
-  for (const auto& f : numbers) {
-    auto v = json_number(j, f.key);
-    if (!v) return v.error();
-    *f.out = *v;
-  }
-  if (duration_bins < 1 || duration_bins > 1440 || duration_bins != std::floor(duration_bins)) {
-    return Error::invalid("model: 'duration_bins' must be a whole number in 1..1440");
-  }
-  p.options.duration_bins = static_cast<int>(duration_bins);
-  auto resolutions = json_numbers(j, "day_resolutions");
-  if (!resolutions) return resolutions.error();
-  p.options.day_resolutions.clear();
-  for (double r : *resolutions) {
-    if (r < 1 || r > 24 || r != std::floor(r) || 24 % static_cast<int>(r) != 0) {
-      return Error::invalid("model: 'day_resolutions' must hold divisors of 24");
-    }
-    p.options.day_resolutions.push_back(static_cast<int>(r));
-  }
-  p.options.retry_gap = from_seconds(retry_gap_s);
-  p.options.day_offset = from_seconds(day_offset_s);
-  if (auto s = read_array(j, "state_successes", p.state_successes); !s) return s.error();
-  if (auto s = read_array(j, "state_attempts", p.state_attempts); !s) return s.error();
-  if (!j.contains("retry_ratio")) return Error::invalid("model: missing 'retry_ratio'");
-  auto ratio = QuantileTable::from_json(j["retry_ratio"]);
-  if (!ratio) return ratio.error();
-  p.retry_ratio = *ratio;
-  return p;
-}
-
-Json EpisodeStats::to_json() const {
-  return Json{{"first_successes", first_successes},
-              {"first_attempts", first_attempts},
-              {"failed_episodes", failed_episodes},
-              {"log_length_sum", log_length_sum},
-              {"state_successes", array_json(state_successes)},
-              {"state_attempts", array_json(state_attempts)},
-              {"has_last", has_last},
-              {"last_success", last_success},
-              {"last_end_ms", last_end.time_since_epoch().count()},
-              {"last_seconds", last_seconds},
-              {"episode_length", episode_length},
-              {"episode_first_failed", episode_first_failed}};
-}
-
-Result<EpisodeStats> EpisodeStats::from_json(const Json& j) {
-  EpisodeStats s;
-  auto fs = json_numbers(j, "first_successes");
-  auto fa = json_numbers(j, "first_attempts");
-  if (!fs) return fs.error();
-  if (!fa) return fa.error();
-  if (fs->size() != idx(kDaySlots) || fa->size() != idx(kDaySlots)) {
-    return Error::invalid("model: 'first_successes'/'first_attempts' must have one number per 15 minutes of the day");
-  }
-  s.first_successes = *fs;
-  s.first_attempts = *fa;
-  auto failed = json_number(j, "failed_episodes");
-  auto log_sum = json_number(j, "log_length_sum");
-  auto last_end = json_number(j, "last_end_ms");
-  auto last_seconds = json_number(j, "last_seconds");
-  auto length = json_number(j, "episode_length");
-  if (!failed) return failed.error();
-  if (!log_sum) return log_sum.error();
-  if (!last_end) return last_end.error();
-  if (!last_seconds) return last_seconds.error();
-  if (!length) return length.error();
-  s.failed_episodes = *failed;
-  s.log_length_sum = *log_sum;
-  s.last_end = Time{Duration{static_cast<std::int64_t>(*last_end)}};
-  s.last_seconds = *last_seconds;
-  s.episode_length = static_cast<int>(*length);
-  for (auto [key, out] : {std::pair{"has_last", &s.has_last}, std::pair{"last_success", &s.last_success},
-                          std::pair{"episode_first_failed", &s.episode_first_failed}}) {
-    if (!j.contains(key) || !j[key].is_boolean())
-      return Error::invalid(std::string("model: '") + key + "' must be true or false");
-    *out = j[key].get<bool>();
-  }
-  if (auto st = read_array(j, "state_successes", s.state_successes); !st) return st.error();
-  if (auto st = read_array(j, "state_attempts", s.state_attempts); !st) return st.error();
-  return s;
-}
-
-Json EpisodeEdgeModel::to_json() const {
-  Json success = Json::array(), failure = Json::array();
-  for (const auto& t : durations_.success) success.push_back(t.to_json());
-  for (const auto& t : durations_.failure) failure.push_back(t.to_json());
-  return Json{{"stats", stats_.to_json()},
-              {"durations",
-               {{"success", success},
-                {"failure", failure},
-                {"success_mean", durations_.success_mean},
-                {"failure_mean", durations_.failure_mean}}}};
-}
-
-Result<EpisodeEdgeModel> EpisodeEdgeModel::from_json(const Json& j, std::shared_ptr<const EpisodePriors> priors) {
-  if (!j.is_object() || !j.contains("stats") || !j.contains("durations")) {
-    return Error::invalid("model: an episode edge needs 'stats' and 'durations'");
-  }
-  auto stats = EpisodeStats::from_json(j["stats"]);
-  const auto bins = idx(priors->options.duration_bins);
-  if (!stats) return stats.error();
-  const Json& d = j["durations"];
-  DurationTables tables;
-  for (auto [key, out] : {std::pair{"success", &tables.success}, std::pair{"failure", &tables.failure}}) {
-    if (!d.contains(key) || !d[key].is_array() || d[key].size() != bins) {
-      return Error::invalid(std::string("model: 'durations.") + key + "' must have one table per day bin");
-    }
-    for (const Json& t : d[key]) {
-      auto table = QuantileTable::from_json(t);
-      if (!table) return table.error();
-      out->push_back(*table);
-    }
-  }
-  auto success_mean = json_numbers(d, "success_mean");
-  auto failure_mean = json_numbers(d, "failure_mean");
-  if (!success_mean) return success_mean.error();
-  if (!failure_mean) return failure_mean.error();
-  if (success_mean->size() != bins || failure_mean->size() != bins) {
-    return Error::invalid("model: duration means must have one number per duration bin");
-  }
-  tables.success_mean = *success_mean;
-  tables.failure_mean = *failure_mean;
-  return EpisodeEdgeModel(std::move(priors), std::move(*stats), std::move(tables));
-}
-
-Json EpisodeBinaryModel::to_json() const {
-  return Json{{"type", "episode"}, {"priors", model_->priors()->to_json()}, {"edge", model_->to_json()}};
 }
 
 }  // namespace rondo::learn

@@ -90,6 +90,7 @@ Json row_json(const ModelScoreRow& r, bool binary_series) {
 Result<EdgeEvaluation> evaluate_edges(const std::vector<Traversal>& log, const EdgeEvalOptions& options) {
   std::map<std::string, ScoredEdge> by_edge;
   for (const Traversal& t : log) {
+    if (options.until && t.start >= *options.until) continue;
     auto& e = by_edge[t.edge_id];
     e.history.id = t.edge_id;
     (t.start < options.split ? e.history.train : e.test).push_back(to_attempt(t));
@@ -115,7 +116,7 @@ Result<EdgeEvaluation> evaluate_edges(const std::vector<Traversal>& log, const E
     return Error::invalid(fmt::format("no edge has at least {} attempts before the split and {} after it",
                                       options.min_train_attempts, options.min_test_attempts));
   }
-  for (const auto& contender : all_contenders()) {
+  for (const auto& contender : all_contenders(options.episode)) {
     for (bool online : {false, true}) {
       auto predictors = contender->fit(histories, online);
       Scores scores;
@@ -130,6 +131,11 @@ Result<EdgeEvaluation> evaluate_edges(const std::vector<Traversal>& log, const E
 
 Result<BinaryEvaluation> evaluate_binary_series(const std::vector<BinarySample>& train,
                                                 const std::vector<BinarySample>& test) {
+  return evaluate_binary_series(train, test, EpisodeOptions{});
+}
+
+Result<BinaryEvaluation> evaluate_binary_series(const std::vector<BinarySample>& train,
+                                                const std::vector<BinarySample>& test, const EpisodeOptions& episode) {
   if (train.empty()) return Error::invalid("the training series is empty");
   if (test.empty()) return Error::invalid("the test series is empty");
   std::vector<EdgeHistory> histories(1);
@@ -140,7 +146,7 @@ Result<BinaryEvaluation> evaluate_binary_series(const std::vector<BinarySample>&
   BinaryEvaluation result;
   result.train_samples = static_cast<int>(train.size());
   result.test_samples = static_cast<int>(test.size());
-  for (const auto& contender : all_contenders()) {
+  for (const auto& contender : all_contenders(episode)) {
     for (bool online : {false, true}) {
       auto predictors = contender->fit(histories, online);
       Scores scores;

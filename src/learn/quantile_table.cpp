@@ -25,6 +25,95 @@ QuantileTable QuantileTable::from_samples(std::vector<double> values, bool allow
   return out;
 }
 
+QuantileTable QuantileTable::from_weighted_samples(std::vector<WeightedValue> samples) {
+  std::erase_if(samples, [](const WeightedValue& s) { return !(s.weight > 0) || !std::isfinite(s.weight); });
+  QuantileTable out;
+  if (samples.empty()) return out;
+  std::sort(samples.begin(), samples.end(),
+            [](const WeightedValue& a, const WeightedValue& b) { return a.value < b.value; });
+  // Equal values are one point mass (so the order of ties cannot matter).
+  std::size_t kept = 0;
+  for (std::size_t i = 1; i < samples.size(); ++i) {
+    if (samples[i].value == samples[kept].value) {
+      samples[kept].weight += samples[i].weight;
+    } else {
+      samples[++kept] = samples[i];
+    }
+  }
+  samples.resize(kept + 1);
+  double total = 0;
+  for (const auto& s : samples) total += s.weight;
+  // Walk the samples once: `lo` and `hi` are consecutive share centres around the current level.
+  std::size_t i = 0;
+  double cumulative = samples[0].weight, centre = samples[0].weight / 2 / total;
+  double previous_centre = centre;
+  for (int k = 0; k < kKnots; ++k) {
+    const double p = level(k);
+    while (centre < p && i + 1 < samples.size()) {
+      previous_centre = centre;
+      ++i;
+      centre = (cumulative + samples[i].weight / 2) / total;
+      cumulative += samples[i].weight;
+    }
+    double v = samples[i].value;
+    if (centre >= p && i > 0 && centre > previous_centre) {
+      const double frac = (p - previous_centre) / (centre - previous_centre);
+      v = samples[i - 1].value + std::clamp(frac, 0.0, 1.0) * (samples[i].value - samples[i - 1].value);
+    }
+    out.values_[static_cast<std::size_t>(k)] = std::max(0.0, v);
+  }
+  for (std::size_t k = 1; k < out.values_.size(); ++k) out.values_[k] = std::max(out.values_[k], out.values_[k - 1]);
+  return out;
+}
+
+double QuantileTable::effective_count(const std::vector<WeightedValue>& samples) {
+  double sum = 0, squares = 0;
+  for (const auto& s : samples) {
+    if (!(s.weight > 0) || !std::isfinite(s.weight)) continue;
+    sum += s.weight;
+    squares += s.weight * s.weight;
+  }
+  return squares > 0 ? sum * sum / squares : 0.0;
+}
+
+QuantileTable QuantileTable::blend(const QuantileTable& a, const QuantileTable& b, double weight) {
+  const double w = std::clamp(weight, 0.0, 1.0);
+  QuantileTable out;
+  for (std::size_t k = 0; k < out.values_.size(); ++k) out.values_[k] = w * a.values_[k] + (1 - w) * b.values_[k];
+  for (std::size_t k = 1; k < out.values_.size(); ++k) out.values_[k] = std::max(out.values_[k], out.values_[k - 1]);
+  return out;
+}
+
+QuantileTable QuantileTable::from_knots(const std::vector<double>& knots) {
+  QuantileTable out;
+  if (knots.size() != out.values_.size()) return out;
+  for (std::size_t k = 0; k < knots.size(); ++k) {
+    out.values_[k] = std::isfinite(knots[k]) ? std::max(0.0, knots[k]) : 0.0;
+    if (k > 0) out.values_[k] = std::max(out.values_[k], out.values_[k - 1]);
+  }
+  return out;
+}
+
+QuantileTable QuantileTable::average(std::span<const QuantileTable> tables) {
+  QuantileTable out;
+  if (tables.empty()) return out;
+  for (const auto& t : tables) {
+    for (std::size_t k = 0; k < out.values_.size(); ++k) out.values_[k] += t.values_[k];
+  }
+  const auto n = static_cast<double>(tables.size());
+  for (std::size_t k = 0; k < out.values_.size(); ++k) out.values_[k] /= n;
+  for (std::size_t k = 1; k < out.values_.size(); ++k) out.values_[k] = std::max(out.values_[k], out.values_[k - 1]);
+  return out;
+}
+
+QuantileTable QuantileTable::rounded(int decimals) const {
+  QuantileTable out = *this;
+  const double scale = std::pow(10.0, std::clamp(decimals, 0, 9));  // exact for these powers
+  for (double& v : out.values_) v = std::round(v * scale) / scale;
+  for (std::size_t k = 1; k < out.values_.size(); ++k) out.values_[k] = std::max(out.values_[k], out.values_[k - 1]);
+  return out;
+}
+
 double QuantileTable::at(double q) const {
   if (!(q > level(0))) return values_.front();
   if (q >= level(kKnots - 1)) return values_.back();

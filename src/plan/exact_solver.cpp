@@ -1,53 +1,110 @@
 #include "rondo/plan/exact_solver.h"
 
-#include <functional>
-#include <queue>
 #include <utility>
 
 #include <fmt/format.h>
 
 namespace rondo::plan {
+namespace {
+
+constexpr std::uint32_t kAbsent = 0xffffffffu;
+constexpr std::uint32_t kSettled = 0xfffffffeu;
+constexpr std::size_t kArity = 4;
+
+// The heap operations over (heap, position, cost); the smallest cost at heap[0].
+struct Heap {
+  std::vector<NodeIndex>& heap;
+  std::vector<std::uint32_t>& position;
+  const std::vector<double>& cost;
+
+  void place(std::size_t at, NodeIndex node) {
+    heap[at] = node;
+    position[node] = static_cast<std::uint32_t>(at);
+  }
+  void sift_up(std::size_t at) {
+    const NodeIndex node = heap[at];
+    const double c = cost[node];
+    while (at > 0) {
+      const std::size_t parent = (at - 1) / kArity;
+      if (!(c < cost[heap[parent]])) break;
+      place(at, heap[parent]);
+      at = parent;
+    }
+    place(at, node);
+  }
+  void sift_down(std::size_t at) {
+    const NodeIndex node = heap[at];
+    const double c = cost[node];
+    const std::size_t n = heap.size();
+    for (;;) {
+      const std::size_t first = at * kArity + 1;
+      if (first >= n) break;
+      std::size_t best = first;
+      const std::size_t last = std::min(first + kArity, n);
+      for (std::size_t k = first + 1; k < last; ++k)
+        if (cost[heap[k]] < cost[heap[best]]) best = k;
+      if (!(cost[heap[best]] < c)) break;
+      place(at, heap[best]);
+      at = best;
+    }
+    place(at, node);
+  }
+  // Inserts `node` or moves it up after its cost fell.
+  void push_or_decrease(NodeIndex node) {
+    if (position[node] == kAbsent) {
+      heap.push_back(node);
+      position[node] = static_cast<std::uint32_t>(heap.size() - 1);
+    }
+    sift_up(position[node]);
+  }
+  NodeIndex pop() {
+    const NodeIndex top = heap[0];
+    position[top] = kSettled;
+    const NodeIndex last = heap.back();
+    heap.pop_back();
+    if (!heap.empty()) {
+      heap[0] = last;
+      sift_down(0);
+    }
+    return top;
+  }
+};
+
+}  // namespace
 
 Result<Solution> ExactSolver::solve(const Mdp& mdp, NodeIndex target) const {
   const std::size_t n = mdp.node_count();
   if (target >= n) return Error::invalid(fmt::format("target node index {} is not below the node count {}", target, n));
-  const map::TopoMap& map = mdp.topology();
 
   std::vector<double> cost(n, kInfinity);
   std::vector<PolicyStep> steps(n, PolicyStep{.edge = Policy::kNoEdge});
-  std::vector<char> done(n, 0);  // bytes, not bits: tested in the inner loop
-  struct Entry {
-    double cost;
-    NodeIndex node;
-  };
-  // Orders by cost only (costs are never NaN), a min-heap.
-  auto later = [](const Entry& a, const Entry& b) { return a.cost > b.cost; };
-  std::vector<Entry> heap_storage;
-  heap_storage.reserve(n);
-  std::priority_queue<Entry, std::vector<Entry>, decltype(later)> queue(later, std::move(heap_storage));
+  position_.assign(n, kAbsent);
+  heap_.clear();
+  Heap heap{heap_, position_, cost};
   cost[target] = 0.0;
-  queue.push({0.0, target});
-  // Reverse Dijkstra on the crossing costs τ/p: cost[u] is settled when u leaves the queue.
-  while (!queue.empty()) {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if (done[v]) continue;
-    done[v] = 1;
-    for (EdgeIndex e : map.in_edges(v)) {
-      const NodeIndex u = map.from_index(e);
-      if (done[u] || !mdp.usable(e)) continue;
-      const double candidate = d + mdp.expected_crossing_seconds(e);
-      if (candidate < cost[u]) {
+  heap.push_or_decrease(target);
+  // Reverse Dijkstra on the crossing costs τ/p (never NaN): cost[v] is final when v is popped.
+  while (!heap_.empty()) {
+    const NodeIndex v = heap.pop();
+    const double d = cost[v];
+    for (const Mdp::InArc& arc : mdp.usable_in(v)) {
+      const NodeIndex u = arc.from;
+      const double candidate = d + arc.crossing_seconds;
+      if (candidate < cost[u] && position_[u] != kSettled) {
         cost[u] = candidate;
-        const EdgeOutcome& o = mdp.outcome(e);
-        steps[u] = {.from = u,
-                    .edge = e,
-                    .to = v,
-                    .success_probability = o.success_probability,
-                    .attempt_seconds = o.expected_seconds};
-        queue.push({candidate, u});
+        steps[u].from = u;
+        steps[u].edge = arc.edge;
+        steps[u].to = v;
+        heap.push_or_decrease(u);
       }
     }
+  }
+  // The chosen edges' outcomes, once per node rather than once per improvement.
+  for (PolicyStep& s : steps) {
+    if (s.edge == Policy::kNoEdge) continue;
+    const EdgeOutcome& o = mdp.outcome(s.edge);
+    s.success_probability = o.success_probability;
+    s.attempt_seconds = o.expected_seconds;
   }
   return Solution{
       .status = SolveStatus::kExact, .policy = Policy(target, std::move(steps), std::move(cost)), .sweeps = 0};

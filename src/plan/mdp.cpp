@@ -32,6 +32,27 @@ Mdp::Mdp(const map::TopoMap& map, std::vector<EdgeOutcome> outcomes, Time at)
     o = sanitize(o);
     crossing_.push_back(plan::expected_crossing_seconds(o));
   }
+  build_rows();
+}
+
+void Mdp::build_rows() {
+  const std::size_t n = map_->node_count();
+  in_start_.assign(n + 1, 0);
+  out_start_.assign(n + 1, 0);
+  for (NodeIndex v = 0; v < n; ++v) {
+    in_start_[v] = in_arcs_.size();
+    for (EdgeIndex e : map_->in_edges(v)) {
+      if (usable(e)) in_arcs_.push_back({map_->from_index(e), e, crossing_[e]});
+    }
+    out_start_[v] = out_arcs_.size();
+    for (EdgeIndex e : map_->out_edges(v)) {
+      if (usable(e)) {
+        out_arcs_.push_back({map_->to_index(e), e, outcomes_[e].success_probability, outcomes_[e].expected_seconds});
+      }
+    }
+  }
+  in_start_[n] = in_arcs_.size();
+  out_start_[n] = out_arcs_.size();
 }
 
 Mdp Mdp::build(const map::TopoMap& map, const EdgeModelView& models, Time at) {

@@ -73,7 +73,7 @@ const Policy& TravelOracle::policy(NodeIndex target, Time depart) {
   const auto key = std::make_pair(slot, target);
   if (auto it = policies_.find(key); it != policies_.end()) return it->second;
   const std::shared_ptr<const Mdp> mdp = mdp_at(depart);          // kept alive while solving
-  Solution solution = ExactSolver{}.solve(*mdp, target).value();  // target checked above
+  Solution solution = solver_.solve(*mdp, target).value();  // target checked above
   if (policies_.size() >= options_.max_cached_policies) policies_.clear();
   return policies_.emplace(key, std::move(solution.policy)).first->second;
 }

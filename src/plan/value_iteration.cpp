@@ -12,7 +12,6 @@ namespace rondo::plan {
 Result<Solution> ValueIteration::solve(const Mdp& mdp, NodeIndex target) const {
   const std::size_t n = mdp.node_count();
   if (target >= n) return Error::invalid(fmt::format("target node index {} is not below the node count {}", target, n));
-  const map::TopoMap& map = mdp.topology();
 
   // Nodes that cannot reach the target are +inf from the start and never updated: without this
   // their values would grow without bound and the iteration would never converge.
@@ -25,30 +24,29 @@ Result<Solution> ValueIteration::solve(const Mdp& mdp, NodeIndex target) const {
     if (i != target) active.push_back(i);
   }
 
-  // Q(i, e) = τ + p V(j) + (1 − p) V(i) under the values `v`; +inf for unusable edges and
-  // unreachable ends.
-  auto q_value = [&](const std::vector<double>& v, NodeIndex i, EdgeIndex e) {
-    if (!mdp.usable(e)) return kInfinity;
-    const double vj = v[map.to_index(e)];
+  // Q(i, e) = τ + p V(j) + (1 − p) V(i) under the values `v`, over the MDP's usable out-edges;
+  // +inf for unreachable ends.
+  auto q_value = [](const std::vector<double>& v, NodeIndex i, const Mdp::OutArc& a) {
+    const double vj = v[a.to];
     if (vj == kInfinity) return kInfinity;
-    const EdgeOutcome& o = mdp.outcome(e);
-    return o.expected_seconds + o.success_probability * vj + (1.0 - o.success_probability) * v[i];
+    return a.attempt_seconds + a.success_probability * vj + (1.0 - a.success_probability) * v[i];
   };
 
   const double tolerance = options_.tolerance > 0 ? options_.tolerance : 1e-6;
   SolveStatus status = SolveStatus::kSweepLimit;
   std::size_t sweeps = 0;
-  std::vector<double> previous;
+  // Jacobi reads the previous sweep (`read`) and writes `value`; the two buffers swap roles.
+  std::vector<double> previous = value;
   while (sweeps < options_.max_sweeps) {
     ++sweeps;
-    if (!options_.gauss_seidel) previous = value;
+    if (!options_.gauss_seidel) std::swap(previous, value);
     const std::vector<double>& read = options_.gauss_seidel ? value : previous;
     double largest_change = 0.0;
     for (NodeIndex i : active) {
       double best = kInfinity;
-      for (EdgeIndex e : map.out_edges(i)) best = std::min(best, q_value(read, i, e));
+      for (const Mdp::OutArc& a : mdp.usable_out(i)) best = std::min(best, q_value(read, i, a));
       // best is finite: i reaches the target, so some usable edge leads to a finite value.
-      const double change = std::abs(best - value[i]);
+      const double change = std::abs(best - read[i]);
       if (best > 0) largest_change = std::max(largest_change, change / best);
       value[i] = best;
     }
@@ -63,18 +61,16 @@ Result<Solution> ValueIteration::solve(const Mdp& mdp, NodeIndex target) const {
   std::vector<PolicyStep> steps(n, PolicyStep{.edge = Policy::kNoEdge});
   for (NodeIndex i : active) {
     double best = kInfinity;
-    for (EdgeIndex e : map.out_edges(i)) {
-      const NodeIndex j = map.to_index(e);
-      if (!(value[j] < value[i])) continue;
-      const double q = q_value(value, i, e);
+    for (const Mdp::OutArc& a : mdp.usable_out(i)) {
+      if (!(value[a.to] < value[i])) continue;
+      const double q = q_value(value, i, a);
       if (q < best) {
         best = q;
-        const EdgeOutcome& o = mdp.outcome(e);
         steps[i] = {.from = i,
-                    .edge = e,
-                    .to = j,
-                    .success_probability = o.success_probability,
-                    .attempt_seconds = o.expected_seconds};
+                    .edge = a.edge,
+                    .to = a.to,
+                    .success_probability = a.success_probability,
+                    .attempt_seconds = a.attempt_seconds};
       }
     }
   }

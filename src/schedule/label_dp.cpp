@@ -8,6 +8,7 @@ namespace rondo::schedule::detail {
 namespace {
 
 constexpr std::uint32_t kEmpty = UINT32_MAX;
+constexpr std::int64_t kExtensionsPerPoll = 256;
 
 std::uint64_t mix(std::uint64_t x) {
   x += 0x9e3779b97f4a7c15ULL;
@@ -120,7 +121,7 @@ LabelDpResult run_label_dp(const Instance& in, const LabelDpOptions& opt, const 
   StateTable table;
   std::vector<std::uint64_t> mask(words);
   std::vector<std::size_t> keep;
-  std::int64_t polls = 0;
+  std::int64_t polls = 0;  // extensions tried since the last poll
   bool beam_cut = false;
   const auto& by_latest = in.by_latest();
   const auto& by_early = in.by_earliest_end();
@@ -131,7 +132,13 @@ LabelDpResult run_label_dp(const Instance& in, const LabelDpOptions& opt, const 
     const std::size_t remaining_after = n - stage;
     for (std::size_t l = 0; l < cur.size(); ++l) {
       if (!cur.alive[l]) continue;
-      if ((++polls & 1023) == 0 && stop.should_stop()) return result;  // kAborted
+      // A poll per ~256 extensions tried, about the work of one local-search move, so that a poll
+      // budget (PollBudgetStop) buys similar time in every phase and at every problem size.
+      polls += static_cast<std::int64_t>(remaining_after + 1);
+      if (polls >= kExtensionsPerPoll) {
+        polls = 0;
+        if (stop.should_stop()) return result;  // kAborted
+      }
       const std::uint64_t* m = cur.mask(l);
       const std::size_t i = cur.last[l];
       const std::int64_t t = cur.end[l];

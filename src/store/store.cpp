@@ -55,14 +55,14 @@ int busy_timeout_ms(Duration timeout) {
 }
 
 // Connection settings; see docs/storage.md for why each is what it is.
-Status configure(SQLite::Database& db, const std::filesystem::path& file) {
+Status configure(SQLite::Database& db, const std::filesystem::path& file, bool sync_commits) {
   return guarded(file, "setting the connection up", [&]() -> Status {
     const std::string journal = db.execAndGet("PRAGMA journal_mode = WAL").getString();
     if (journal != "wal") {
       return Error::storage(
           fmt::format("{}: cannot switch to WAL journal mode (SQLite kept '{}')", file.string(), journal));
     }
-    db.exec("PRAGMA synchronous = FULL");
+    db.exec(sync_commits ? "PRAGMA synchronous = FULL" : "PRAGMA synchronous = OFF");
     db.exec("PRAGMA foreign_keys = ON");
     if (db.execAndGet("PRAGMA foreign_keys").getInt() != 1) {
       return Error::storage(file.string() + ": this SQLite build cannot enforce foreign keys");
@@ -88,7 +88,7 @@ Result<Store> Store::open(const std::filesystem::path& file, const StoreOptions&
   }
   // Before any setting is written: a foreign file is refused untouched (not even switched to WAL).
   if (auto ok = check_rondo_file(*db, file); !ok) return ok.error();
-  if (auto ok = configure(*db, file); !ok) return ok.error();
+  if (auto ok = configure(*db, file, options.sync_commits); !ok) return ok.error();
   if (auto ok = migrate(*db, schema_migrations(), file); !ok) return ok.error();
   return Store(file, std::move(db));
 }

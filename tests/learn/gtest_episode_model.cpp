@@ -90,5 +90,88 @@ TEST(EpisodeModel, NonsenseBinCountsAreClampedNotFatal) {
   EXPECT_LE(p, 1.0);
 }
 
+
+// 50 episodes of one 20 s success; 10 failed episodes of a 5 s failure and one 5 s retry; and one
+// failed episode of a 5 s failure followed by a storm of 500 retries of 0.5 s.
+std::vector<Attempt> storm_edge() {
+  std::vector<Attempt> out;
+  Time t = monday();
+  for (int i = 0; i < 50; ++i, t += hours(1)) out.push_back({t, t + seconds(20), 20.0, true});
+  for (int i = 0; i < 10; ++i, t += hours(1)) {
+    out.push_back({t, t + seconds(5), 5.0, false});
+    out.push_back({t + seconds(7), t + seconds(12), 5.0, false});
+  }
+  out.push_back({t, t + seconds(5), 5.0, false});
+  t += seconds(7);
+  for (int i = 0; i < 500; ++i, t += seconds(2)) out.push_back({t, t + milliseconds(500), 0.5, false});
+  return out;
+}
+
+TEST(EpisodeModel, ARetryStormWeighsLikeOneTypicalEpisodeOffline) {
+  EpisodeOptions options;
+  options.duration_half_life = seconds(0);
+  options.day_resolutions = {1};  // one bin: the whole day
+  auto fit = fit_episode_models({storm_edge()}, options);
+  const auto& model = *fit.edges[0];
+  // Counted per attempt, 500 of 571 attempts take 0.5 s and so would the median. Counted by
+  // episodes, the storm holds about L − 1 ≈ 1.8 retries' weight (L: the shrunk geometric mean
+  // episode length) of ~81: the median lies between the 5 s failures and the 20 s successes.
+  EXPECT_GT(model.quantile_seconds(monday(), 0.5), 10.0);
+  EXPECT_LE(model.quantile_seconds(monday(), 0.5), 20.0);
+  EXPECT_LT(model.quantile_seconds(monday(), 0.02), 1.0);  // the storm is still in the table
+}
+
+TEST(EpisodeModel, OfflineDurationsFollowRecentAttempts) {
+  std::vector<Attempt> attempts;
+  for (int d = 0; d < 60; ++d) {
+    const Time t = monday() + hours(24 * d + 10);
+    const double secs = d < 30 ? 10.0 : 30.0;
+    attempts.push_back({t, t + from_seconds(secs), secs, true});
+  }
+  EpisodeOptions no_decay;
+  no_decay.duration_half_life = seconds(0);
+  no_decay.day_resolutions = {1};
+  EpisodeOptions decay = no_decay;
+  decay.duration_half_life = std::chrono::days(7);
+  const Time later = monday() + hours(24 * 61 + 10);
+  const double flat = fit_episode_models({attempts}, no_decay).edges[0]->quantile_seconds(later, 0.5);
+  const double recent = fit_episode_models({attempts}, decay).edges[0]->quantile_seconds(later, 0.5);
+  // Two point masses, interpolated between their share centres: equal shares put the median
+  // half way; with decay the last 30 days hold 1 − 2^(−30/7) ≈ 95 % of the weight.
+  EXPECT_NEAR(flat, 20.0, 1e-9);
+  EXPECT_GT(recent, 28.0);
+  EXPECT_LE(recent, 30.0);
+}
+
+TEST(EpisodePriors, TimeOfDayIsLocalTimeInTheZone) {
+  EpisodePriors utc;
+  EpisodePriors london;
+  london.options.zone = *TimeZone::named("Europe/London");
+  const Time summer_nine = *parse_time("2014-07-08T08:00:00Z");  // 09:00 British summer time
+  const Time winter_nine = *parse_time("2014-12-08T09:00:00Z");  // 09:00 GMT
+  EXPECT_EQ(london.day_slot(summer_nine), 36);
+  EXPECT_EQ(london.day_slot(winter_nine), 36);
+  EXPECT_EQ(utc.day_slot(summer_nine), 32);
+  EXPECT_EQ(utc.day_slot(winter_nine), 36);
+  EXPECT_EQ(london.duration_bin(summer_nine), london.duration_bin(winter_nine));
+}
+
+TEST(EpisodeModel, JsonKeepsTheTimeZone) {
+  std::vector<BinarySample> samples;
+  for (const auto& a : bursty_edge(10)) samples.push_back({a.start, a.success});
+  EpisodeOptions options;
+  options.zone = *TimeZone::named("Europe/London");
+  Json j = fit_episode_binary(samples, options)->to_json();
+  EXPECT_EQ(j["priors"]["time_zone"], "Europe/London");
+  auto back = EpisodePriors::from_json(j["priors"]);
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  EXPECT_EQ(back->options.zone.name(), "Europe/London");
+  j["priors"]["time_zone"] = "Mars/Olympus_Mons";
+  auto bad = binary_model_from_json(j);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("time_zone"), std::string::npos) << bad.error().message;
+  EXPECT_NE(bad.error().message.find("Mars/Olympus_Mons"), std::string::npos) << bad.error().message;
+}
+
 }  // namespace
 }  // namespace rondo::learn

@@ -2,7 +2,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 
+#include "rondo/learn/derived_series.h"
 #include "rondo/learn/evaluation.h"
 #include "series.h"
 #include "witham.h"
@@ -92,6 +94,59 @@ TEST(EvaluateEdges, WithamWharfDefaultSplit) {
   const Json j = evaluation_to_json(*result);
   EXPECT_EQ(j["edges"], 40);
   EXPECT_EQ(j["test_attempts"], 9009);
+}
+
+
+// A validation split inside the training period: nothing at or after `until` is read.
+TEST(EvaluateEdges, UntilKeepsTheEvaluationInsideAPeriod) {
+  auto log = read_witham_logs(testing::kWithamDir);
+  if (!log) GTEST_SKIP() << "no Witham Wharf data at " << testing::kWithamDir;
+  EdgeEvalOptions options;
+  options.split = *parse_time("2014-08-20T00:00:00Z");
+  options.until = *parse_time("2014-09-02T16:24:00Z");
+  auto result = evaluate_edges(*log, options);
+  ASSERT_TRUE(result.ok()) << result.error().message;
+  std::map<std::string, std::pair<int, int>> counts;  // train, test per edge
+  for (const auto& t : *log) {
+    if (t.start >= *options.until) continue;
+    auto& c = counts[t.edge_id];
+    (t.start < options.split ? c.first : c.second) += 1;
+  }
+  int edges = 0, test = 0;
+  for (const auto& [id, c] : counts) {
+    if (c.first >= 20 && c.second >= 5) {
+      ++edges;
+      test += c.second;
+    }
+  }
+  EXPECT_EQ(result->edges, edges);
+  EXPECT_EQ(result->test_attempts, test);
+  EXPECT_GT(test, 0);
+}
+
+
+// Derived series: the robot's position from a small hand-made log.
+TEST(DerivedSeries, PresenceAndArrivalsFollowTheLog) {
+  const Time t0 = testing::monday();
+  const std::vector<Traversal> log = {
+      {"A_K", "A", "K", t0 + minutes(5), seconds(60), true, ""},      // arrives at K in slot 0
+      {"K_A", "K", "A", t0 + minutes(70), seconds(60), false, ""},    // fails: still at K
+      {"K_A", "K", "A", t0 + minutes(130), seconds(60), true, ""},    // leaves K in slot 2
+      {"A_K", "A", "K", t0 + minutes(200), seconds(30), false, ""}};  // a failed try in slot 3
+  const auto arrivals = arrivals_in_slot(log, "K", t0, t0 + hours(4), hours(1));
+  ASSERT_EQ(arrivals.size(), 4u);
+  EXPECT_TRUE(arrivals[0].value);
+  EXPECT_FALSE(arrivals[1].value);
+  EXPECT_FALSE(arrivals[2].value);
+  EXPECT_FALSE(arrivals[3].value);
+  EXPECT_EQ(arrivals[2].time, t0 + hours(2));
+  const auto at_k = presence_at_node(log, "K", t0, t0 + hours(4), hours(1));
+  ASSERT_EQ(at_k.size(), 4u);
+  EXPECT_FALSE(at_k[0].value);  // 00:00: nothing has happened yet
+  EXPECT_TRUE(at_k[1].value);   // 01:00: arrived at 00:06
+  EXPECT_FALSE(at_k[2].value);  // 02:00: the latest traversal is the failed K_A, not an arrival at K
+  EXPECT_FALSE(at_k[3].value);  // 03:00: left at 02:10
+  EXPECT_TRUE(arrivals_in_slot(log, "K", t0, t0 + hours(1), seconds(0)).empty());
 }
 
 }  // namespace

@@ -86,5 +86,76 @@ TEST(LearnCommand, FitsWhatTheLogImported) {
   std::filesystem::remove_all(dir);
 }
 
+
+// Imports the Witham Wharf log into a fresh database in `dir`; the database path.
+std::string witham_db(const std::filesystem::path& dir) {
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto db = (dir / "rondo.db").string();
+  auto imported = run_cli({"log", "import", "--witham", testing::kWithamDir, "--db", db});
+  EXPECT_EQ(imported.exit_code, 0) << imported.err;
+  return db;
+}
+
+TEST(LearnCommand, WithAMapLearnsItsEdgesWithDistancePriors) {
+  if (!std::filesystem::is_directory(testing::kWithamDir)) GTEST_SKIP() << "no Witham Wharf data";
+  const auto dir = std::filesystem::temp_directory_path() / "rondo_cli_learn_map";
+  const auto db = witham_db(dir);
+  const auto models = (dir / "models.json").string();
+  auto learned = run_cli({"learn", "--db", db, "--map", RONDO_SOURCE_DIR "/examples/witham/map.yaml", "--zone",
+                          "Europe/London", "-o", models, "--json"});
+  ASSERT_EQ(learned.exit_code, 0) << learned.err;
+  const Json summary = Json::parse(learned.out);
+  EXPECT_EQ(summary["edges"], 62);
+  EXPECT_EQ(summary["traversals_of_unknown_edges"], 0);
+  auto loaded = EdgeModels::load(models);
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  ASSERT_EQ((*loaded)->size(), 62u);
+  for (std::size_t e = 0; e < (*loaded)->size(); ++e) {
+    EXPECT_GT((*loaded)->spec(e).prior_seconds, 0.0) << (*loaded)->spec(e).id;  // the map's distance prior
+  }
+  EXPECT_EQ((*loaded)->to_json()["priors"]["time_zone"], "Europe/London");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(LearnCommand, MapEdgesWithoutDataGetThePriorModel) {
+  if (!std::filesystem::is_directory(testing::kWithamDir)) GTEST_SKIP() << "no Witham Wharf data";
+  const auto dir = std::filesystem::temp_directory_path() / "rondo_cli_learn_other_map";
+  const auto db = witham_db(dir);
+  const auto models = (dir / "models.json").string();
+  // A map of another building: no edge id matches the log.
+  auto learned = run_cli(
+      {"learn", "--db", db, "--map", RONDO_SOURCE_DIR "/tests/data/maps/small.yaml", "-o", models, "--json"});
+  ASSERT_EQ(learned.exit_code, 0) << learned.err;
+  const Json summary = Json::parse(learned.out);
+  EXPECT_EQ(summary["edges_with_own_model"], 0);
+  EXPECT_EQ(summary["traversals_of_unknown_edges"], summary["traversals"]);
+  auto loaded = EdgeModels::load(models);
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  ASSERT_GT((*loaded)->size(), 0u);
+  const Time t = *parse_time("2014-09-03T10:00:00Z");
+  for (std::size_t e = 0; e < (*loaded)->size(); ++e) {
+    EXPECT_FALSE((*loaded)->has_own_model(e));
+    // No edge has both data and a prior, so the pooled actual/prior ratio is unknown: the
+    // distance-based prior itself.
+    EXPECT_GT((*loaded)->spec(e).prior_seconds, 0.0);
+    EXPECT_DOUBLE_EQ((*loaded)->expected_seconds(e, t), (*loaded)->spec(e).prior_seconds);
+    EXPECT_DOUBLE_EQ((*loaded)->quantile_seconds(e, t, 0.9), (*loaded)->spec(e).prior_seconds);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(LearnCommand, BadMapOrZoneIsBadInput) {
+  // Both are checked before the database is opened.
+  const auto models = (std::filesystem::temp_directory_path() / "rondo_cli_models.json").string();
+  auto no_map = run_cli({"learn", "--db", "/nonexistent/rondo.db", "--map", "/nonexistent/map.yaml", "-o", models});
+  auto no_zone = run_cli({"learn", "--db", "/nonexistent/rondo.db", "--zone", "Mars/Olympus_Mons", "-o", models});
+  EXPECT_EQ(no_map.exit_code, 2) << no_map.err;
+  EXPECT_NE(no_map.err.find("--map"), std::string::npos) << no_map.err;
+  EXPECT_NE(no_map.err.find("/nonexistent/map.yaml"), std::string::npos) << no_map.err;
+  EXPECT_EQ(no_zone.exit_code, 2) << no_zone.err;
+  EXPECT_NE(no_zone.err.find("--zone"), std::string::npos) << no_zone.err;
+}
+
 }  // namespace
 }  // namespace rondo::learn

@@ -131,5 +131,74 @@ RC_GTEST_PROP(LearnProperties, FittingIsDeterministic, ()) {
   RC_ASSERT((*EdgeModels::fit(edges, log))->to_json() == (*EdgeModels::fit(edges, log))->to_json());
 }
 
+
+// The slow obvious form of QuantileTable::from_weighted_samples: every sample's share centre, and
+// for each level a linear search for the centres around it.
+std::vector<double> reference_weighted_quantiles(std::vector<QuantileTable::WeightedValue> samples) {
+  std::erase_if(samples, [](const auto& s) { return !(s.weight > 0); });
+  std::vector<double> out;
+  if (samples.empty()) return std::vector<double>(QuantileTable::kKnots, 0.0);
+  std::stable_sort(samples.begin(), samples.end(), [](const auto& a, const auto& b) { return a.value < b.value; });
+  std::vector<QuantileTable::WeightedValue> merged;  // one point mass per distinct value
+  for (const auto& s : samples) {
+    if (!merged.empty() && merged.back().value == s.value) {
+      merged.back().weight += s.weight;
+    } else {
+      merged.push_back(s);
+    }
+  }
+  samples = merged;
+  double total = 0;
+  for (const auto& s : samples) total += s.weight;
+  std::vector<double> centre;
+  double before = 0;
+  for (const auto& s : samples) {
+    centre.push_back((before + s.weight / 2) / total);
+    before += s.weight;
+  }
+  for (int k = 0; k < QuantileTable::kKnots; ++k) {
+    const double p = QuantileTable::level(k);
+    double v = samples.back().value;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      if (centre[i] < p) continue;
+      if (i == 0 || centre[i] == centre[i - 1]) {
+        v = samples[i].value;
+      } else {
+        const double f = (p - centre[i - 1]) / (centre[i] - centre[i - 1]);
+        v = samples[i - 1].value + f * (samples[i].value - samples[i - 1].value);
+      }
+      break;
+    }
+    out.push_back(std::max(0.0, v));
+  }
+  return out;
+}
+
+RC_GTEST_PROP(LearnProperties, WeightedQuantilesMatchTheReference, ()) {
+  const auto raw = *rc::gen::container<std::vector<std::pair<int, int>>>(
+      rc::gen::pair(rc::gen::inRange(-50, 5000), rc::gen::inRange(0, 100)));
+  std::vector<QuantileTable::WeightedValue> samples;
+  for (auto [value, weight] : raw) samples.push_back({value / 10.0, weight / 7.0});
+  const auto fast = QuantileTable::from_weighted_samples(samples).values();
+  const auto slow = reference_weighted_quantiles(samples);
+  for (std::size_t k = 0; k < fast.size(); ++k) {
+    RC_ASSERT(std::abs(fast[k] - slow[k]) <= 1e-9 * (1 + std::abs(slow[k])));
+    if (k > 0) RC_ASSERT(fast[k] >= fast[k - 1]);
+  }
+  // Blends and averages of monotone tables stay monotone and between their inputs.
+  const auto a = QuantileTable::from_weighted_samples(samples);
+  const auto b = QuantileTable::from_samples({1.0, 2.0, 400.0});
+  const double w = *rc::gen::inRange(0, 100) / 100.0;
+  const auto mixed = QuantileTable::blend(a, b, w);
+  const std::vector<QuantileTable> both = {a, b};
+  const auto mean = QuantileTable::average(both);
+  for (std::size_t k = 0; k < fast.size(); ++k) {
+    const double lo = std::min(a.values()[k], b.values()[k]), hi = std::max(a.values()[k], b.values()[k]);
+    RC_ASSERT(mixed.values()[k] >= lo - 1e-9 && mixed.values()[k] <= hi + 1e-9);
+    RC_ASSERT(mean.values()[k] >= lo - 1e-9 && mean.values()[k] <= hi + 1e-9);
+    if (k > 0) RC_ASSERT(mixed.values()[k] >= mixed.values()[k - 1] && mean.values()[k] >= mean.values()[k - 1]);
+  }
+}
+
 }  // namespace
 }  // namespace rondo::learn

@@ -1,12 +1,15 @@
 // Random maps and edge models for the planner's tests and benchmarks.
 //
 //   map::TopoMap m = random_map({.nodes = 200, .seed = 7});        // random digraph, dead ends
-//   map::TopoMap b = building_map({.rows = 25, .columns = 40});     // corridors, rooms, doors
+//   map::TopoMap b = building_map({.rows = 25, .columns = 40});     // a floor of places, doors
+//   map::TopoMap c = corridor_building_map({});                     // floors, corridors, rooms
 //   std::vector<EdgeOutcome> o = random_outcomes(m, {.seed = 7});   // some p = 0 edges
 //   FunctionEdgeModels models = daily_models(b);                    // p, τ varying with the time of day
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <cstdint>
 #include <random>
 #include <set>
@@ -96,6 +99,97 @@ inline map::TopoMap building_map(const BuildingMapOptions& o) {
       if (r + 1 < o.rows) connect(index(r, c), index(r + 1, c));
     }
   return map::TopoMap::build("building", std::move(nodes), std::move(edges)).value();
+}
+
+struct CorridorBuildingOptions {
+  std::size_t floors = 4;
+  std::size_t corridor_nodes = 34;  // per floor, `spacing` apart
+  std::size_t rooms_per_side = 18;  // per floor and side of the corridor
+  std::size_t room_rows = 2;        // places per room: rows × columns, meshed with diagonals
+  std::size_t room_columns = 3;
+  double spacing = 2.5;             // metres
+  double floor_offset = 20.0;       // metres between floors in y: the lift edge's length
+};
+
+// A building as real topological maps of long-term deployments look (STRANDS' g4s, aaf and tsc
+// maps have a hop diameter of about a third of their node count): on every floor one long
+// corridor with rooms off both sides, each room a small mesh of places (with diagonals, as open
+// areas are mapped) behind a door; a lift joins the corridor's first places of consecutive
+// floors. Defaults: 4 floors × (34 + 36 rooms × 6) = 1,000 places and 3,726 directed edges, hop
+// diameter 73 (the lift is at one end of each corridor).
+inline map::TopoMap corridor_building_map(const CorridorBuildingOptions& o) {
+  std::vector<map::Node> nodes;
+  std::vector<map::Edge> edges;
+  auto add_node = [&](double x, double y) {
+    nodes.push_back({.name = node_name(nodes.size()), .pose = {x, y, 0}});
+    return nodes.size() - 1;
+  };
+  auto connect = [&](std::size_t a, std::size_t b, const std::string& action, bool door) {
+    std::optional<std::string> door_id;
+    if (door) door_id = "d" + std::to_string(a) + "_" + std::to_string(b);
+    for (auto [u, v] : {std::pair{a, b}, std::pair{b, a}})
+      edges.push_back({.id = node_name(u) + "_" + node_name(v), .from = node_name(u), .to = node_name(v),
+                       .action = action, .door = door_id});
+  };
+  std::vector<std::size_t> lift_stops;
+  for (std::size_t f = 0; f < o.floors; ++f) {
+    const double y0 = static_cast<double>(f) * o.floor_offset;
+    std::vector<std::size_t> corridor;
+    for (std::size_t c = 0; c < o.corridor_nodes; ++c) {
+      corridor.push_back(add_node(static_cast<double>(c) * o.spacing, y0));
+      if (c > 0) connect(corridor[c - 1], corridor[c], "move_base", false);
+    }
+    lift_stops.push_back(corridor.front());
+    for (int side : {-1, 1}) {
+      for (std::size_t k = 0; k < o.rooms_per_side; ++k) {
+        const std::size_t anchor = corridor[k * o.corridor_nodes / o.rooms_per_side];
+        const double x0 = nodes[anchor].pose.x;
+        std::vector<std::size_t> room;
+        for (std::size_t r = 0; r < o.room_rows; ++r)
+          for (std::size_t c = 0; c < o.room_columns; ++c)
+            room.push_back(add_node(x0 + static_cast<double>(c) * 0.8,
+                                    y0 + side * (2.0 + static_cast<double>(r) * 0.8 + 0.1 * static_cast<double>(c))));
+        auto at = [&](std::size_t r, std::size_t c) { return room[r * o.room_columns + c]; };
+        for (std::size_t r = 0; r < o.room_rows; ++r)
+          for (std::size_t c = 0; c < o.room_columns; ++c) {
+            if (c + 1 < o.room_columns) connect(at(r, c), at(r, c + 1), "move_base", false);
+            if (r + 1 < o.room_rows) connect(at(r, c), at(r + 1, c), "move_base", false);
+            if (r + 1 < o.room_rows && c + 1 < o.room_columns) {
+              connect(at(r, c), at(r + 1, c + 1), "move_base", false);
+              connect(at(r, c + 1), at(r + 1, c), "move_base", false);
+            }
+          }
+        connect(anchor, at(0, 0), "doorPassing", true);
+      }
+    }
+  }
+  for (std::size_t f = 1; f < lift_stops.size(); ++f) connect(lift_stops[f - 1], lift_stops[f], "lift", false);
+  return map::TopoMap::build("corridor_building", std::move(nodes), std::move(edges)).value();
+}
+
+// The largest number of edges on a fewest-edges path between two nodes (breadth-first search
+// from every node): what bounds value iteration's sweeps from below.
+inline std::size_t hop_diameter(const map::TopoMap& m) {
+  std::size_t best = 0;
+  std::vector<std::size_t> depth(m.node_count());
+  std::vector<map::NodeIndex> queue;
+  for (map::NodeIndex s = 0; s < m.node_count(); ++s) {
+    std::fill(depth.begin(), depth.end(), static_cast<std::size_t>(-1));
+    queue.assign(1, s);
+    depth[s] = 0;
+    for (std::size_t k = 0; k < queue.size(); ++k) {
+      const map::NodeIndex v = queue[k];
+      best = std::max(best, depth[v]);
+      for (map::EdgeIndex e : m.out_edges(v)) {
+        const map::NodeIndex w = m.to_index(e);
+        if (depth[w] == static_cast<std::size_t>(-1)) {
+          depth[w] = depth[v] + 1;
+          queue.push_back(w);
+        }
+      }
+    }
+  }
+  return best;
 }
 
 struct RandomOutcomeOptions {

@@ -12,7 +12,8 @@
 // It knows edges only as ids with a prior travel time (from the map's geometry, or 0 when unknown),
 // so it does not depend on rondo::map. An edge with fewer than `min_attempts` attempts gets the
 // prior model: the pooled success rate, and durations = its prior time × the pooled distribution of
-// (actual / prior) time over the edges that have data (or the pooled durations without priors).
+// (actual / prior) time over the edges that have data (the prior time itself when no edge has both
+// data and a prior; the pooled durations for an edge without a prior).
 #pragma once
 
 #include <filesystem>

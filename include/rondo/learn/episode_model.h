@@ -12,9 +12,13 @@
 //     episode produces); online, the probability is conditioned on the edge's state: the outcome of
 //     its last attempt and the time since it ended (a table per state, shrunk towards the pooled
 //     table, which is itself shrunk towards q(t));
-//   - durations: per time-of-day quantile tables of successful and of failed attempts, mixed with
-//     the model's own success probability; during a retry burst, the last duration times the
-//     pooled distribution of retry-to-retry ratios.
+//   - durations, offline: per local time of day, quantiles of attempt durations in which a failed
+//     episode's retries share the weight of a typical episode's and older attempts weigh less
+//     (offline_durations.h); online: quantile tables of successful and of failed attempts mixed
+//     with the state-conditioned success probability, and during a retry burst the last duration
+//     times the pooled distribution of retry-to-retry ratios.
+//
+// Time of day is local time in `EpisodeOptions::zone` (IANA, daylight saving included).
 //
 //   std::vector<std::vector<Attempt>> per_edge = ...;    // training attempts, each in start order
 //   auto fitted = fit_episode_models(per_edge, {});
@@ -33,6 +37,7 @@
 
 #include "rondo/core/document.h"
 #include "rondo/core/result.h"
+#include "rondo/core/timezone.h"
 #include "rondo/learn/edge_predictor.h"
 #include "rondo/learn/quantile_table.h"
 #include "rondo/learn/temporal_model.h"
@@ -47,8 +52,11 @@ struct EpisodeOptions {
   std::vector<int> day_resolutions = {1, 2, 3, 4, 6, 8, 12};
   // Time-of-day bins of the duration tables (clamped to 1..1440).
   int duration_bins = 6;
-  // Where the day starts, as an offset added to UTC (the deployment's UTC offset).
-  Duration day_offset = seconds(0);
+  // The deployment's time zone: time-of-day bins are local time, so they follow daylight saving.
+  TimeZone zone = TimeZone::utc();
+  // Offline duration quantiles: an attempt's weight halves every this long before the newest
+  // attempt of the fit; zero or less: no decay.
+  Duration duration_half_life = std::chrono::days(7);
   // Prior strengths, in pseudo-observations.
   double bin_prior = 10;          // a time-of-day bin towards the edge's first-attempt rate
   double edge_prior = 2;          // an edge's first-attempt rate towards the pooled rate
@@ -79,8 +87,8 @@ struct EpisodePriors {
   // Least-squares line of a retry's duration on the previous attempt's: the expected value.
   double retry_intercept = 0, retry_slope = 1;
 
-  int day_slot(Time t) const;      // 0..kDaySlots-1
-  int duration_bin(Time t) const;  // 0..options.duration_bins-1
+  int day_slot(Time t) const;      // 0..kDaySlots-1, local time in options.zone
+  int duration_bin(Time t) const;  // 0..options.duration_bins-1, local time in options.zone
   Json to_json() const;
   static Result<EpisodePriors> from_json(const Json& j);
 };
@@ -115,6 +123,8 @@ class EpisodeEdgeModel {
     // Per time-of-day bin, durations of successful and of failed attempts.
     std::vector<QuantileTable> success, failure;
     std::vector<double> success_mean, failure_mean;
+    // Offline: per 15-minute slot of the local day, all attempts (offline_durations.h).
+    std::vector<QuantileTable> offline;
   };
   EpisodeEdgeModel(std::shared_ptr<const EpisodePriors> priors, EpisodeStats stats, DurationTables durations)
       : priors_(std::move(priors)), stats_(std::move(stats)), durations_(std::move(durations)) {}

@@ -21,15 +21,21 @@
 #include "rondo/core/result.h"
 #include "rondo/core/time.h"
 #include "rondo/core/traversal.h"
+#include "rondo/learn/episode_model.h"
 #include "rondo/learn/temporal_model.h"
 
 namespace rondo::learn {
 
 struct EdgeEvalOptions {
   Time split;
+  // Attempts that start at or after this are ignored (training and test): evaluates a validation
+  // split inside a training period without looking past it.
+  std::optional<Time> until = std::nullopt;
   int min_train_attempts = 20;  // an edge is scored only with this many attempts before the split
-  int min_test_attempts = 5;    // ... and this many at or after it
+  int min_test_attempts = 5;    // ... and this many at or after it (and before `until`)
   Duration start_resolution = seconds(1);
+  // Our models' options; among them the deployment's time zone (Witham Wharf: Europe/London).
+  EpisodeOptions episode{};
 };
 
 struct ModelScoreRow {
@@ -64,6 +70,9 @@ struct BinaryEvaluation {
 // online protocol reveals each test sample right after it has been predicted.
 Result<BinaryEvaluation> evaluate_binary_series(const std::vector<BinarySample>& train,
                                                 const std::vector<BinarySample>& test);
+// The same with our models fitted with `episode` (e.g. the series' time zone).
+Result<BinaryEvaluation> evaluate_binary_series(const std::vector<BinarySample>& train,
+                                                const std::vector<BinarySample>& test, const EpisodeOptions& episode);
 
 Json evaluation_to_json(const EdgeEvaluation& e);
 Json evaluation_to_json(const BinaryEvaluation& e);

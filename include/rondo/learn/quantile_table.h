@@ -3,6 +3,8 @@
 //
 //   QuantileTable q = QuantileTable::from_samples({12.0, 9.5, 30.1, 11.0});
 //   double p90 = q.at(0.9);          // non-decreasing in the level, >= 0
+//   auto w = QuantileTable::from_weighted_samples({{12.0, 1.0}, {0.7, 0.25}});  // (value, weight)
+//   auto shrunk = QuantileTable::blend(w, q, 0.8);       // 0.8 of w's quantile function, 0.2 of q's
 #pragma once
 
 #include <span>
@@ -23,6 +25,31 @@ class QuantileTable {
   // Empirical quantiles (linear interpolation between order statistics) of `values`; all zero
   // when `values` is empty. Negative values are clamped to 0 unless `allow_negative` (residuals).
   static QuantileTable from_samples(std::vector<double> values, bool allow_negative = false);
+
+  struct WeightedValue {
+    double value = 0;
+    double weight = 0;  // >= 0; non-positive and non-finite weights are dropped
+  };
+  // Quantiles of a weighted sample: each distinct value holds its share of the total weight (equal
+  // values pool their weights), centred on
+  // the middle of its share (Hazen's plotting positions), interpolated linearly between those
+  // centres and constant beyond the first and last. Negative values are clamped to 0; all zero
+  // when no weight is positive.
+  static QuantileTable from_weighted_samples(std::vector<WeightedValue> samples);
+  // The effective number of observations of a weighted sample, (sum w)^2 / sum w^2 (Kish).
+  static double effective_count(const std::vector<WeightedValue>& samples);
+
+  // Quantile averaging (Vincentisation): `weight` of a's quantile function plus the rest of b's,
+  // weight clamped to [0, 1]. Non-decreasing because both inputs are.
+  static QuantileTable blend(const QuantileTable& a, const QuantileTable& b, double weight);
+  // A table from its kKnots knot values (made non-decreasing and >= 0); empty or wrong-sized
+  // input gives all zeros.
+  static QuantileTable from_knots(const std::vector<double>& knots);
+  // The knot-wise mean of `tables` (all zero for none): the quantile average with equal weights.
+  static QuantileTable average(std::span<const QuantileTable> tables);
+  // The same table with every value rounded to `decimals` (0..9) decimal places, still
+  // non-decreasing: short JSON numbers.
+  QuantileTable rounded(int decimals) const;
 
   // The q-quantile, q clamped to [0.02, 0.98] (the table does not extrapolate the tails).
   // Non-decreasing in q.

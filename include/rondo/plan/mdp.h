@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "rondo/core/result.h"
@@ -49,13 +50,38 @@ class Mdp {
   double expected_crossing_seconds(EdgeIndex edge) const { return crossing_[edge]; }
   bool usable(EdgeIndex edge) const { return crossing_[edge] < kInfinity; }
 
+  // The usable edges in compressed rows (CSR), for the solvers' inner loops: contiguous arrays,
+  // no unusable edge, no lookups. Rows keep the map's in_edges / out_edges order.
+  struct InArc {
+    NodeIndex from;
+    EdgeIndex edge;
+    double crossing_seconds;  // τ/p
+  };
+  struct OutArc {
+    NodeIndex to;
+    EdgeIndex edge;
+    double success_probability;
+    double attempt_seconds;
+  };
+  // Preconditions: node < node_count().
+  std::span<const InArc> usable_in(NodeIndex node) const {
+    return {in_arcs_.data() + in_start_[node], in_arcs_.data() + in_start_[node + 1]};
+  }
+  std::span<const OutArc> usable_out(NodeIndex node) const {
+    return {out_arcs_.data() + out_start_[node], out_arcs_.data() + out_start_[node + 1]};
+  }
+
  private:
   Mdp(const map::TopoMap& map, std::vector<EdgeOutcome> outcomes, Time at);
+  void build_rows();
 
   const map::TopoMap* map_;
   Time at_;
   std::vector<EdgeOutcome> outcomes_;
   std::vector<double> crossing_;
+  std::vector<std::size_t> in_start_, out_start_;  // node_count() + 1 each
+  std::vector<InArc> in_arcs_;
+  std::vector<OutArc> out_arcs_;
 };
 
 // The sanitising rule of Mdp, exposed for tests and for callers that build costs themselves.

@@ -26,6 +26,7 @@
 #include "rondo/core/time.h"
 #include "rondo/map/topo_map.h"
 #include "rondo/plan/edge_model_view.h"
+#include "rondo/plan/exact_solver.h"
 #include "rondo/plan/mdp.h"
 #include "rondo/plan/policy.h"
 
@@ -95,6 +96,7 @@ class TravelOracle {
   std::uint64_t version_ = 0;
   std::map<std::int64_t, std::shared_ptr<const Mdp>> slots_;
   std::map<std::pair<std::int64_t, NodeIndex>, Policy> policies_;
+  ExactSolver solver_;  // its scratch space is reused by every solve
 };
 
 }  // namespace rondo::plan

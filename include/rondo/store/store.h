@@ -31,6 +31,10 @@ struct StoreOptions {
   OpenMode mode = OpenMode::kCreateIfMissing;
   // How long a statement waits for another connection's lock before failing with kStorage.
   Duration busy_timeout = seconds(5);
+  // True: every commit is synced to disk before it returns (synchronous=FULL), so an accepted task
+  // survives a power cut. False (simulated runs, which a seed reproduces): synchronous=OFF, commits
+  // still atomic against a crash of the process but not of the machine.
+  bool sync_commits = true;
 };
 
 // One connection to one database file. Movable, not copyable; closing is the destructor.

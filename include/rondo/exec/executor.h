@@ -1,0 +1,215 @@
+// The executor (MISSION.md §3): keeps the tasks, schedules them, runs them through the robot,
+// watches them and reacts. Event-driven on an injected Clock: it never sleeps and never reads the
+// wall clock, so the same code runs a simulated robot for weeks in seconds and a real one in real
+// time.
+//
+//   Executor ex(clock, robot, map, store, models, zone, {.dock = *map.find_node("ChargingPoint")});
+//   ex.add_routines(routines);                 // tasks for every day, created ahead of their windows
+//   ex.start();                                // posts the day's first events
+//   ex.add_task(task, "api");                  // standard: trySchedule; on-demand: runs at once
+//   clock.run_until(end);
+//
+// What it does (every task transition goes to the store's event log with a reason; every edge
+// attempt to the traversal log):
+// - standard tasks: trySchedule old + new; when they do not all fit, drop the lowest-priority new
+//   ones (schedule::try_schedule), or preempt an interruptible running task that the dropped ones
+//   outrank: it ends "preempted" and comes back as a new task "<id>~N".
+// - on-demand tasks: preempt the running task if it is interruptible now (else run right after it),
+//   run at once, and reschedule the rest around it.
+// - before leaving for a task: too early -> wait (at the dock when the wait is long); too late to
+//   finish by the deadline -> the task fails and the rest is rescheduled.
+// - navigation follows the MDP policy edge by edge, re-planning after every edge (so after a failed
+//   one); the navigation monitor preempts past `navigation_overrun` x the expected travel time, the
+//   action monitor past `action_overrun` x the processing time; a task that is not interruptible
+//   (its flag, or the robot saying so at run time) is never preempted: the monitor waits.
+// - idle: back to the dock. Nightly (at `refit_at`, local time) the edge models are refitted
+//   from the whole traversal log, so travel estimates and schedules adapt.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <optional>
+#include <random>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rondo/core/result.h"
+#include "rondo/core/routine.h"
+#include "rondo/core/task.h"
+#include "rondo/core/timezone.h"
+#include "rondo/exec/clock.h"
+#include "rondo/exec/map_travel.h"
+#include "rondo/exec/robot.h"
+#include "rondo/learn/edge_models.h"
+#include "rondo/map/topo_map.h"
+#include "rondo/plan/learned_edge_models.h"
+#include "rondo/plan/travel_oracle.h"
+#include "rondo/schedule/default_scheduler.h"
+#include "rondo/store/store.h"
+
+namespace rondo::exec {
+
+struct ExecutorOptions {
+  map::NodeIndex dock = 0;
+  double navigation_overrun = 2.0;       // preempt navigation past this x expected travel + slack
+  Duration navigation_slack = seconds(60);
+  double action_overrun = 1.5;           // preempt actions past this x processing time + slack
+  Duration action_slack = seconds(30);
+  Duration dock_when_waiting_over = minutes(15);  // longer waits are spent on the charger
+  int max_failed_edges = 25;             // a navigation gives up after this many failed attempts
+  std::optional<Duration> refit_at = hours(2);    // local time of day; nothing = never refit
+  int duration_bins = 24;                // time-of-day bins of the refitted travel-time models
+  Duration slot_width = minutes(15);     // travel-time slots of the planner
+  std::int64_t scheduler_polls = 200'000;  // deterministic budget of each scheduler call
+  std::uint64_t seed = 1;                // ties in dropping
+};
+
+// Figures of the run so far, for the report.
+struct ExecutorStats {
+  int navigation_attempts = 0;
+  int navigation_successes = 0;
+  Duration travelling{0};  // edge attempts
+  Duration acting{0};      // actions
+  Duration waiting{0};     // waiting for a window to open
+  Duration busy{0};        // a task in progress: its travel, waiting and actions
+  int refits = 0;
+  int schedules = 0;       // scheduler calls
+};
+
+// One navigation of a task to its start: what the executor expected when it left, and what
+// happened. The travel-estimate error of a run is read from these.
+struct NavigationRecord {
+  TaskId task;
+  Time start{};
+  Duration expected{0};
+  Duration actual{0};
+  bool arrived = false;
+};
+
+// What the executor knows of one task.
+struct TaskRecord {
+  Task task;
+  TaskState state = TaskState::kQueued;
+  std::string reason;    // of the last transition
+  std::string source;    // who added it: "routine", "request", "api", "preempted <id>"
+  Time added{};
+  std::optional<Time> planned_start{}, planned_end{};  // from the latest schedule
+  std::optional<Time> started{}, ended{};              // left for it .. final state
+};
+
+class Executor final : public RobotListener {
+ public:
+  // Precondition: `dock` is a node of `map`; clock, robot, map and store outlive the executor.
+  Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::Store& store, const TimeZone& zone,
+           ExecutorOptions options);
+  ~Executor() override;
+  Executor(const Executor&) = delete;
+  Executor& operator=(const Executor&) = delete;
+
+  // Accepts tasks (committed to the store before this returns), then schedules them together.
+  // kInvalidInput for a task that cannot be run here (unknown node, no window, duplicate id);
+  // then nothing is added.
+  Status add_tasks(std::vector<Task> tasks, std::string_view source);
+  Status add_task(Task task, std::string_view source) { return add_tasks({std::move(task)}, source); }
+  // Routines become tasks every day at local midnight (and at start() for the current day).
+  void add_routines(std::vector<Routine> routines);
+  // Posts the first events: today's routine tasks, the nightly refit, and the first dispatch.
+  void start();
+
+  const std::map<TaskId, TaskRecord>& tasks() const { return tasks_; }
+  const std::vector<TaskId>& task_order() const { return order_; }  // in the order added
+  const ExecutorStats& stats() const { return stats_; }
+  const std::vector<NavigationRecord>& navigations() const { return navigations_; }
+  // Store writes that failed (the run goes on; the caller reports them).
+  const std::vector<std::string>& write_errors() const { return write_errors_; }
+  const plan::LearnedEdgeModels& models() const { return *models_; }
+
+  // RobotListener
+  void on_edge_finished(const EdgeAttempt& attempt) override;
+  void on_action_finished(const ActionResult& result) override;
+  void on_interruptible_changed(bool interruptible) override;
+
+ private:
+  enum class Phase { kIdle, kWaiting, kNavigating, kActing, kDocking };
+  enum class CancelIntent { kNone, kNavigationOverrun, kActionOverrun, kPreempt, kLeaveDockTrip };
+
+  // bookkeeping (executor.cpp)
+  Status accept(const Task& task);
+  // Validates, stores and records tasks; returns the standard ones (on-demand ones are queued).
+  Result<std::vector<TaskId>> insert_tasks(std::vector<Task> tasks, std::string_view source);
+  void transition(const TaskId& id, TaskState state, const std::string& reason);
+  void note(const TaskId& id, const std::string& event, const std::string& reason);
+  bool interruptible_now() const;
+  std::string fmt_time(Time t) const;
+
+  // scheduling (executor_scheduling.cpp)
+  void reschedule(std::vector<TaskId> new_ids, const std::string& why);
+  void apply_schedule(const std::vector<TaskId>& ids, const schedule::Schedule& s, const std::string& why);
+  std::pair<map::NodeIndex, Time> free_at() const;  // where and when the robot is next free
+
+  // running (executor_running.cpp)
+  void kick();  // reconsider what to do now
+  void next();
+  void start_task(const TaskId& id);
+  void begin_navigation(map::NodeIndex target, Duration expected);
+  void step_navigation();
+  void arrived();
+  void start_actions();
+  void run_next_action();
+  void finish_task(TaskState state, const std::string& reason);
+  void monitor_fired(CancelIntent why, const std::string& reason);
+  void handle_cancelled();
+  void go_to_dock();
+  void clear_timers();
+  void preempt_for(const std::string& reason, std::vector<TaskId> then_schedule);
+
+  // daily (executor_daily.cpp)
+  void create_routine_tasks(std::chrono::year_month_day day);
+  void schedule_midnight();
+  void schedule_refit();
+  void refit();
+
+  Clock& clock_;
+  Robot& robot_;
+  const map::TopoMap& map_;
+  store::Store& store_;
+  TimeZone zone_;
+  ExecutorOptions options_;
+  std::shared_ptr<plan::LearnedEdgeModels> models_;
+  std::unique_ptr<plan::TravelOracle> planner_;
+  std::unique_ptr<TravelCache> travel_;
+  schedule::DefaultScheduler solver_;
+  std::mt19937_64 rng_;
+
+  std::map<TaskId, TaskRecord> tasks_;
+  std::vector<TaskId> order_;
+  std::vector<Routine> routines_;
+  std::vector<TaskId> schedule_;        // standard tasks to run, in planned order
+  std::deque<TaskId> on_demand_;        // on-demand tasks waiting for the running one to end
+  std::map<TaskId, int> requeues_;      // how often a task came back after preemption
+
+  Phase phase_ = Phase::kIdle;
+  std::optional<TaskId> current_;       // the task being waited for, navigated to or acted on
+  map::NodeIndex nav_target_ = 0;
+  Time nav_start_{};
+  Duration nav_expected_{0};
+  int failed_edges_ = 0;
+  std::size_t action_index_ = 0;
+  Time acting_start_{};
+  Time wait_start_{};
+  bool robot_interruptible_ = true;
+  CancelIntent cancel_intent_ = CancelIntent::kNone;
+  std::string cancel_reason_;
+  std::optional<std::pair<CancelIntent, std::string>> overrun_pending_;  // monitor fired while not interruptible
+  std::vector<TaskId> after_cancel_schedule_;  // new tasks to schedule once the preempted task is out
+  TimerId wait_timer_ = 0, nav_monitor_ = 0, action_monitor_ = 0;
+  ExecutorStats stats_;
+  std::vector<NavigationRecord> navigations_;
+  std::vector<std::string> write_errors_;
+  bool started_ = false;
+};
+
+}  // namespace rondo::exec

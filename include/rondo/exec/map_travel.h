@@ -1,0 +1,77 @@
+// The scheduler's travel oracle over the planner: expected travel time between map nodes at a
+// departure time, as the policy of the time-indexed MDP gives it (plan::TravelOracle), read at the
+// start of each time slot and interpolated linearly in between.
+//
+//   TravelCache cache(planner);                 // one per executor: survives many problems
+//   auto travel = std::make_shared<MapTravel>(cache, std::vector<map::NodeIndex>{here, a, b});
+//   problem.travel = travel;                    // location i of the problem is node nodes[i]
+//
+// Interpolating between slot starts makes travel a continuous function of the departure time.
+// FIFO (leaving later never arrives earlier) needs every slope >= -1: the value at the next slot
+// start is raised to at least (value now - slot width) when needed, so FIFO always holds. An
+// unreachable node gives kUnreachable, which no time window admits.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <tuple>
+#include <vector>
+
+#include "rondo/core/time.h"
+#include "rondo/map/topo_map.h"
+#include "rondo/plan/travel_oracle.h"
+#include "rondo/schedule/travel_oracle.h"
+
+namespace rondo::exec {
+
+inline constexpr Duration kUnreachable = hours(24 * 365);
+
+// Expected node-to-node seconds per slot start, shared by every problem of one executor. Emptied
+// when the planner's models change (compare version()).
+class TravelCache {
+ public:
+  // `planner` must read `models`; the map and the planner must outlive the cache.
+  TravelCache(const map::TopoMap& map, std::shared_ptr<const plan::EdgeModelView> models, plan::TravelOracle& planner,
+              Duration slot_width);
+  // E(from, to) at the start of the slot that contains `depart`, as a Duration (kUnreachable).
+  Duration at_slot(map::NodeIndex from, map::NodeIndex to, Time slot_start) const;
+  // E(from, to, depart) interpolated between slot starts, FIFO-repaired (see above).
+  Duration travel(map::NodeIndex from, map::NodeIndex to, Time depart) const;
+  // A lower bound of travel(from, to, t) over every t: the shortest path over per-edge minima of
+  // the expected crossing time τ/p read at every slot start of one week. Exact for models that
+  // repeat weekly (ours do: time-of-day and day-of-week bins); otherwise a schedule stays feasible
+  // (travel() decides feasibility) but a solver may prune too eagerly.
+  Duration lower_bound(map::NodeIndex from, map::NodeIndex to) const;
+  Time slot_start(Time t) const { return planner_->slot_start(t); }
+  plan::TravelOracle& planner() const { return *planner_; }
+
+ private:
+  void check_version() const;
+
+  const map::TopoMap* map_;
+  std::shared_ptr<const plan::EdgeModelView> models_;
+  plan::TravelOracle* planner_;
+  Duration slot_width_;
+  mutable std::uint64_t version_ = 0;
+  mutable std::map<std::tuple<Time, map::NodeIndex, map::NodeIndex>, Duration> values_;
+  mutable std::vector<double> edge_min_seconds_;                       // empty until first needed
+  mutable std::map<map::NodeIndex, std::vector<double>> lower_from_;  // per source: seconds to all
+};
+
+class MapTravel final : public schedule::TravelOracle {
+ public:
+  MapTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes);
+  std::size_t location_count() const override { return nodes_.size(); }
+  Duration travel(schedule::LocationIndex from, schedule::LocationIndex to, Time depart) const override;
+  Duration lower_bound(schedule::LocationIndex from, schedule::LocationIndex to) const override;
+  bool time_dependent() const override { return true; }
+  map::NodeIndex node(schedule::LocationIndex i) const { return nodes_[i]; }
+
+ private:
+  const TravelCache* cache_;
+  std::vector<map::NodeIndex> nodes_;
+};
+
+}  // namespace rondo::exec

@@ -1,0 +1,30 @@
+// The simulated robot's battery: a state of charge in [0, 1] that drains at a constant rate
+// while moving and while acting (and optionally while idle), and charges at a constant rate while
+// the robot stands idle at its dock. Rates are fractions of a full battery per hour.
+//
+//   BatteryModel b{.moving_per_hour = 0.25, .charging_per_hour = 0.5};
+//   double soc = b.after(0.8, BatteryModel::Mode::kMoving, minutes(30));   // 0.675
+//
+// Contract: after() is clamped to [0, 1]. An empty battery stops the robot: SimRobot fails every
+// traverse() and run_action() at once until it has charged (docs/simulation.md).
+#pragma once
+
+#include "rondo/core/time.h"
+
+namespace rondo::sim {
+
+struct BatteryModel {
+  enum class Mode { kIdle, kMoving, kActing, kCharging };
+
+  double initial = 1.0;
+  double moving_per_hour = 0.20;
+  double acting_per_hour = 0.10;
+  double idle_per_hour = 0.0;
+  double charging_per_hour = 0.50;
+
+  // The state of charge after `elapsed` in `mode`, starting from `level`.
+  double after(double level, Mode mode, Duration elapsed) const;
+  bool operator==(const BatteryModel&) const = default;
+};
+
+}  // namespace rondo::sim

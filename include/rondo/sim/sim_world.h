@@ -1,0 +1,38 @@
+// A simulated world as a deployment describes it in one YAML file: the building's edges (a
+// parametric or a replay EdgeWorld), the robot's actions and its battery.
+//
+//   auto zone = TimeZone::named("Europe/London");
+//   Result<SimWorld> world = load_world("examples/g4s/world.yaml", map, *zone);
+//   if (!world) return world.error();   // "examples/g4s/world.yaml:14: effects[0].nodes[1]: ..."
+//   SimRobot robot(clock, map, *world, {.start = dock, .dock = dock});
+//
+// The format is docs/simulation.md: `kind: parametric` (rhythms on the given map) or
+// `kind: replay` (with `logs:`, the Witham Wharf log folder, relative to the world file). Every
+// error names the file, the line and the field.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+
+#include "rondo/core/document.h"
+#include "rondo/core/result.h"
+#include "rondo/core/timezone.h"
+#include "rondo/map/topo_map.h"
+#include "rondo/sim/action_model.h"
+#include "rondo/sim/battery_model.h"
+#include "rondo/sim/edge_world.h"
+
+namespace rondo::sim {
+
+struct SimWorld {
+  std::unique_ptr<EdgeWorld> edges;
+  ActionModel actions;
+  BatteryModel battery;
+};
+
+Result<SimWorld> load_world(const std::filesystem::path& file, const map::TopoMap& map, const TimeZone& zone);
+// The same from a parsed document; `base` is the folder relative paths (replay logs) start from.
+Result<SimWorld> decode_world(const Document& doc, const std::filesystem::path& base, const map::TopoMap& map,
+                              const TimeZone& zone);
+
+}  // namespace rondo::sim

@@ -1,0 +1,95 @@
+// `rondo run`: the main job. Lives a deployment's days on the simulated robot and writes a run
+// folder (run_session.h); with no file, the bundled G4S example for 21 days.
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <iostream>
+#include <memory>
+
+#include "commands.h"
+#include "deployment.h"
+#include "run_session.h"
+
+namespace rondo::app {
+namespace {
+
+struct RunArgs {
+  std::string deployment;
+  std::optional<int> days;
+  std::optional<std::int64_t> seed;
+  std::string out;
+  bool realtime = false;
+  bool json = false;
+};
+
+std::string fresh_run_folder() {
+  const auto now = std::chrono::floor<std::chrono::seconds>(std::chrono::system_clock::now());
+  std::string stamp = format_time(now);  // 2026-11-22T21:05:03Z
+  std::erase(stamp, ':');
+  return "runs/" + stamp;
+}
+
+void run_run(const RunArgs& args, CommandContext& ctx) {
+  const std::filesystem::path file =
+      args.deployment.empty() ? default_deployment() : std::filesystem::path(args.deployment);
+  auto deployment = load_deployment(file);
+  if (!deployment) return (void)fail(ctx, deployment.error());
+  if (args.days) {
+    if (*args.days < 1 || *args.days > 3660)
+      return (void)fail(ctx, Error::invalid(fmt::format("--days: {} is not between 1 and 3660", *args.days)));
+    deployment->days = *args.days;
+  }
+  if (args.seed) {
+    if (*args.seed < 0) return (void)fail(ctx, Error::invalid("--seed: must not be negative"));
+    deployment->seed = static_cast<std::uint64_t>(*args.seed);
+  }
+  RunRequest request{.deployment = std::move(*deployment),
+                     .out = std::filesystem::path(args.out.empty() ? fresh_run_folder() : args.out),
+                     .realtime = args.realtime,
+                     .progress = ::isatty(STDERR_FILENO) == 1 && &ctx.err == &std::cerr};
+  if (!args.json)
+    ctx.err << fmt::format("rondo run: {} for {} days, seed {}, into {}\n", file.string(), request.deployment.days,
+                           request.deployment.seed, request.out.string());
+  auto result = run_deployment(request, ctx.err);
+  if (!result) return (void)fail(ctx, result.error());
+  const Json& r = result->report;
+  if (args.json) {
+    ctx.out << r.dump(2) << '\n';
+    return;
+  }
+  const Json& t = r["tasks"];
+  const auto count = [](const Json& by_reason) {
+    int n = 0;
+    for (const auto& [reason, k] : by_reason.items()) n += k.get<int>();
+    return n;
+  };
+  ctx.out << fmt::format("tasks      {} added, {} completed, {} failed, {} dropped, {} preempted, {} pending\n",
+                         t["added"].get<int>(), t["completed"].get<int>(), count(t["failed"]), count(t["dropped"]),
+                         count(t["preempted"]), t["pending"].get<int>());
+  const Json& n = r["navigation"];
+  ctx.out << fmt::format("navigation {} of {} edge attempts succeeded, {:.0f} m driven\n",
+                         n["successes"].get<int>(), n["attempts"].get<int>(), n["distance_m"].get<double>());
+  ctx.out << fmt::format("wall time  {:.1f} s; report: {}\n", result->wall_seconds,
+                         (request.out / "report.json").string());
+  if (result->write_errors > 0) {
+    ctx.err << fmt::format("rondo: {} store writes failed; see run.json\n", result->write_errors);
+    ctx.exit_code = 1;
+  }
+}
+
+}  // namespace
+
+void add_run_commands(CLI::App& root, CommandContext& ctx) {
+  auto args = std::make_shared<RunArgs>();
+  auto* run = root.add_subcommand("run", "Run the executive on a deployment (default: the bundled G4S example)");
+  run->add_option("deployment", args->deployment, "The deployment file (examples/g4s/deployment.yaml)");
+  run->add_option("--days", args->days, "Days to run (default: the deployment's)");
+  run->add_option("--seed", args->seed, "Random seed of the simulated world (default: the deployment's)");
+  run->add_option("--out", args->out, "The run folder (default: a fresh runs/<time> folder)");
+  run->add_flag("--realtime", args->realtime, "Run on the system clock instead of simulated time");
+  run->add_flag("--json", args->json, "Print report.json instead of a summary");
+  run->callback([args, &ctx] { run_run(*args, ctx); });
+}
+
+}  // namespace rondo::app

@@ -1,0 +1,129 @@
+#include "deployment.h"
+
+#include <fmt/format.h>
+
+#include <charconv>
+
+#include "rondo/core/document.h"
+
+namespace rondo::app {
+namespace {
+
+Result<Duration> time_of_day(const Field& f) {
+  RONDO_ASSIGN_OR_RETURN(const std::string text, f.as_string());
+  int h = -1, m = -1;
+  const char* p = text.data();
+  const char* end = text.data() + text.size();
+  auto r1 = std::from_chars(p, end, h);
+  if (r1.ec == std::errc{} && r1.ptr != end && *r1.ptr == ':') {
+    auto r2 = std::from_chars(r1.ptr + 1, end, m);
+    if (r2.ec == std::errc{} && r2.ptr == end && r2.ptr - r1.ptr == 3 && h >= 0 && h < 24 && m >= 0 && m < 60)
+      return Duration{hours(h) + minutes(m)};
+  }
+  return f.error(fmt::format("'{}' is not a time of day hh:mm", text));
+}
+
+Result<std::filesystem::path> path_field(const Field& f, const std::filesystem::path& base) {
+  RONDO_ASSIGN_OR_RETURN(const std::string text, f.as_string());
+  if (text.empty()) return f.error("empty path");
+  return base / text;
+}
+
+Result<double> positive(const Field& f) {
+  RONDO_ASSIGN_OR_RETURN(const double v, f.as_number());
+  if (!(v > 0)) return f.error("must be above zero");
+  return v;
+}
+
+Result<Duration> non_negative_duration(const Field& f) {
+  RONDO_ASSIGN_OR_RETURN(const Duration d, f.as_duration());
+  if (d < Duration{0}) return f.error("must not be negative");
+  return d;
+}
+
+Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
+  RONDO_RETURN_IF_ERROR(f.expect_keys({"navigation_overrun", "navigation_slack", "action_overrun", "action_slack",
+                                       "dock_when_waiting_over", "max_failed_edges", "refit_at", "slot_width",
+                                       "scheduler_polls"}));
+  if (auto v = f.optional("navigation_overrun")) { RONDO_ASSIGN_OR_RETURN(o.navigation_overrun, positive(*v)); }
+  if (auto v = f.optional("navigation_slack")) { RONDO_ASSIGN_OR_RETURN(o.navigation_slack, non_negative_duration(*v)); }
+  if (auto v = f.optional("action_overrun")) { RONDO_ASSIGN_OR_RETURN(o.action_overrun, positive(*v)); }
+  if (auto v = f.optional("action_slack")) { RONDO_ASSIGN_OR_RETURN(o.action_slack, non_negative_duration(*v)); }
+  if (auto v = f.optional("dock_when_waiting_over")) {
+    RONDO_ASSIGN_OR_RETURN(o.dock_when_waiting_over, non_negative_duration(*v));
+  }
+  if (auto v = f.optional("max_failed_edges")) {
+    RONDO_ASSIGN_OR_RETURN(const std::int64_t n, v->as_int());
+    if (n < 1 || n > 100000) return v->error("must be between 1 and 100000");
+    o.max_failed_edges = static_cast<int>(n);
+  }
+  if (auto v = f.optional("refit_at")) {
+    if (v->is_null()) {
+      o.refit_at.reset();
+    } else {
+      RONDO_ASSIGN_OR_RETURN(o.refit_at, time_of_day(*v));
+    }
+  }
+  if (auto v = f.optional("slot_width")) {
+    RONDO_ASSIGN_OR_RETURN(o.slot_width, v->as_duration());
+    if (o.slot_width < minutes(1) || o.slot_width > hours(24)) return v->error("must be between 1m and 24h");
+  }
+  if (auto v = f.optional("scheduler_polls")) {
+    RONDO_ASSIGN_OR_RETURN(o.scheduler_polls, v->as_int());
+    if (o.scheduler_polls < 1) return v->error("must be at least 1");
+  }
+  return Status{};
+}
+
+Result<Deployment> decode(const Field& root, const std::filesystem::path& file) {
+  const std::filesystem::path base = file.parent_path();
+  RONDO_RETURN_IF_ERROR(root.expect_keys({"rondo_deployment", "name", "map", "time_zone", "dock", "start", "days",
+                                          "seed", "routines", "world", "requests", "executor"}));
+  Deployment d;
+  d.file = file;
+  RONDO_ASSIGN_OR_RETURN(const Field version, root.required("rondo_deployment"));
+  RONDO_ASSIGN_OR_RETURN(const std::int64_t v, version.as_int());
+  if (v != 1) return version.error(fmt::format("version {} is not supported (this build reads 1)", v));
+  if (auto f = root.optional("name")) { RONDO_ASSIGN_OR_RETURN(d.name, f->as_string()); }
+  RONDO_ASSIGN_OR_RETURN(const Field map, root.required("map"));
+  RONDO_ASSIGN_OR_RETURN(d.map, path_field(map, base));
+  RONDO_ASSIGN_OR_RETURN(const Field zone, root.required("time_zone"));
+  RONDO_ASSIGN_OR_RETURN(const std::string zone_name, zone.as_string());
+  auto tz = TimeZone::named(zone_name);
+  if (!tz) return zone.error(tz.error().message);
+  d.zone = *tz;
+  RONDO_ASSIGN_OR_RETURN(const Field dock, root.required("dock"));
+  RONDO_ASSIGN_OR_RETURN(d.dock, dock.as_string());
+  RONDO_ASSIGN_OR_RETURN(const Field start, root.required("start"));
+  RONDO_ASSIGN_OR_RETURN(const Time start_time, start.as_time(&d.zone));
+  d.start = d.zone.local_date(start_time);
+  if (auto f = root.optional("days")) {
+    RONDO_ASSIGN_OR_RETURN(const std::int64_t n, f->as_int());
+    if (n < 1 || n > 3660) return f->error("must be between 1 and 3660");
+    d.days = static_cast<int>(n);
+  }
+  if (auto f = root.optional("seed")) {
+    RONDO_ASSIGN_OR_RETURN(const std::int64_t s, f->as_int());
+    if (s < 0) return f->error("must not be negative");
+    d.seed = static_cast<std::uint64_t>(s);
+  }
+  if (auto f = root.optional("routines")) { RONDO_ASSIGN_OR_RETURN(d.routines, path_field(*f, base)); }
+  RONDO_ASSIGN_OR_RETURN(const Field world, root.required("world"));
+  RONDO_ASSIGN_OR_RETURN(d.world, path_field(world, base));
+  if (auto f = root.optional("requests")) { RONDO_ASSIGN_OR_RETURN(d.requests, path_field(*f, base)); }
+  if (auto f = root.optional("executor")) RONDO_RETURN_IF_ERROR(decode_executor(*f, d.executor));
+  return d;
+}
+
+}  // namespace
+
+Result<Deployment> load_deployment(const std::filesystem::path& file) {
+  RONDO_ASSIGN_OR_RETURN(const Document doc, Document::load(file));
+  return decode(doc.root(), file);
+}
+
+std::filesystem::path default_deployment() {
+  return std::filesystem::path(RONDO_SOURCE_DIR) / "examples" / "g4s" / "deployment.yaml";
+}
+
+}  // namespace rondo::app

@@ -1,0 +1,54 @@
+// A deployment: everything `rondo run` needs to live a robot's weeks, in one YAML file whose
+// paths are relative to it (docs/deployment.md).
+//
+//   rondo_deployment: 1
+//   name: g4s
+//   map: map.yaml                  # any map format rondo reads
+//   time_zone: Europe/London
+//   dock: ChargingPoint
+//   start: 2026-11-23              # local date of the first day
+//   days: 21
+//   seed: 1
+//   routines: routines.yaml        # task file: routines (and one-off tasks)
+//   world: world.yaml              # the simulated building (docs/simulation.md)
+//   requests: requests.yaml        # optional: people's on-demand requests
+//   executor: {navigation_overrun: 2.0, navigation_slack: 60s, action_overrun: 1.5,
+//              action_slack: 30s, dock_when_waiting_over: 15m, refit_at: "02:00",
+//              slot_width: 15m, scheduler_polls: 200000}
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "rondo/core/result.h"
+#include "rondo/core/timezone.h"
+#include "rondo/exec/executor.h"
+
+namespace rondo::app {
+
+struct Deployment {
+  std::filesystem::path file;  // where it was read from
+  std::string name;
+  std::filesystem::path map;
+  TimeZone zone = TimeZone::utc();
+  std::string dock;
+  std::chrono::year_month_day start{};
+  int days = 21;
+  std::uint64_t seed = 1;
+  std::optional<std::filesystem::path> routines;
+  std::filesystem::path world;
+  std::optional<std::filesystem::path> requests;
+  exec::ExecutorOptions executor{};  // dock is filled in once the map is loaded
+};
+
+// Reads and checks a deployment file; paths come back resolved against its folder. Errors name
+// file:line and the field.
+Result<Deployment> load_deployment(const std::filesystem::path& file);
+
+// The bundled example, examples/g4s/deployment.yaml, found next to the binary's source tree.
+std::filesystem::path default_deployment();
+
+}  // namespace rondo::app

@@ -1,0 +1,106 @@
+#include "run_report.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <map>
+
+#include "rondo/plan/travel_evaluation.h"
+
+namespace rondo::app {
+
+std::string reason_category(TaskState state, const std::string& reason) {
+  if (state == TaskState::kDropped) {
+    if (reason.find("dropped for higher-priority") != std::string::npos) return "dropped for higher-priority tasks";
+    if (reason.find("lowest priority") != std::string::npos) return "lowest priority of the tasks that did not fit";
+    return "does not fit";
+  }
+  const std::size_t colon = reason.find(':');
+  return colon == std::string::npos ? reason : reason.substr(0, colon);
+}
+
+Json task_summary(const exec::Executor& executor) {
+  int completed = 0, pending = 0;
+  std::map<std::string, std::map<std::string, int>> by_state;  // sorted: a stable report
+  for (const auto& [id, r] : executor.tasks()) {
+    if (!is_final(r.state)) {
+      ++pending;
+      continue;
+    }
+    if (r.state == TaskState::kSucceeded) {
+      ++completed;
+      continue;
+    }
+    ++by_state[to_string(r.state)][reason_category(r.state, r.reason)];
+  }
+  Json tasks = Json::object();
+  tasks["added"] = executor.tasks().size();
+  tasks["completed"] = completed;
+  tasks["pending"] = pending;
+  for (const char* state : {"failed", "dropped", "cancelled", "preempted"}) {
+    Json reasons = Json::object();
+    for (const auto& [reason, n] : by_state[state]) reasons[reason] = n;
+    tasks[state] = reasons;
+  }
+  return tasks;
+}
+
+Json travel_table(const map::TopoMap& map, std::span<const Traversal> log, Time start, int days) {
+  const Duration week = hours(24 * 7);
+  plan::TravelEvaluationOptions o;
+  if (days >= 21) {
+    // The protocol: the estimates of week 3 from models trained on no data, week 1, weeks 1-2.
+    o.trainings = {{"none", start, start}, {"week1", start, start + week}, {"weeks1-2", start, start + 2 * week}};
+    o.test = {"week3", start + 2 * week, start + 3 * week};
+  } else if (days >= 14) {
+    // A two-week run: week 2 from no data and from week 1.
+    o.trainings = {{"none", start, start}, {"week1", start, start + week}};
+    o.test = {"week2", start + week, start + 2 * week};
+  } else {
+    return Json{{"note", "Table I needs at least 14 days (train on week 1, test on week 2)"}};
+  }
+  auto e = plan::evaluate_travel(map, log, o);
+  if (!e) return Json{{"note", e.error().message}};
+  return plan::travel_evaluation_to_json(*e);
+}
+
+Json run_report(const exec::Executor& executor, const RunFigures& figures) {
+  const exec::ExecutorStats& s = executor.stats();
+  Json j = Json::object();
+  j["from"] = format_time(figures.from);
+  j["to"] = format_time(figures.to);
+  j["tasks"] = task_summary(executor);
+  j["navigation"] = Json{{"attempts", s.navigation_attempts},
+                         {"successes", s.navigation_successes},
+                         {"distance_m", std::round(figures.distance_m * 10) / 10}};
+  j["time_s"] = Json{{"busy", to_seconds(s.busy)},
+                     {"travelling", to_seconds(s.travelling)},
+                     {"acting", to_seconds(s.acting)},
+                     {"waiting", to_seconds(s.waiting)},
+                     {"charging", to_seconds(figures.charging)}};
+  j["scheduler_calls"] = s.schedules;
+  j["model_refits"] = s.refits;
+  return j;
+}
+
+DayPicture day_picture(const exec::Executor& executor, const std::string& title, Time from, Time to,
+                       const TimeZone& zone) {
+  DayPicture day{.title = title, .from = from, .to = to, .zone = zone, .rows = {}, .charging = {}};
+  for (const TaskId& id : executor.task_order()) {
+    const exec::TaskRecord& r = executor.tasks().at(id);
+    const Time a = r.task.window ? r.task.window->release : r.added;
+    const Time b = r.task.window ? r.task.window->deadline : r.ended.value_or(r.added);
+    if (b < from || a >= to) continue;
+    DayRow row{.task_id = id, .label = r.task.activity.empty() ? id : r.task.activity, .window = r.task.window,
+               .planned = {}, .actual = {}, .outcome = {}};
+    if (r.planned_start && r.planned_end) row.planned = std::make_pair(*r.planned_start, *r.planned_end);
+    if (r.started && r.ended) row.actual = std::make_pair(*r.started, *r.ended);
+    row.outcome = r.state == TaskState::kSucceeded || !is_final(r.state)
+                      ? std::string(to_string(r.state))
+                      : fmt::format("{}: {}", to_string(r.state), r.reason);
+    day.rows.push_back(std::move(row));
+  }
+  return day;
+}
+
+}  // namespace rondo::app

@@ -1,0 +1,43 @@
+// What `rondo run` reports: report.json (tasks by final state and reason, navigation, distance,
+// time use, the Table I of the run's own travel estimates) and the per-day schedule pictures.
+#pragma once
+
+#include <chrono>
+#include <span>
+#include <string>
+
+#include "day_svg.h"
+#include "rondo/core/document.h"
+#include "rondo/core/timezone.h"
+#include "rondo/core/traversal.h"
+#include "rondo/exec/executor.h"
+#include "rondo/map/topo_map.h"
+
+namespace rondo::app {
+
+// The stable part of a reason, used to count tasks by reason: the text before the first ':'
+// ("too late", "navigation overrun"), or for the scheduler's drop reasons the rule that applied.
+std::string reason_category(TaskState state, const std::string& reason);
+
+struct RunFigures {
+  Time from{};
+  Time to{};
+  double distance_m = 0;
+  Duration charging{0};
+};
+
+// The "tasks" object: added, completed, pending, and failed/dropped/cancelled/preempted by reason.
+Json task_summary(const exec::Executor& executor);
+
+// Table I on the run's own log: models trained on no data, week 1 and weeks 1–2, scored on the
+// journeys of week 3 (a run of 14–20 days: no data and week 1, scored on week 2). A "note" in
+// place of the table when the run is shorter than 14 days.
+Json travel_table(const map::TopoMap& map, std::span<const Traversal> log, Time start, int days);
+
+Json run_report(const exec::Executor& executor, const RunFigures& figures);
+
+// The schedule picture of one local day [from, to).
+DayPicture day_picture(const exec::Executor& executor, const std::string& title, Time from, Time to,
+                       const TimeZone& zone);
+
+}  // namespace rondo::app

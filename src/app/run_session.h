@@ -1,0 +1,36 @@
+// `rondo run`: one deployment lived on the simulated robot, day by day, writing its run folder.
+//
+//   RunRequest r{.deployment = *load_deployment(file), .out = "runs/x"};
+//   Result<RunResult> done = run_deployment(r, std::cerr);   // progress to a terminal
+//
+// The run folder holds report.json (deterministic for a seed: no wall-clock figures), run.json
+// (wall-clock figures of this run), days/<date>.svg (planned against actual), and rondo.sqlite
+// (tasks, the event log, the traversal log).
+#pragma once
+
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+
+#include "deployment.h"
+#include "rondo/core/document.h"
+#include "rondo/core/result.h"
+
+namespace rondo::app {
+
+struct RunRequest {
+  Deployment deployment;
+  std::filesystem::path out;
+  bool realtime = false;  // the system clock instead of simulated time
+  bool progress = false;  // draw a progress bar on `progress_to`
+};
+
+struct RunResult {
+  Json report;           // what report.json holds
+  double wall_seconds = 0;
+  int write_errors = 0;  // store writes that failed during the run
+};
+
+Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progress_to);
+
+}  // namespace rondo::app

@@ -1,0 +1,72 @@
+// The executor's daily rhythm: routine tasks created at local midnight for the day ahead, and the
+// nightly refit of the edge models from the whole traversal log.
+#include <fmt/format.h>
+
+#include <chrono>
+
+#include "rondo/exec/executor.h"
+#include "rondo/learn/edge_models.h"
+#include "rondo/store/traversal_log.h"
+
+namespace rondo::exec {
+namespace {
+
+std::chrono::year_month_day next_day(std::chrono::year_month_day d) {
+  return std::chrono::year_month_day{std::chrono::sys_days{d} + std::chrono::days{1}};
+}
+
+}  // namespace
+
+void Executor::create_routine_tasks(std::chrono::year_month_day day) {
+  std::vector<Task> batch;
+  const Time now = clock_.now();
+  for (const Routine& r : routines_)
+    for (Task& t : instances_on(r, day, zone_))
+      if (t.window && t.window->deadline > now && !tasks_.contains(t.id)) batch.push_back(std::move(t));
+  if (batch.empty()) return;
+  if (auto ok = add_tasks(std::move(batch), "routine"); !ok) write_errors_.push_back(ok.error().message);
+}
+
+void Executor::schedule_midnight() {
+  const auto tomorrow = next_day(zone_.local_date(clock_.now()));
+  clock_.schedule_at(zone_.at(tomorrow, Duration{0}), [this, tomorrow] {
+    create_routine_tasks(tomorrow);
+    schedule_midnight();
+  });
+}
+
+void Executor::schedule_refit() {
+  if (!options_.refit_at) return;
+  const Time now = clock_.now();
+  auto day = zone_.local_date(now);
+  Time at = zone_.at(day, *options_.refit_at);
+  if (at <= now) at = zone_.at(next_day(day), *options_.refit_at);
+  clock_.schedule_at(at, [this] {
+    refit();
+    schedule_refit();
+  });
+}
+
+void Executor::refit() {
+  auto log = store::find_traversals(store_);
+  if (!log) {
+    write_errors_.push_back(log.error().message);
+    return;
+  }
+  if (log->empty()) return;
+  const std::vector<learn::EdgeSpec> specs = plan::edge_specs(map_);
+  // Local time of day; hourly duration bins (a robot's own log has many attempts per edge and
+  // hour; sparse bins shrink towards the edge's whole-day table).
+  learn::EdgeModelsOptions options;
+  options.episode.zone = zone_;
+  options.episode.duration_bins = options_.duration_bins;
+  auto fitted = learn::EdgeModels::fit(specs, *log, options);
+  if (!fitted) {
+    write_errors_.push_back(fitted.error().message);
+    return;
+  }
+  models_->set(*fitted);
+  ++stats_.refits;
+}
+
+}  // namespace rondo::exec

@@ -1,0 +1,142 @@
+#include "offline_durations.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rondo::learn {
+namespace {
+
+using Sample = QuantileTable::WeightedValue;
+
+struct SlotSample {
+  int slot = 0;
+  Sample sample;
+};
+
+// The edge's attempts with their episode and recency weights, and the slot each started in.
+std::vector<SlotSample> weighted_attempts(const std::vector<Attempt>& attempts, const EpisodePriors& priors,
+                                          Time newest) {
+  const auto& o = priors.options;
+  // Episodes: index of each attempt's episode, retries per episode, failed episodes.
+  std::vector<std::size_t> episode_of(attempts.size());
+  std::vector<int> retries;
+  std::vector<bool> first_failed;
+  double log_length_sum = 0;
+  for (std::size_t i = 0; i < attempts.size(); ++i) {
+    const Attempt& a = attempts[i];
+    const bool retry = i > 0 && !attempts[i - 1].success && a.start - attempts[i - 1].end < o.retry_gap;
+    if (!retry) {
+      if (!retries.empty() && first_failed.back()) log_length_sum += std::log(1.0 + retries.back());
+      retries.push_back(0);
+      first_failed.push_back(!a.success);
+    } else {
+      ++retries.back();
+    }
+    episode_of[i] = retries.size() - 1;
+  }
+  if (!retries.empty() && first_failed.back()) log_length_sum += std::log(1.0 + retries.back());
+  double failed = 0, with_retries = 0;
+  for (std::size_t e = 0; e < retries.size(); ++e) {
+    failed += first_failed[e] ? 1 : 0;
+    with_retries += retries[e] > 0 ? 1 : 0;
+  }
+  // The same shrunk geometric mean as EpisodeEdgeModel::retry_length.
+  const double length = std::max(
+      1.0, std::exp((log_length_sum + o.length_prior * priors.log_retry_length) / (failed + o.length_prior)));
+  const double retry_mass = with_retries > 0 ? failed * (length - 1) / with_retries : 0.0;
+  const double half_life_s = to_seconds(o.duration_half_life);
+  std::vector<SlotSample> out;
+  out.reserve(attempts.size());
+  for (std::size_t i = 0; i < attempts.size(); ++i) {
+    const Attempt& a = attempts[i];
+    const int n_retries = retries[episode_of[i]];
+    const bool first = i == 0 || episode_of[i] != episode_of[i - 1];
+    double w = first ? 1.0 : retry_mass / n_retries;
+    if (half_life_s > 0) w *= std::exp2(-to_seconds(newest - a.start) / half_life_s);
+    out.push_back({priors.day_slot(a.start), {a.seconds, w}});
+  }
+  return out;
+}
+
+std::vector<Sample> samples_of(const std::vector<SlotSample>& v) {
+  std::vector<Sample> out;
+  out.reserve(v.size());
+  for (const auto& s : v) out.push_back(s.sample);
+  return out;
+}
+
+// `table` of `samples` shrunk towards `prior` by the samples' effective count.
+QuantileTable shrunk(const std::vector<Sample>& samples, const QuantileTable& prior, double prior_strength) {
+  const double n = QuantileTable::effective_count(samples);
+  if (n <= 0) return prior;
+  return QuantileTable::blend(QuantileTable::from_weighted_samples(samples), prior, n / (n + prior_strength));
+}
+
+// The averaged shifted histograms of one edge: kDaySlots tables, each the knot-wise mean of the
+// tables of the bins (one per resolution and shift) that hold its slot.
+std::vector<QuantileTable> day_tables(const std::vector<SlotSample>& attempts, const QuantileTable& edge,
+                                      const EpisodePriors& priors) {
+  const auto& o = priors.options;
+  constexpr auto kKnots = static_cast<std::size_t>(QuantileTable::kKnots);
+  std::vector<double> sums(static_cast<std::size_t>(kDaySlots) * kKnots, 0.0);
+  int histograms = 0;
+  for (int bins : o.day_resolutions) {
+    if (bins < 1 || 24 % bins != 0) continue;  // not on the 15-minute grid: ignored
+    const int width = kDaySlots / bins;
+    const int shifts = bins == 1 ? 1 : kHistogramShifts;
+    for (int shift = 0; shift < shifts; ++shift, ++histograms) {
+      const int offset = shift * width / kHistogramShifts;
+      auto bin_of = [&](int slot) {
+        return static_cast<std::size_t>(((slot - offset) % kDaySlots + kDaySlots) % kDaySlots / width);
+      };
+      std::vector<std::vector<Sample>> members(static_cast<std::size_t>(bins));
+      for (const auto& a : attempts) members[bin_of(a.slot)].push_back(a.sample);
+      std::vector<QuantileTable> tables;
+      for (const auto& m : members) tables.push_back(shrunk(m, edge, o.duration_prior));
+      for (int slot = 0; slot < kDaySlots; ++slot) {
+        const auto& values = tables[bin_of(slot)].values();
+        double* sum = &sums[static_cast<std::size_t>(slot) * kKnots];
+        for (std::size_t k = 0; k < kKnots; ++k) sum[k] += values[k];
+      }
+    }
+  }
+  std::vector<QuantileTable> out(static_cast<std::size_t>(kDaySlots), edge);
+  if (histograms == 0) return out;
+  std::vector<double> knots(kKnots);
+  for (std::size_t slot = 0; slot < out.size(); ++slot) {
+    for (std::size_t k = 0; k < kKnots; ++k) knots[k] = sums[slot * kKnots + k] / histograms;
+    out[slot] = QuantileTable::from_knots(knots);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::vector<QuantileTable>> offline_duration_tables(const std::vector<std::vector<Attempt>>& edges,
+                                                                const EpisodePriors& priors) {
+  Time newest = Time::min();
+  for (const auto& attempts : edges) {
+    for (const Attempt& a : attempts) newest = std::max(newest, a.start);
+  }
+  std::vector<std::vector<SlotSample>> weighted;
+  std::vector<Sample> pooled;  // every edge with total weight 1
+  for (const auto& attempts : edges) {
+    weighted.push_back(weighted_attempts(attempts, priors, newest));
+    double total = 0;
+    for (const auto& s : weighted.back()) total += s.sample.weight;
+    if (total <= 0) continue;
+    for (const auto& s : weighted.back()) pooled.push_back({s.sample.value, s.sample.weight / total});
+  }
+  const QuantileTable pooled_table = QuantileTable::from_weighted_samples(std::move(pooled));
+  std::vector<std::vector<QuantileTable>> out;
+  out.reserve(edges.size());
+  for (const auto& w : weighted) {
+    const QuantileTable edge = shrunk(samples_of(w), pooled_table, priors.options.duration_prior);
+    auto tables = day_tables(w, edge, priors);
+    for (auto& t : tables) t = t.rounded(3);
+    out.push_back(std::move(tables));
+  }
+  return out;
+}
+
+}  // namespace rondo::learn

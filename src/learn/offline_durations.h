@@ -1,0 +1,32 @@
+// The offline duration distribution of every edge by local time of day: what an attempt starting at
+// t takes when nothing is known about the edge's recent outcomes (EpisodeEdgeModel's offline
+// quantiles). Internal to rondo::learn.
+//
+//   auto tables = offline_duration_tables(per_edge_attempts, priors);   // [edge][15-minute slot]
+//   double median = tables[e][priors.day_slot(t)].at(0.5);
+//
+// Three ideas, each a counterpart of the success model's:
+//   - episodes, not attempts: a failed episode's quick retries (sometimes hundreds of sub-second
+//     attempts in one storm) share the weight of a typical failed episode, (L − 1) retries with L
+//     the edge's retry length (EpisodeEdgeModel::retry_length), so one storm cannot own the table;
+//   - recency: each attempt's weight halves every `duration_half_life` before the newest attempt
+//     of the fit (edges drift: a door that starts sticking makes long failures common);
+//   - time of day without a bin width to pick: per slot, the quantile average (Vincentisation) of
+//     the averaged shifted histograms of `day_resolutions`; each bin's table is shrunk towards the
+//     edge's (`duration_prior` effective observations), the edge's towards the pooled one.
+#pragma once
+
+#include <vector>
+
+#include "rondo/learn/edge_predictor.h"
+#include "rondo/learn/episode_model.h"
+#include "rondo/learn/quantile_table.h"
+
+namespace rondo::learn {
+
+// One vector of kDaySlots tables per edge (same order as `edges`, each in start order). `priors`
+// must be the pooled priors of the same fit (options, pooled log retry length).
+std::vector<std::vector<QuantileTable>> offline_duration_tables(const std::vector<std::vector<Attempt>>& edges,
+                                                                const EpisodePriors& priors);
+
+}  // namespace rondo::learn

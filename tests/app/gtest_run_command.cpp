@@ -1,0 +1,124 @@
+// `rondo run`: the main job on the bundled example, its run folder, determinism, and that no task
+// is ever lost (every task ends in exactly one final state or is still pending, with a reason).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "cli_runner.h"
+#include "rondo/core/document.h"
+#include "rondo/core/task.h"
+#include "rondo/store/store.h"
+#include "rondo/store/task_events.h"
+#include "rondo/store/task_table.h"
+
+namespace rondo {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::filesystem::path fresh_dir(const std::string& name) {
+  auto dir = std::filesystem::temp_directory_path() / ("rondo-run-test-" + std::to_string(::getpid())) / name;
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+std::string slurp(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(RunCommand, TheExampleWritesItsRunFolder) {
+  const auto out = fresh_dir("folder");
+  const auto r = test::run_cli({"run", "--days", "3", "--out", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("completed"));
+  for (const char* f : {"report.json", "run.json", "rondo.sqlite", "days/2026-11-23.svg", "days/2026-11-25.svg"})
+    EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
+  const Json report = Json::parse(slurp(out / "report.json"));
+  for (const char* key : {"added", "completed", "pending", "failed", "dropped", "cancelled"})
+    EXPECT_TRUE(report["tasks"].contains(key)) << key;
+  EXPECT_GT(report["tasks"]["completed"].get<int>(), 20);
+  EXPECT_GT(report["navigation"]["attempts"].get<int>(), 0);
+  EXPECT_THAT(slurp(out / "days/2026-11-23.svg"), HasSubstr("<svg"));
+  std::filesystem::remove_all(out.parent_path());
+}
+
+TEST(RunCommand, TheSameSeedGivesAByteIdenticalReport) {
+  const auto a = fresh_dir("a"), b = fresh_dir("b"), c = fresh_dir("c");
+  ASSERT_EQ(test::run_cli({"run", "--days", "4", "--seed", "7", "--out", a.string()}).exit_code, 0);
+  ASSERT_EQ(test::run_cli({"run", "--days", "4", "--seed", "7", "--out", b.string()}).exit_code, 0);
+  ASSERT_EQ(test::run_cli({"run", "--days", "4", "--seed", "8", "--out", c.string()}).exit_code, 0);
+  EXPECT_EQ(slurp(a / "report.json"), slurp(b / "report.json"));
+  EXPECT_NE(slurp(a / "report.json"), slurp(c / "report.json"));
+  std::filesystem::remove_all(a.parent_path());
+}
+
+TEST(RunCommand, NoTaskIsLost) {
+  const auto out = fresh_dir("lost");
+  ASSERT_EQ(test::run_cli({"run", "--days", "7", "--out", out.string()}).exit_code, 0);
+  auto store = store::Store::open(out / "rondo.sqlite", {.mode = store::OpenMode::kMustExist}).value();
+  const auto tasks = store::list_tasks(store).value();
+  const auto events = store::read_task_events(store).value();
+  std::map<std::string, int> finals;
+  std::map<std::string, std::string> last_reason;
+  for (const auto& e : events) {
+    auto state = parse_task_state(e.event);
+    if (state && is_final(*state)) ++finals[e.task_id];
+    if (state) last_reason[e.task_id] = e.reason;
+  }
+  const Json report = Json::parse(slurp(out / "report.json"));
+  int pending = 0, final_count = 0;
+  for (const auto& t : tasks) {
+    auto state = parse_task_state(t.state);
+    ASSERT_TRUE(state) << t.id << ": " << t.state;
+    if (is_final(*state)) {
+      EXPECT_EQ(finals[t.id], 1) << t.id;
+      ++final_count;
+    } else {
+      EXPECT_EQ(finals[t.id], 0) << t.id;
+      ++pending;
+    }
+    EXPECT_FALSE(last_reason[t.id].empty()) << t.id;
+  }
+  EXPECT_EQ(static_cast<int>(tasks.size()), report["tasks"]["added"].get<int>());
+  EXPECT_EQ(pending, report["tasks"]["pending"].get<int>());
+  int reported_final = report["tasks"]["completed"].get<int>();
+  for (const char* k : {"failed", "dropped", "cancelled", "preempted"})
+    for (const auto& [reason, n] : report["tasks"][k].items()) reported_final += n.get<int>();
+  EXPECT_EQ(final_count, reported_final);
+  std::filesystem::remove_all(out.parent_path());
+}
+
+TEST(RunCommand, ABadDeploymentIsExitCode2NamingFileAndLine) {
+  const auto dir = fresh_dir("bad");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "deployment.yaml") << "rondo_deployment: 1\nname: x\nmap: map.yaml\ntime_zone: Europe/London\n"
+                                            "dock: D\nstart: 2026-11-23\nworld: w.yaml\nspeed: 3\n";
+  const auto r = test::run_cli({"run", (dir / "deployment.yaml").string(), "--out", (dir / "run").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("deployment.yaml:8"));
+  EXPECT_THAT(r.err, HasSubstr("speed"));
+
+  std::ofstream(dir / "deployment.yaml") << "rondo_deployment: 1\nmap: map.yaml\ntime_zone: Mars/Olympus\n";
+  const auto zone = test::run_cli({"run", (dir / "deployment.yaml").string()});
+  EXPECT_EQ(zone.exit_code, 2);
+  EXPECT_THAT(zone.err, HasSubstr("deployment.yaml:3"));
+
+  const auto missing = test::run_cli({"run", (dir / "nope.yaml").string()});
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_THAT(missing.err, HasSubstr("nope.yaml"));
+
+  const auto days = test::run_cli({"run", "--days", "0"});
+  EXPECT_EQ(days.exit_code, 2);
+  std::filesystem::remove_all(dir.parent_path());
+}
+
+}  // namespace
+}  // namespace rondo

@@ -1,0 +1,238 @@
+// The executor's behaviours of MISSION.md §3, each on a small simulated deployment with a fixed
+// seed, asserted on the event log of the store (what a person would read afterwards).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <set>
+
+#include "scenario.h"
+
+namespace rondo::exec::testing {
+namespace {
+
+using ::testing::HasSubstr;
+
+Time event_time(const Scenario& s, const std::string& id, const std::string& event) {
+  for (const auto& e : s.events_of(id))
+    if (e.event == event) return e.time;
+  ADD_FAILURE() << id << " has no event " << event;
+  return Time{};
+}
+
+std::size_t position(const std::vector<std::string>& order, const std::string& id) {
+  return static_cast<std::size_t>(std::find(order.begin(), order.end(), id) - order.begin());
+}
+
+TEST(ExecutorScenario, OnDemandPreemptsAnInterruptibleTaskAndTheRestIsRescheduled) {
+  Scenario s(kCalmWorld);
+  s.executor().start();
+  ASSERT_TRUE(s.executor().add_tasks({task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(30)),
+                                      task("B", "Kitchen", s.at("08:00"), s.at("11:00"), minutes(40))},
+                                     "test"));
+  s.run_until("08:10");
+  ASSERT_EQ(s.final_state("A"), "acting");
+  ASSERT_TRUE(s.executor().add_task(on_demand("OD", "Lab", minutes(5)), "request"));
+  s.run_until("12:00");
+
+  EXPECT_EQ(s.final_state("A"), "preempted");
+  EXPECT_THAT(s.reason_of("A", "preempted"), HasSubstr("preempted by an on-demand task: OD"));
+  EXPECT_EQ(s.final_state("OD"), "succeeded");
+  // The preempted task comes back as a new task and is done later; so is the rest.
+  EXPECT_EQ(s.final_state("A~1"), "succeeded");
+  EXPECT_EQ(s.final_state("B"), "succeeded");
+  const auto acting = s.order_of("acting");
+  EXPECT_LT(position(acting, "A"), position(acting, "OD"));
+  EXPECT_LT(position(acting, "OD"), position(acting, "A~1"));
+  EXPECT_LT(position(acting, "OD"), position(acting, "B"));
+  // The rest was planned again around the on-demand task: B moved back.
+  EXPECT_THAT(s.reason_of("B", "scheduled"), HasSubstr("after preempting A"));
+  EXPECT_GT(*s.executor().tasks().at("B").planned_start, s.at("08:31"));
+}
+
+TEST(ExecutorScenario, ANonInterruptibleTaskIsNotPreemptedTheOnDemandTaskRunsRightAfterIt) {
+  Scenario s(kCalmWorld);
+  s.executor().start();
+  ASSERT_TRUE(s.executor().add_tasks(
+      {task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(30), 1, /*interruptible=*/false),
+       task("B", "Kitchen", s.at("08:00"), s.at("11:00"), minutes(40))},
+      "test"));
+  s.run_until("08:10");
+  ASSERT_EQ(s.final_state("A"), "acting");
+  ASSERT_TRUE(s.executor().add_task(on_demand("OD", "Lab", minutes(5)), "request"));
+  s.run_until("12:00");
+
+  EXPECT_EQ(s.final_state("A"), "succeeded");
+  EXPECT_THAT(s.reason_of("OD", "waiting"), HasSubstr("A cannot be interrupted now"));
+  EXPECT_EQ(s.final_state("OD"), "succeeded");
+  EXPECT_EQ(s.final_state("B"), "succeeded");
+  const auto done = s.order_of("succeeded");
+  EXPECT_EQ(done, (std::vector<std::string>{"A", "OD", "B"}));
+  EXPECT_TRUE(s.order_of("preempted").empty());
+}
+
+TEST(ExecutorScenario, ANavigationOverrunIsPreemptedAndTheTaskFailsWithThatReason) {
+  Scenario s(std::string(kCalmWorld) + R"(
+effects:
+  - name: a crowd in the corridor
+    edges: [Hall_Office]
+    duration_factor: 10
+)",
+             {.navigation_slack = Duration{0}});
+  s.executor().start();
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(5)), "test"));
+  s.run_until("10:00");
+
+  EXPECT_EQ(s.final_state("A"), "failed");
+  EXPECT_THAT(s.reason_of("A", "failed"), HasSubstr("navigation overrun"));
+  // It was stopped at the limit (2 x 40 s expected), not when the slow edge would have ended.
+  const Duration took = event_time(s, "A", "failed") - event_time(s, "A", "navigating");
+  EXPECT_GE(took, seconds(79));
+  EXPECT_LE(took, seconds(81));
+  EXPECT_TRUE(s.order_of("acting").empty());
+}
+
+TEST(ExecutorScenario, AnActionOverrunIsPreemptedAndTheTaskFailsWithThatReason) {
+  Scenario s(std::string(kCalmWorld) + R"(  slow: {sigma: 0, failure_probability: 0, overrun_probability: 1, overrun_factor: 3}
+)",
+             {.action_slack = Duration{0}});
+  Task a = task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(10));
+  a.actions = {Action{.name = "slow", .args = {}}};
+  s.executor().start();
+  ASSERT_TRUE(s.executor().add_task(a, "test"));
+  s.run_until("10:00");
+
+  EXPECT_EQ(s.final_state("A"), "failed");
+  EXPECT_THAT(s.reason_of("A", "failed"), HasSubstr("action overrun"));
+  const Duration took = event_time(s, "A", "failed") - event_time(s, "A", "acting");
+  EXPECT_EQ(took, minutes(15));  // 1.5 x the 10-minute processing time
+}
+
+TEST(ExecutorScenario, AnEarlyTaskWaitsForItsWindow) {
+  Scenario s(kCalmWorld);
+  s.executor().start();
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:05"), s.at("09:00"), minutes(5)), "test"));
+  s.run_until("09:00");
+
+  EXPECT_EQ(s.final_state("A"), "succeeded");
+  EXPECT_THAT(s.reason_of("A", "waiting"), HasSubstr("early: waits"));
+  const Time acting = event_time(s, "A", "acting");
+  EXPECT_GE(acting, s.at("08:05"));
+  EXPECT_LE(acting, s.at("08:05:05"));
+  EXPECT_LT(event_time(s, "A", "waiting"), event_time(s, "A", "navigating"));
+}
+
+TEST(ExecutorScenario, ALateTaskFailsAndTheRestIsRescheduled) {
+  Scenario s(std::string(kCalmWorld) + R"(  slow: {sigma: 0, failure_probability: 0, overrun_probability: 1, overrun_factor: 1.4}
+)");
+  Task a = task("A", "Office", s.at("08:00"), s.at("08:21"), minutes(20));
+  a.actions = {Action{.name = "slow", .args = {}}};  // takes 28 min: inside the 30.5-min limit
+  s.executor().start();
+  ASSERT_TRUE(s.executor().add_tasks({a, task("B", "Kitchen", s.at("08:00"), s.at("08:26"), minutes(3)),
+                                      task("C", "Lab", s.at("08:00"), s.at("12:00"), minutes(10))},
+                                     "test"));
+  s.run_until("12:00");
+
+  EXPECT_EQ(s.final_state("A"), "succeeded");
+  EXPECT_EQ(s.final_state("B"), "failed");
+  EXPECT_THAT(s.reason_of("B", "failed"), HasSubstr("too late"));
+  EXPECT_EQ(s.final_state("C"), "succeeded");
+  EXPECT_THAT(s.reason_of("C", "scheduled"), HasSubstr("task B failed"));
+}
+
+TEST(ExecutorScenario, AnOversubscribedDayDropsTheLowestPrioritiesFirst) {
+  Scenario s(kCalmWorld);
+  s.executor().start();
+  std::vector<Task> tasks;
+  for (int p = 1; p <= 5; ++p)
+    tasks.push_back(task("P" + std::to_string(p), "Office", s.at("09:00"), s.at("10:00"), minutes(20), p));
+  ASSERT_TRUE(s.executor().add_tasks(tasks, "test"));
+  s.run_until("11:00");
+
+  const auto dropped = s.order_of("dropped");
+  EXPECT_EQ(std::set<std::string>(dropped.begin(), dropped.end()), (std::set<std::string>{"P1", "P2"}));
+  for (const char* id : {"P1", "P2"}) EXPECT_FALSE(s.reason_of(id, "dropped").empty()) << id;
+  for (const char* id : {"P3", "P4", "P5"}) EXPECT_EQ(s.final_state(id), "succeeded") << id;
+}
+
+TEST(ExecutorScenario, HigherPriorityTasksThatDoNotFitPreemptAnInterruptibleRunningTask) {
+  for (const bool interruptible : {true, false}) {
+    Scenario s(kCalmWorld);
+    s.executor().start();
+    ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(40), 1, interruptible),
+                                      "test"));
+    s.run_until("08:10");
+    ASSERT_EQ(s.final_state("A"), "acting");
+    ASSERT_TRUE(s.executor().add_task(task("H", "Kitchen", s.at("08:10"), s.at("08:20"), minutes(5), 5), "test"));
+    s.run_until("10:00");
+    if (interruptible) {
+      EXPECT_EQ(s.final_state("A"), "preempted");
+      EXPECT_THAT(s.reason_of("A", "preempted"), HasSubstr("outranked by new tasks"));
+      EXPECT_EQ(s.final_state("H"), "succeeded");
+    } else {  // MISSION.md §3: the higher-priority task is dropped after all
+      EXPECT_EQ(s.final_state("A"), "succeeded");
+      EXPECT_EQ(s.final_state("H"), "dropped");
+      EXPECT_THAT(s.reason_of("H", "dropped"), HasSubstr("the running task A cannot be interrupted"));
+    }
+  }
+}
+
+TEST(ExecutorScenario, TravelEstimatesInWeekThreeAreCloserToTheTruthThanInWeekOne) {
+  // Twice as slow as the map's prior says, and three times slower again at midday.
+  Scenario s(R"(
+kind: parametric
+speed: 0.25
+failure_probability: 0.02
+noise: {sigma: 0.1, tail_probability: 0}
+effects:
+  - name: midday crowd
+    all: true
+    when: {from: "11:00", to: "15:00"}
+    duration_factor: 3
+actions:
+  default: {sigma: 0, failure_probability: 0, overrun_probability: 0}
+)",
+             {}, "2026-11-23T00:00");
+  std::vector<Routine> routines;
+  for (const char* node : {"Office", "Kitchen", "Lab"}) {
+    Routine r;
+    r.name = std::string("visit-") + node;
+    r.task = task("", node, Time{}, Time{}, minutes(5));
+    r.task.window.reset();
+    r.window_start = hours(8);
+    r.window_end = hours(18);
+    r.every = hours(1);
+    routines.push_back(r);
+  }
+  s.executor().add_routines(routines);
+  s.executor().start();
+  s.clock().run_until(s.at("00:00") + hours(24 * 21));
+
+  const Time start = s.at("00:00");
+  const auto error_in_week = [&](int week) {
+    double sum = 0;
+    int n = 0;
+    for (const NavigationRecord& r : s.executor().navigations()) {
+      if (r.start < start + hours(24 * 7 * week) || r.start >= start + hours(24 * 7 * (week + 1))) continue;
+      if (r.actual <= Duration{0}) continue;
+      sum += std::abs(to_seconds(r.expected) - to_seconds(r.actual)) / to_seconds(r.actual);
+      ++n;
+    }
+    EXPECT_GT(n, 100) << "week " << week + 1;
+    return sum / n;
+  };
+  const double week1 = error_in_week(0), week3 = error_in_week(2);
+  if (std::getenv("RONDO_DEBUG_NAV")) {
+    for (const NavigationRecord& r : s.executor().navigations())
+      std::printf("%s %s %.1f %.1f\n", format_time(r.start).c_str(), r.task.c_str(), to_seconds(r.expected), to_seconds(r.actual));
+  }
+  EXPECT_LT(week3, week1);
+  EXPECT_LT(week3, 0.8 * week1) << "week 1: " << week1 << ", week 3: " << week3;  // measured 0.33 vs 0.52
+  EXPECT_GE(s.executor().stats().refits, 20);
+}
+
+}  // namespace
+}  // namespace rondo::exec::testing

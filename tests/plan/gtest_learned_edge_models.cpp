@@ -1,0 +1,111 @@
+// LearnedEdgeModels: map edges matched to a learn::EdgeModels snapshot by id, the distance prior
+// for edges it does not know, and set() moving version() on so that TravelOracle drops its caches.
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "rondo/learn/edge_models.h"
+#include "rondo/map/map_geometry.h"
+#include "rondo/plan/distance_prior.h"
+#include "rondo/plan/exact_solver.h"
+#include "rondo/plan/learned_edge_models.h"
+#include "rondo/plan/travel_oracle.h"
+#include "small_maps.h"
+
+namespace rondo::plan {
+namespace {
+
+using testing::small_map;
+
+const Time kStart = Time{} + hours(24 * 16000);
+
+// `n` attempts on `edge`, one every 10 minutes: every `fail_every`-th fails (0: none fail).
+std::vector<Traversal> attempts(const std::string& edge, int n, double seconds, int fail_every) {
+  std::vector<Traversal> out;
+  const auto cut = edge.find('_');
+  for (int i = 0; i < n; ++i) {
+    out.push_back({.edge_id = edge,
+                   .from = edge.substr(0, cut),
+                   .to = edge.substr(cut + 1),
+                   .start = kStart + minutes(10 * i),
+                   .duration = from_seconds(seconds),
+                   .success = fail_every == 0 || (i + 1) % fail_every != 0});
+  }
+  return out;
+}
+
+std::shared_ptr<const learn::EdgeModels> fit(const std::vector<learn::EdgeSpec>& specs,
+                                             const std::vector<Traversal>& log) {
+  return learn::EdgeModels::fit(specs, log).value();
+}
+
+TEST(EdgeSpecs, OnePerMapEdgeWithTheDistancePrior) {
+  const map::TopoMap m = small_map({"A", "B", "C"}, {"A>B", "B>C", "C>A"});
+  const auto specs = edge_specs(m);
+  ASSERT_EQ(specs.size(), 3u);
+  for (map::EdgeIndex e = 0; e < 3; ++e) {
+    EXPECT_EQ(specs[e].id, m.edge(e).id);
+    EXPECT_DOUBLE_EQ(specs[e].prior_seconds, to_seconds(map::nominal_travel_time(m, e)));
+    EXPECT_GT(specs[e].prior_seconds, 0.0);
+  }
+}
+
+TEST(LearnedEdgeModels, KnownEdgesAnswerFromTheModelsOthersFromThePrior) {
+  const map::TopoMap m = small_map({"A", "B", "C"}, {"A>B", "B>C", "C>A"});
+  // The models know A_B (with data) and B_C (without), plus an edge the map lacks.
+  std::vector<learn::EdgeSpec> specs = {{"A_B", 2.0}, {"B_C", 2.0}, {"X_Y", 5.0}};
+  auto log = attempts("A_B", 60, 30.0, 3);
+  auto models = fit(specs, log);
+  LearnedEdgeModels view(m, models);
+  EXPECT_EQ(view.known_edge_count(), 2u);
+  EXPECT_EQ(view.model_index(0), *models->index_of("A_B"));
+  EXPECT_EQ(view.model_index(2), LearnedEdgeModels::kUnknown);
+  const DistancePrior prior(m);
+  const Time t = kStart + hours(30);
+  for (map::EdgeIndex e = 0; e < 2; ++e) {
+    const std::size_t i = view.model_index(e);
+    EXPECT_EQ(view.outcome(e, t),
+              (EdgeOutcome{models->success_probability(i, t), models->expected_seconds(i, t)}));
+  }
+  EXPECT_EQ(view.outcome(2, t), prior.outcome(2, t));
+  // The fitted edge learned its slowness and its failures: far from the prior's 2 s and p = 1.
+  EXPECT_GT(view.outcome(0, t).expected_seconds, 10.0);
+  EXPECT_LT(view.outcome(0, t).success_probability, 0.95);
+}
+
+TEST(LearnedEdgeModels, NullModelsMeanThePriorEverywhere) {
+  const map::TopoMap m = small_map({"A", "B"}, {"A>B", "B>A"});
+  LearnedEdgeModels view(m, nullptr, {.success_probability = 0.8});
+  const DistancePrior prior(m, {.success_probability = 0.8});
+  EXPECT_EQ(view.known_edge_count(), 0u);
+  for (map::EdgeIndex e = 0; e < 2; ++e) EXPECT_EQ(view.outcome(e, kStart), prior.outcome(e, kStart));
+}
+
+TEST(LearnedEdgeModels, SetSwapsTheSnapshotAndTheOracleDropsItsCaches) {
+  const map::TopoMap m = small_map({"A", "B", "C"}, {"A>B", "B>C", "A>C"});
+  const auto specs = edge_specs(m);
+  auto fast = fit(specs, attempts("A_C", 40, 3.0, 0));
+  auto view = std::make_shared<LearnedEdgeModels>(m, fast);
+  TravelOracle oracle(m, view);
+  const Time t = kStart + hours(50);
+  const double before = oracle.expected_seconds(0, 2, t);
+  EXPECT_NEAR(before, 3.0, 0.5);  // straight A -> C, learned to take 3 s
+  EXPECT_EQ(oracle.policy(2, t).next_edge(0), m.find_edge("A_C"));
+
+  // The nightly refit: A -> C turned slow and unreliable.
+  std::vector<Traversal> log = attempts("A_C", 40, 300.0, 2);
+  const std::uint64_t v = view->version();
+  view->set(fit(specs, log));
+  EXPECT_NE(view->version(), v);
+  const double after = oracle.expected_seconds(0, 2, t);
+  EXPECT_GT(after, before * 10);
+  EXPECT_EQ(oracle.cached_policy_count(), 1u);  // the old policy is gone, the new one cached
+  view->set(nullptr);
+  EXPECT_DOUBLE_EQ(oracle.expected_seconds(0, 2, t), ExactSolver{}
+                                                         .solve(Mdp::build(m, DistancePrior(m), t), 2)
+                                                         .value()
+                                                         .policy.expected_seconds(0));
+}
+
+}  // namespace
+}  // namespace rondo::plan
