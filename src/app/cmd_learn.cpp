@@ -49,12 +49,9 @@ void print_summary(const LearnArgs& args, const learn::EdgeModels& models, std::
   for (std::size_t e = 0; e < models.size(); ++e)
     if (models.has_own_model(e)) ++own;
   if (args.json) {
-    ctx.out << Json{{"edges", models.size()},
-                    {"edges_with_own_model", own},
-                    {"traversals", traversals},
-                    {"traversals_of_unknown_edges", unmatched},
-                    {"time_zone", args.zone},
-                    {"output", args.output}}
+    ctx.out << Json{{"edges", models.size()},   {"edges_with_own_model", own},
+                    {"traversals", traversals}, {"traversals_of_unknown_edges", unmatched},
+                    {"time_zone", args.zone},   {"output", args.output}}
                    .dump(2)
             << '\n';
     return;
@@ -93,8 +90,7 @@ void add_learn_commands(CLI::App& root, CommandContext& ctx) {
   learn->add_option("--db", args->db, "The SQLite database file")->required();
   learn->add_option("--map", args->map,
                     "The map whose edges to model (with distance priors); default: the edges the log names");
-  learn->add_option("--zone", args->zone, "IANA time zone of the deployment (time-of-day bins)")
-      ->capture_default_str();
+  learn->add_option("--zone", args->zone, "IANA time zone of the deployment (time-of-day bins)")->capture_default_str();
   learn->add_option("-o,--output", args->output, "Where to write the models (JSON)")->required();
   learn->add_flag("--json", args->json, "Print the summary as JSON");
   learn->callback([args, &ctx] { run_learn(*args, ctx); });

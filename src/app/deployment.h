@@ -14,7 +14,7 @@
 //   requests: requests.yaml        # optional: people's on-demand requests
 //   executor: {navigation_overrun: 2.0, navigation_slack: 60s, action_overrun: 1.5,
 //              action_slack: 30s, dock_when_waiting_over: 15m, refit_at: "02:00",
-//              slot_width: 15m, scheduler_polls: 200000}
+//              slot_width: 15m, scheduler_polls: 20000}
 #pragma once
 
 #include <chrono>

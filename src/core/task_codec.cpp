@@ -21,6 +21,8 @@ Result<std::string> optional_string(const Field& f, std::string_view key, std::s
   return v->as_string();
 }
 
+}  // namespace
+
 // An action is a name, or {name, args: {key: scalar}}.
 Result<Action> decode_action(const Field& f) {
   if (f.is_string()) {
@@ -46,6 +48,8 @@ Result<Action> decode_action(const Field& f) {
   }
   return a;
 }
+
+namespace {
 
 Result<Delivery> decode_delivery(const Field& f) {
   RONDO_RETURN_IF_ERROR(f.expect_keys({"job", "role", "object", "appearance", "load"}));

@@ -1,13 +1,10 @@
-// The executor running tasks: what to do next, waiting, navigating along the policy edge by edge,
-// running actions, the two monitors and preemption.
+// The executor running tasks: what to do next, waiting, running actions, the two monitors and
+// preemption (navigation is in executor_navigation.cpp).
 #include <fmt/format.h>
 
 #include <algorithm>
 
-#include "rondo/core/task_codec.h"
 #include "rondo/exec/executor.h"
-#include "rondo/store/task_table.h"
-#include "rondo/store/traversal_log.h"
 
 namespace rondo::exec {
 namespace {
@@ -151,92 +148,6 @@ void Executor::start_task(const TaskId& id) {
   begin_navigation(target, expected);
 }
 
-void Executor::begin_navigation(map::NodeIndex target, Duration expected) {
-  phase_ = current_ ? Phase::kNavigating : Phase::kDocking;
-  nav_target_ = target;
-  nav_start_ = clock_.now();
-  nav_expected_ = expected;
-  failed_edges_ = 0;
-  if (current_) {
-    const Duration limit = std::chrono::duration_cast<Duration>(expected * options_.navigation_overrun) +
-                           options_.navigation_slack;
-    const std::string reason = fmt::format("navigation overrun: still travelling after {}, the limit is {} x the "
-                                           "expected {} + {}",
-                                           minutes_text(limit), options_.navigation_overrun, minutes_text(expected),
-                                           minutes_text(options_.navigation_slack));
-    nav_monitor_ = clock_.schedule_at(nav_start_ + limit, [this, reason] {
-      nav_monitor_ = 0;
-      monitor_fired(CancelIntent::kNavigationOverrun, reason);
-    });
-  }
-  step_navigation();
-}
-
-void Executor::step_navigation() {
-  const map::NodeIndex here = robot_.location();
-  if (here == nav_target_) {
-    arrived();
-    return;
-  }
-  const bool task = phase_ == Phase::kNavigating;
-  if (failed_edges_ >= options_.max_failed_edges) {
-    const std::string reason = fmt::format("navigation gave up: {} failed edge attempts near {}",
-                                           failed_edges_, map_.node(here).name);
-    if (task) {
-      finish_task(TaskState::kFailed, reason);
-    } else {
-      phase_ = Phase::kIdle;
-      wait_timer_ = clock_.schedule_after(options_.slot_width, [this] { kick(); });
-    }
-    return;
-  }
-  const plan::Policy& policy = planner_->policy(nav_target_, clock_.now());
-  const std::optional<map::EdgeIndex> edge = policy.next_edge(here);
-  if (!edge) {
-    const std::string reason = fmt::format("no route: from {} to {} at {}", map_.node(here).name,
-                                           map_.node(nav_target_).name, fmt_time(clock_.now()));
-    if (task) {
-      finish_task(TaskState::kFailed, reason);
-    } else {
-      phase_ = Phase::kIdle;
-      wait_timer_ = clock_.schedule_after(options_.slot_width, [this] { kick(); });
-    }
-    return;
-  }
-  robot_.traverse(*edge);
-}
-
-void Executor::on_edge_finished(const EdgeAttempt& a) {
-  const map::Edge& edge = map_.edge(a.edge);
-  const Traversal t{.edge_id = edge.id, .from = edge.from, .to = edge.to, .start = a.start, .duration = a.duration,
-                    .success = a.success};
-  if (auto ok = store::add_traversal(store_, t); !ok) write_errors_.push_back(ok.error().message);
-  ++stats_.navigation_attempts;
-  if (a.success) ++stats_.navigation_successes;
-  stats_.travelling += a.duration;
-  if (a.cancelled) {
-    handle_cancelled();
-    return;
-  }
-  if (phase_ != Phase::kNavigating && phase_ != Phase::kDocking) return;
-  if (!a.success) ++failed_edges_;
-  step_navigation();
-}
-
-void Executor::arrived() {
-  if (nav_monitor_ != 0) clock_.cancel(nav_monitor_);
-  nav_monitor_ = 0;
-  if (phase_ == Phase::kDocking) {
-    phase_ = Phase::kIdle;
-    next();
-    return;
-  }
-  navigations_.push_back({.task = *current_, .start = nav_start_, .expected = nav_expected_,
-                          .actual = clock_.now() - nav_start_, .arrived = true});
-  overrun_pending_.reset();  // a navigation overrun noted while not interruptible is moot now
-  start_actions();
-}
-
 void Executor::start_actions() {
   const TaskId& id = *current_;
   const Task& task = tasks_.at(id).task;
@@ -247,16 +158,8 @@ void Executor::start_actions() {
   transition(id, TaskState::kActing,
              fmt::format("arrived at {} after {} (expected {}); expected processing {}", map_.node(nav_target_).name,
                          minutes_text(now - nav_start_), minutes_text(nav_expected_), minutes_text(task.duration)));
-  const Duration limit =
-      std::chrono::duration_cast<Duration>(task.duration * options_.action_overrun) + options_.action_slack;
-  const std::string reason =
-      fmt::format("action overrun: still acting after {}, the limit is {} x the processing time {} + {}",
-                  minutes_text(limit), options_.action_overrun, minutes_text(task.duration),
-                  minutes_text(options_.action_slack));
-  action_monitor_ = clock_.schedule_at(now + limit, [this, reason] {
-    action_monitor_ = 0;
-    monitor_fired(CancelIntent::kActionOverrun, reason);
-  });
+  action_monitor_ = arm_monitor(CancelIntent::kActionOverrun, "action overrun: still acting", "the processing time",
+                                task.duration, options_.action_overrun, options_.action_slack);
   run_next_action();
 }
 
@@ -303,6 +206,18 @@ void Executor::on_interruptible_changed(bool interruptible) {
   if (!on_demand_.empty() && tasks_.at(*current_).task.kind == TaskKind::kStandard &&
       (phase_ == Phase::kNavigating || phase_ == Phase::kActing))
     preempt_for(fmt::format("preempted by an on-demand task: {}", on_demand_.front()), {});
+}
+
+TimerId Executor::arm_monitor(CancelIntent why, const char* what, const char* of, Duration expected, double factor,
+                              Duration slack) {
+  const Duration limit = std::chrono::duration_cast<Duration>(expected * factor) + slack;
+  const std::string reason = fmt::format("{} after {}, the limit is {} x {} {} + {}", what, minutes_text(limit),
+                                         factor, of, minutes_text(expected), minutes_text(slack));
+  TimerId* slot = why == CancelIntent::kNavigationOverrun ? &nav_monitor_ : &action_monitor_;
+  return clock_.schedule_after(limit, [this, why, reason, slot] {
+    *slot = 0;
+    monitor_fired(why, reason);
+  });
 }
 
 void Executor::monitor_fired(CancelIntent why, const std::string& reason) {
@@ -393,15 +308,6 @@ void Executor::finish_task(TaskState state, const std::string& reason) {
   overrun_pending_.reset();
   if (state == TaskState::kFailed) reschedule({}, "task " + id + " failed");
   next();
-}
-
-void Executor::go_to_dock() {
-  const map::NodeIndex here = robot_.location();
-  if (here == options_.dock) {
-    phase_ = Phase::kIdle;
-    return;
-  }
-  begin_navigation(options_.dock, travel_->travel(here, options_.dock, clock_.now()));
 }
 
 void Executor::clear_timers() {

@@ -19,8 +19,8 @@ std::vector<BinarySample> presence_at_node(const std::vector<Traversal>& log, st
   return out;
 }
 
-std::vector<BinarySample> arrivals_in_slot(const std::vector<Traversal>& log, std::string_view node, Time from,
-                                           Time to, Duration step) {
+std::vector<BinarySample> arrivals_in_slot(const std::vector<Traversal>& log, std::string_view node, Time from, Time to,
+                                           Duration step) {
   std::vector<BinarySample> out;
   if (step <= Duration::zero()) return out;
   std::size_t next = 0;  // the first traversal that starts at or after the current slot

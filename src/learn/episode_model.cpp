@@ -240,7 +240,9 @@ std::vector<EpisodeStats> collect(const std::vector<std::vector<Attempt>>& edges
 std::shared_ptr<EpisodePriors> pooled_priors(const EpisodeOptions& options, const PooledSums& sums) {
   auto priors = std::make_shared<EpisodePriors>();
   priors->options = options;
-  priors->first_success = sums.first_attempts > 0 ? sums.first_successes / sums.first_attempts : 0.5;
+  // With no attempt at all, assume what the map's distance prior assumes (plan::DistancePrior):
+  // edges can be crossed. Every model family then agrees when it has seen nothing.
+  priors->first_success = sums.first_attempts > 0 ? sums.first_successes / sums.first_attempts : 1.0;
   priors->log_retry_length = sums.failed_episodes > 0 ? sums.log_length_sum / sums.failed_episodes : 0.0;
   priors->state_successes = sums.state_successes;
   priors->state_attempts = sums.state_attempts;
@@ -275,8 +277,8 @@ EpisodeEdgeModel::DurationTables duration_tables(const std::vector<Attempt>& att
   EpisodeEdgeModel::DurationTables out;
   for (std::size_t outcome = 0; outcome < 2; ++outcome) {
     const double we = weight(edge[outcome]);
-    const auto edge_table =
-        QuantileTable::blend(QuantileTable::from_samples(edge[outcome]), QuantileTable::from_samples(pooled[outcome]), we);
+    const auto edge_table = QuantileTable::blend(QuantileTable::from_samples(edge[outcome]),
+                                                 QuantileTable::from_samples(pooled[outcome]), we);
     const double edge_mean = we * mean_of(edge[outcome]) + (1 - we) * mean_of(pooled[outcome]);
     auto& tables = outcome == 1 ? out.success : out.failure;
     auto& means = outcome == 1 ? out.success_mean : out.failure_mean;

@@ -41,8 +41,8 @@ std::vector<SlotSample> weighted_attempts(const std::vector<Attempt>& attempts, 
     with_retries += retries[e] > 0 ? 1 : 0;
   }
   // The same shrunk geometric mean as EpisodeEdgeModel::retry_length.
-  const double length = std::max(
-      1.0, std::exp((log_length_sum + o.length_prior * priors.log_retry_length) / (failed + o.length_prior)));
+  const double length =
+      std::max(1.0, std::exp((log_length_sum + o.length_prior * priors.log_retry_length) / (failed + o.length_prior)));
   const double retry_mass = with_retries > 0 ? failed * (length - 1) / with_retries : 0.0;
   const double half_life_s = to_seconds(o.duration_half_life);
   std::vector<SlotSample> out;

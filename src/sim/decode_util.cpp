@@ -1,5 +1,7 @@
 #include "decode_util.h"
 
+#include "rondo/core/task_codec.h"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -115,30 +117,6 @@ Result<std::vector<TimeCondition>> time_conditions(const Field& f, const TimeZon
   return out;
 }
 
-Result<Action> action(const Field& f) {
-  if (f.is_string()) {
-    RONDO_ASSIGN_OR_RETURN(auto name, f.as_string());
-    if (name.empty()) return f.error("an action needs a name");
-    return Action{name, {}};
-  }
-  RONDO_RETURN_IF_ERROR(f.expect_keys({"name", "args"}));
-  Action a;
-  RONDO_ASSIGN_OR_RETURN(auto name, f.required("name"));
-  RONDO_ASSIGN_OR_RETURN(a.name, name.as_string());
-  if (a.name.empty()) return name.error("an action needs a name");
-  if (auto args = f.optional("args")) {
-    RONDO_ASSIGN_OR_RETURN(auto members, args->members());
-    for (const auto& [key, value] : members) {
-      if (value.is_string()) {
-        a.args[key] = value.json().get<std::string>();
-      } else if (value.json().is_number() || value.json().is_boolean()) {
-        a.args[key] = value.json().dump();
-      } else {
-        return value.error("an action argument must be text, a number or true/false");
-      }
-    }
-  }
-  return a;
-}
+Result<Action> action(const Field& f) { return decode_action(f); }
 
 }  // namespace rondo::sim::detail

@@ -90,7 +90,6 @@ TEST(EpisodeModel, NonsenseBinCountsAreClampedNotFatal) {
   EXPECT_LE(p, 1.0);
 }
 
-
 // 50 episodes of one 20 s success; 10 failed episodes of a 5 s failure and one 5 s retry; and one
 // failed episode of a 5 s failure followed by a storm of 500 retries of 0.5 s.
 std::vector<Attempt> storm_edge() {

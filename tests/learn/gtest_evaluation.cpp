@@ -96,7 +96,6 @@ TEST(EvaluateEdges, WithamWharfDefaultSplit) {
   EXPECT_EQ(j["test_attempts"], 9009);
 }
 
-
 // A validation split inside the training period: nothing at or after `until` is read.
 TEST(EvaluateEdges, UntilKeepsTheEvaluationInsideAPeriod) {
   auto log = read_witham_logs(testing::kWithamDir);
@@ -123,7 +122,6 @@ TEST(EvaluateEdges, UntilKeepsTheEvaluationInsideAPeriod) {
   EXPECT_EQ(result->test_attempts, test);
   EXPECT_GT(test, 0);
 }
-
 
 // Derived series: the robot's position from a small hand-made log.
 TEST(DerivedSeries, PresenceAndArrivalsFollowTheLog) {

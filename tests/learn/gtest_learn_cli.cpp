@@ -86,7 +86,6 @@ TEST(LearnCommand, FitsWhatTheLogImported) {
   std::filesystem::remove_all(dir);
 }
 
-
 // Imports the Witham Wharf log into a fresh database in `dir`; the database path.
 std::string witham_db(const std::filesystem::path& dir) {
   std::filesystem::remove_all(dir);
@@ -124,8 +123,8 @@ TEST(LearnCommand, MapEdgesWithoutDataGetThePriorModel) {
   const auto db = witham_db(dir);
   const auto models = (dir / "models.json").string();
   // A map of another building: no edge id matches the log.
-  auto learned = run_cli(
-      {"learn", "--db", db, "--map", RONDO_SOURCE_DIR "/tests/data/maps/small.yaml", "-o", models, "--json"});
+  auto learned =
+      run_cli({"learn", "--db", db, "--map", RONDO_SOURCE_DIR "/tests/data/maps/small.yaml", "-o", models, "--json"});
   ASSERT_EQ(learned.exit_code, 0) << learned.err;
   const Json summary = Json::parse(learned.out);
   EXPECT_EQ(summary["edges_with_own_model"], 0);

@@ -131,7 +131,6 @@ RC_GTEST_PROP(LearnProperties, FittingIsDeterministic, ()) {
   RC_ASSERT((*EdgeModels::fit(edges, log))->to_json() == (*EdgeModels::fit(edges, log))->to_json());
 }
 
-
 // The slow obvious form of QuantileTable::from_weighted_samples: every sample's share centre, and
 // for each level a linear search for the centres around it.
 std::vector<double> reference_weighted_quantiles(std::vector<QuantileTable::WeightedValue> samples) {

@@ -30,6 +30,8 @@ struct TaskFile {
 // Times without an explicit zone are read in `zone`; with no zone they are an error.
 Result<Task> decode_task(const Field& field, const TimeZone* zone);
 Result<Routine> decode_routine(const Field& field);
+// An action: a name, or {name, args: {key: text | number | bool}}.
+Result<Action> decode_action(const Field& field);
 Result<TaskFile> decode_task_file(const Document& doc);
 Result<TaskFile> load_task_file(const std::filesystem::path& file);
 Result<TaskFile> parse_task_file(std::string_view text, DocumentFormat format, std::string source);

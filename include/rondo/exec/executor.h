@@ -63,7 +63,7 @@ struct ExecutorOptions {
   std::optional<Duration> refit_at = hours(2);    // local time of day; nothing = never refit
   int duration_bins = 24;                // time-of-day bins of the refitted travel-time models
   Duration slot_width = minutes(15);     // travel-time slots of the planner
-  std::int64_t scheduler_polls = 200'000;  // deterministic budget of each scheduler call
+  std::int64_t scheduler_polls = 20'000;  // deterministic budget of each scheduler call (docs/scheduling.md)
   std::uint64_t seed = 1;                // ties in dropping
 };
 
@@ -160,6 +160,9 @@ class Executor final : public RobotListener {
   void start_actions();
   void run_next_action();
   void finish_task(TaskState state, const std::string& reason);
+  // Starts the navigation or action monitor: it fires past factor x expected + slack.
+  TimerId arm_monitor(CancelIntent why, const char* what, const char* of, Duration expected, double factor,
+                      Duration slack);
   void monitor_fired(CancelIntent why, const std::string& reason);
   void handle_cancelled();
   void go_to_dock();

@@ -23,8 +23,8 @@ std::vector<BinarySample> presence_at_node(const std::vector<Traversal>& log, st
 // Sampled every `step` in [from, to), at the start of each slot [t, t + step): true when a
 // successful traversal into `node` starts in the slot (the robot went there in that hour). `log`
 // in start order; `step` > 0.
-std::vector<BinarySample> arrivals_in_slot(const std::vector<Traversal>& log, std::string_view node, Time from,
-                                           Time to, Duration step);
+std::vector<BinarySample> arrivals_in_slot(const std::vector<Traversal>& log, std::string_view node, Time from, Time to,
+                                           Duration step);
 
 // The outcome of every attempt on one edge, at its start time.
 std::vector<BinarySample> edge_outcomes(const std::vector<Traversal>& log, std::string_view edge_id);

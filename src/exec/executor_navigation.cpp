@@ -1,0 +1,98 @@
+// The executor navigating: following the MDP policy edge by edge to a task's start or the dock,
+// re-planning after every edge, logging every attempt to the traversal log.
+#include <fmt/format.h>
+
+#include "rondo/exec/executor.h"
+#include "rondo/store/traversal_log.h"
+
+namespace rondo::exec {
+
+void Executor::begin_navigation(map::NodeIndex target, Duration expected) {
+  phase_ = current_ ? Phase::kNavigating : Phase::kDocking;
+  nav_target_ = target;
+  nav_start_ = clock_.now();
+  nav_expected_ = expected;
+  failed_edges_ = 0;
+  if (current_) {
+    nav_monitor_ = arm_monitor(CancelIntent::kNavigationOverrun, "navigation overrun: still travelling",
+                               "the expected travel time", expected, options_.navigation_overrun,
+                               options_.navigation_slack);
+  }
+  step_navigation();
+}
+
+void Executor::step_navigation() {
+  const map::NodeIndex here = robot_.location();
+  if (here == nav_target_) {
+    arrived();
+    return;
+  }
+  const bool task = phase_ == Phase::kNavigating;
+  if (failed_edges_ >= options_.max_failed_edges) {
+    const std::string reason = fmt::format("navigation gave up: {} failed edge attempts near {}",
+                                           failed_edges_, map_.node(here).name);
+    if (task) {
+      finish_task(TaskState::kFailed, reason);
+    } else {
+      phase_ = Phase::kIdle;
+      wait_timer_ = clock_.schedule_after(options_.slot_width, [this] { kick(); });
+    }
+    return;
+  }
+  const plan::Policy& policy = planner_->policy(nav_target_, clock_.now());
+  const std::optional<map::EdgeIndex> edge = policy.next_edge(here);
+  if (!edge) {
+    const std::string reason = fmt::format("no route: from {} to {} at {}", map_.node(here).name,
+                                           map_.node(nav_target_).name, fmt_time(clock_.now()));
+    if (task) {
+      finish_task(TaskState::kFailed, reason);
+    } else {
+      phase_ = Phase::kIdle;
+      wait_timer_ = clock_.schedule_after(options_.slot_width, [this] { kick(); });
+    }
+    return;
+  }
+  robot_.traverse(*edge);
+}
+
+void Executor::on_edge_finished(const EdgeAttempt& a) {
+  const map::Edge& edge = map_.edge(a.edge);
+  const Traversal t{.edge_id = edge.id, .from = edge.from, .to = edge.to, .start = a.start, .duration = a.duration,
+                    .success = a.success};
+  if (auto ok = store::add_traversal(store_, t); !ok) write_errors_.push_back(ok.error().message);
+  ++stats_.navigation_attempts;
+  if (a.success) ++stats_.navigation_successes;
+  stats_.travelling += a.duration;
+  if (a.cancelled) {
+    handle_cancelled();
+    return;
+  }
+  if (phase_ != Phase::kNavigating && phase_ != Phase::kDocking) return;
+  if (!a.success) ++failed_edges_;
+  step_navigation();
+}
+
+void Executor::arrived() {
+  if (nav_monitor_ != 0) clock_.cancel(nav_monitor_);
+  nav_monitor_ = 0;
+  if (phase_ == Phase::kDocking) {
+    phase_ = Phase::kIdle;
+    next();
+    return;
+  }
+  navigations_.push_back({.task = *current_, .start = nav_start_, .expected = nav_expected_,
+                          .actual = clock_.now() - nav_start_, .arrived = true});
+  overrun_pending_.reset();  // a navigation overrun noted while not interruptible is moot now
+  start_actions();
+}
+
+void Executor::go_to_dock() {
+  const map::NodeIndex here = robot_.location();
+  if (here == options_.dock) {
+    phase_ = Phase::kIdle;
+    return;
+  }
+  begin_navigation(options_.dock, travel_->travel(here, options_.dock, clock_.now()));
+}
+
+}  // namespace rondo::exec

@@ -1,0 +1,91 @@
+// Properties of the scheduler's travel over the planner (exec::MapTravel): FIFO, the lower bound,
+// agreement with the planner at slot starts, and cache invalidation when the models change.
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "rondo/exec/map_travel.h"
+#include "rondo/plan/edge_model_view.h"
+#include "rondo/plan/travel_oracle.h"
+#include "scenario.h"
+
+namespace rondo::exec::testing {
+namespace {
+
+const Time kMonday = from_unix_seconds(1'795'392'000);  // 2026-11-23T00:00Z
+
+// Edge outcomes that change with the time of day (a daily rhythm, so weekly periodic too): each
+// edge has its own phase, amplitude and success probability.
+std::shared_ptr<plan::FunctionEdgeModels> rhythmic_models(std::vector<double> phase, double amplitude, double p) {
+  return std::make_shared<plan::FunctionEdgeModels>([=](map::EdgeIndex e, Time t) {
+    const double hour = std::fmod(to_seconds(t.time_since_epoch()) / 3600.0, 24.0);
+    const double wave = 1.0 + amplitude * (1.0 + std::sin((hour + phase[e % phase.size()]) * M_PI / 12.0));
+    return plan::EdgeOutcome{p, 20.0 * wave};
+  });
+}
+
+RC_GTEST_PROP(MapTravel, IsFifoAndAboveItsLowerBound, ()) {
+  const map::TopoMap map = scenario_map();
+  const auto phase = *rc::gen::container<std::vector<double>>(map.edge_count(), rc::gen::inRange(0, 24));
+  const double amplitude = *rc::gen::inRange(0, 40) / 10.0;
+  const double p = *rc::gen::inRange(30, 101) / 100.0;
+  auto models = rhythmic_models(phase, amplitude, p);
+  plan::TravelOracle planner(map, models, {.slot_width = minutes(15)});
+  TravelCache cache(map, models, planner, minutes(15));
+  MapTravel travel(cache, {0, 1, 2, 3, 4});
+  const auto a = *rc::gen::inRange<std::size_t>(0, 5);
+  const auto b = *rc::gen::inRange<std::size_t>(0, 5);
+  const Time t1 = kMonday + seconds(*rc::gen::inRange(0, 7 * 86400));
+  const Time t2 = t1 + seconds(*rc::gen::inRange(0, 4 * 3600));
+  const Duration d1 = travel.travel(a, b, t1), d2 = travel.travel(a, b, t2);
+  RC_ASSERT(t1 + d1 <= t2 + d2 + Duration{1});  // FIFO (1 ms of rounding)
+  RC_ASSERT(travel.lower_bound(a, b) <= d1);
+  RC_ASSERT(travel.lower_bound(a, b) <= d2);
+  RC_ASSERT(d1 >= Duration{0});
+}
+
+TEST(MapTravel, EqualsThePlannerAtSlotStartsAndInterpolatesBetween) {
+  const map::TopoMap map = scenario_map();
+  auto models = rhythmic_models({0, 3, 6, 9, 12, 15, 18, 21}, 1.5, 0.8);
+  plan::TravelOracle planner(map, models, {.slot_width = minutes(15)});
+  TravelCache cache(map, models, planner, minutes(15));
+  const map::NodeIndex dock = *map.find_node("Dock"), office = *map.find_node("Office");
+  MapTravel travel(cache, {dock, office});
+  const Time s0 = kMonday + hours(9), s1 = s0 + minutes(15);
+  const double e0 = planner.expected_seconds(dock, office, s0), e1 = planner.expected_seconds(dock, office, s1);
+  EXPECT_NEAR(to_seconds(travel.travel(0, 1, s0)), e0, 0.001);
+  EXPECT_NEAR(to_seconds(travel.travel(0, 1, s1)), e1, 0.001);
+  EXPECT_NEAR(to_seconds(travel.travel(0, 1, s0 + minutes(5))), e0 + (e1 - e0) / 3.0, 0.002);
+  EXPECT_EQ(travel.travel(0, 0, s0), Duration{0});
+}
+
+TEST(MapTravel, NewModelsEmptyTheCache) {
+  const map::TopoMap map = scenario_map();
+  auto models = std::make_shared<plan::FunctionEdgeModels>(
+      [](map::EdgeIndex, Time) { return plan::EdgeOutcome{1.0, 10.0}; });
+  plan::TravelOracle planner(map, models, {.slot_width = minutes(15)});
+  TravelCache cache(map, models, planner, minutes(15));
+  MapTravel travel(cache, {*map.find_node("Dock"), *map.find_node("Office")});
+  EXPECT_EQ(travel.travel(0, 1, kMonday), seconds(20));
+  EXPECT_EQ(travel.lower_bound(0, 1), seconds(20));
+  models->set([](map::EdgeIndex, Time) { return plan::EdgeOutcome{0.5, 10.0}; });
+  EXPECT_EQ(travel.travel(0, 1, kMonday), seconds(40));
+  EXPECT_EQ(travel.lower_bound(0, 1), seconds(40));
+}
+
+TEST(MapTravel, AnUnreachableNodeIsKUnreachable) {
+  const map::TopoMap map = scenario_map();
+  auto models = std::make_shared<plan::FunctionEdgeModels>([&](map::EdgeIndex e, Time) {
+    return plan::EdgeOutcome{map.edge(e).to == "Lab" ? 0.0 : 1.0, 10.0};
+  });
+  plan::TravelOracle planner(map, models, {.slot_width = minutes(15)});
+  TravelCache cache(map, models, planner, minutes(15));
+  MapTravel travel(cache, {*map.find_node("Dock"), *map.find_node("Lab")});
+  EXPECT_EQ(travel.travel(0, 1, kMonday), kUnreachable);
+  EXPECT_EQ(travel.lower_bound(0, 1), kUnreachable);
+}
+
+}  // namespace
+}  // namespace rondo::exec::testing
