@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <functional>
 #include <ostream>
 
 #include "rondo/core/task_codec.h"
@@ -94,6 +95,21 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   if (!s.plan.tasks.empty()) RONDO_RETURN_IF_ERROR(executor.add_tasks(s.plan.tasks, "deployment"));
   executor.start();
 
+  // Spans on the charger for the day pictures, sampled once a minute (reads only: the run is the
+  // same with or without it).
+  std::vector<std::pair<Time, Time>> charging;
+  std::optional<Time> charging_since;
+  std::function<void()> sample_charger = [&] {
+    const bool on = robot.charging();
+    if (on && !charging_since) charging_since = clock.now();
+    if (!on && charging_since) {
+      charging.emplace_back(*charging_since, clock.now());
+      charging_since.reset();
+    }
+    clock.schedule_after(minutes(1), sample_charger);
+  };
+  clock.schedule_at(start, sample_charger);
+
   sim::Rng people_rng(d.seed * 0x9E3779B97F4A7C15ULL + 17);
   const auto run_until = [&](Time t) {
     if (request.realtime)
@@ -114,8 +130,11 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
     }
     run_until(day_to);
     const std::string date = date_text(today);
-    const DayPicture picture =
+    DayPicture picture =
         day_picture(executor, fmt::format("{} — {} (day {})", d.name, date, day + 1), day_from, day_to, d.zone);
+    for (const auto& [a, b] : charging)
+      if (b > day_from && a < day_to) picture.charging.emplace_back(a, b);
+    if (charging_since) picture.charging.emplace_back(*charging_since, day_to);
     RONDO_RETURN_IF_ERROR(write_file(request.out / "days" / (date + ".svg"), render_day_svg(picture)));
     if (request.progress) draw_progress(progress_to, day + 1, d.days);
     today = tomorrow;
