@@ -16,6 +16,7 @@
 
 #include <fmt/format.h>
 
+#include "bench_clock.h"
 #include "rondo/schedule/checker.h"
 #include "rondo/schedule/default_scheduler.h"
 #include "schedule/robot_day.h"
@@ -23,20 +24,11 @@
 
 namespace {
 
+using rondo::bench::load_average;
+using rondo::bench::steady_seconds;
+
 using namespace rondo;
 using namespace rondo::schedule;
-
-double steady_seconds() {
-  using namespace std::chrono;
-  return duration<double>(steady_clock::now().time_since_epoch()).count();
-}
-
-std::string load_average() {
-  std::ifstream f("/proc/loadavg");
-  std::string a, b, c;
-  f >> a >> b >> c;
-  return a + " " + b + " " + c;
-}
 
 bool complete(const Schedule& s) { return s.status == SolveStatus::kOptimal || s.status == SolveStatus::kFeasible; }
 

@@ -7,17 +7,13 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "bench_clock.h"
 #include "rondo/core/document.h"
 #include "rondo/schedule/checker.h"
 #include "rondo/schedule/default_scheduler.h"
 #include "rondo/schedule/tsptw.h"
 
-namespace {
-double steady_seconds() {
-  using namespace std::chrono;
-  return duration<double>(steady_clock::now().time_since_epoch()).count();
-}
-}  // namespace
+using rondo::bench::steady_seconds;
 
 int main(int argc, char** argv) {
   using namespace rondo::schedule;

@@ -22,6 +22,7 @@
 
 #include <fmt/format.h>
 
+#include "bench_clock.h"
 #include "rondo/schedule/checker.h"
 #include "rondo/schedule/default_scheduler.h"
 #include "rondo/schedule/mip_scheduler.h"
@@ -30,20 +31,11 @@
 
 namespace {
 
+using rondo::bench::load_average;
+using rondo::bench::steady_seconds;
+
 using namespace rondo;
 using namespace rondo::schedule;
-
-double steady_seconds() {
-  using namespace std::chrono;
-  return duration<double>(steady_clock::now().time_since_epoch()).count();
-}
-
-std::string load_average() {
-  std::ifstream f("/proc/loadavg");
-  std::string a, b, c;
-  f >> a >> b >> c;
-  return a + " " + b + " " + c;
-}
 
 using bench::MapTravel;
 

@@ -2,8 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <charconv>
-
 #include "rondo/core/document.h"
 
 namespace rondo::app {
@@ -11,16 +9,9 @@ namespace {
 
 Result<Duration> time_of_day(const Field& f) {
   RONDO_ASSIGN_OR_RETURN(const std::string text, f.as_string());
-  int h = -1, m = -1;
-  const char* p = text.data();
-  const char* end = text.data() + text.size();
-  auto r1 = std::from_chars(p, end, h);
-  if (r1.ec == std::errc{} && r1.ptr != end && *r1.ptr == ':') {
-    auto r2 = std::from_chars(r1.ptr + 1, end, m);
-    if (r2.ec == std::errc{} && r2.ptr == end && r2.ptr - r1.ptr == 3 && h >= 0 && h < 24 && m >= 0 && m < 60)
-      return Duration{hours(h) + minutes(m)};
-  }
-  return f.error(fmt::format("'{}' is not a time of day hh:mm", text));
+  auto t = parse_time_of_day(text);
+  if (!t || *t >= hours(24)) return f.error(fmt::format("'{}' is not a time of day hh:mm", text));
+  return *t;
 }
 
 Result<std::filesystem::path> path_field(const Field& f, const std::filesystem::path& base) {

@@ -133,3 +133,9 @@ Result<Duration> parse_time_of_day(std::string_view text) {
 }
 
 }  // namespace rondo::detail
+
+namespace rondo {
+
+Result<Duration> parse_time_of_day(std::string_view text) { return detail::parse_time_of_day(text); }
+
+}  // namespace rondo

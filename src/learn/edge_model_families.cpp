@@ -155,11 +155,7 @@ class EpisodeSet final : public FamilyEdgeModels {
     return online_ ? live_.success_probability(i, t) : models_->success_probability(i, t);
   }
   double expected_seconds(std::size_t i, Time t) const override {
-    const double s = online_ ? live_.expected_seconds(i, t) : models_->expected_seconds(i, t);
-    // Fitted on no durations at all, EdgeModels' prior has no pooled ratio and answers 0 s; the
-    // edge's own distance prior is the better no-data answer.
-    if (!(s > 0) && !models_->has_own_model(i)) return std::max(0.0, models_->spec(i).prior_seconds);
-    return s;
+    return online_ ? live_.expected_seconds(i, t) : models_->expected_seconds(i, t);
   }
   bool observe(const Traversal& t) override { return live_.observe(t); }
 

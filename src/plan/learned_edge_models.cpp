@@ -42,10 +42,7 @@ void LearnedEdgeModels::set(std::shared_ptr<const learn::EdgeModels> models) {
 EdgeOutcome LearnedEdgeModels::outcome(map::EdgeIndex edge, Time at) const {
   const std::size_t i = index_.at(edge);
   if (i == kUnknown) return prior_.outcome(edge, at);
-  double seconds = models_->expected_seconds(i, at);
-  // A model set fitted without any duration answers 0 s for edges without data: use the prior.
-  if (!(seconds > 0) && !models_->has_own_model(i)) seconds = prior_.outcome(edge, at).expected_seconds;
-  return {.success_probability = models_->success_probability(i, at), .expected_seconds = seconds};
+  return {.success_probability = models_->success_probability(i, at), .expected_seconds = models_->expected_seconds(i, at)};
 }
 
 }  // namespace rondo::plan

@@ -42,6 +42,9 @@ std::string format_time(Time t);
 // Durations as people write them: "90" or "90s" (seconds), "2.5m", "1h30m", "1h 5m 3s", "250ms",
 // or clock form "01:30:00" / "05:00" (hours:minutes[:seconds]). Negative durations are rejected.
 Result<Duration> parse_duration(std::string_view text);
+
+// "hh:mm" or "hh:mm:ss" as a time since midnight; "24:00" is allowed as the end of a day.
+Result<Duration> parse_time_of_day(std::string_view text);
 // The shortest exact form: "1h30m", "45s", "1.5s", "0s".
 std::string format_duration(Duration d);
 // A time since midnight as a clock reading: "08:45", "24:00", "09:00:30".

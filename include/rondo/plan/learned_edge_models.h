@@ -12,8 +12,8 @@
 // set does not know (or every edge, while the set is null) answers with DistancePrior. A known
 // edge answers {success_probability(i, t), expected_seconds(i, t)} of the offline models: for an
 // edge with too little data of its own that is learn's prior model (pooled rate, prior time ×
-// pooled ratio), see edge_models.h; where that prior has no durations at all (a set fitted on an
-// empty log answers 0 s), τ comes from the distance prior. outcome() is const and pure for a given version(); set() is
+// pooled ratio; with no durations at all, the edge's prior time), see edge_models.h.
+// outcome() is const and pure for a given version(); set() is
 // not synchronised with it: call both from the thread that owns the oracle. The map is not kept.
 #pragma once
 
