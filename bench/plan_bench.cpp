@@ -1,11 +1,13 @@
 // Speed of the planner on two generated 1,000-place maps with daily-rhythm models: a floor grid
 // (building_map) and a corridor building (corridor_building_map: floors of long corridors with
-// rooms, like real deployment maps); prints tables of medians. Checks issue 4's targets: the exact
-// single-target policy under 1 ms; the exact solver at least 100× faster than value iteration at
-// 1e-6 in the same run; a 50 × 50 travel matrix for 96 quarter-hour slots under 1 s on one core.
+// rooms, like real deployment maps); then the corridor building again with the success rates a
+// real robot saw (each edge gets the attempt success rate of one of the 62 Witham Wharf edges,
+// read from the logs). Prints tables of medians. Checks issue 4's targets: the exact single-target
+// policy under 1 ms; the exact solver at least 100× faster than value iteration at 1e-6 in the
+// same run; a 50 × 50 travel matrix for 96 quarter-hour slots under 1 s on one core.
 //
 //   cmake -S . -B build -G Ninja -DRONDO_BUILD_BENCH=ON && cmake --build build --target bench_plan
-//   build/bench/bench_plan [repetitions]
+//   build/bench/bench_plan [repetitions] [WITHAM_DIR]   # default ../shared/data/witham_wharf
 //
 // Times are this thread's CPU time (the harness only; the library never reads a clock).
 #include <fmt/format.h>
@@ -14,11 +16,13 @@
 #include <cstdlib>
 #include <ctime>
 #include <functional>
+#include <map>
 #include <memory>
 #include <random>
 #include <vector>
 
 #include "plan/random_map.h"
+#include "rondo/core/traversal.h"
 #include "rondo/plan/exact_solver.h"
 #include "rondo/plan/travel_oracle.h"
 #include "rondo/plan/value_iteration.h"
@@ -57,10 +61,44 @@ void row(const std::string& what, double seconds, std::size_t samples) {
   fmt::print("{:<52} {:>14} {:>8}\n", what, value, samples);
 }
 
+// The attempt success rate of every edge log in `dir`, sorted; empty (with a message) when the
+// logs cannot be read.
+std::vector<double> witham_success_rates(const std::string& dir) {
+  auto logs = read_witham_logs(dir);
+  if (!logs) {
+    fmt::print("(no Witham Wharf rows: {})\n", logs.error().message);
+    return {};
+  }
+  std::map<std::string, std::pair<double, double>> by_edge;  // successes, attempts
+  for (const Traversal& t : *logs) {
+    auto& [successes, attempts] = by_edge[t.edge_id];
+    successes += t.success ? 1.0 : 0.0;
+    attempts += 1.0;
+  }
+  std::vector<double> rates;
+  for (const auto& [edge, counts] : by_edge) rates.push_back(counts.first / counts.second);
+  std::sort(rates.begin(), rates.end());
+  return rates;
+}
+
+// daily_models' τ, with p_e the Witham rate at a seeded-random rank (the same for both directions
+// of a connection would be more realistic still; independent draws are the simpler choice).
+FunctionEdgeModels witham_rate_models(const map::TopoMap& m, const std::vector<double>& rates) {
+  const FunctionEdgeModels daily = testing::daily_models(m);
+  std::mt19937_64 rng(5);
+  std::uniform_int_distribution<std::size_t> pick(0, rates.size() - 1);
+  std::vector<double> p;
+  for (std::size_t e = 0; e < m.edge_count(); ++e) p.push_back(rates[pick(rng)]);
+  return FunctionEdgeModels([daily, p](map::EdgeIndex e, Time t) {
+    EdgeOutcome o = daily.outcome(e, t);
+    o.success_probability = p[e];
+    return o;
+  });
+}
+
 // M_t construction, the exact solver and value iteration (Jacobi and Gauss-Seidel) at 1e-6 on
 // one map, all on the same M_t and targets.
-void solver_rows(const map::TopoMap& m, const std::string& label, int repetitions) {
-  const FunctionEdgeModels models = testing::daily_models(m);
+void solver_rows(const map::TopoMap& m, const EdgeModelView& models, const std::string& label, int repetitions) {
   const Time noon = *parse_time("2014-09-02T12:00:00Z");
   fmt::print("\nmap: {}: {} nodes, {} edges, hop diameter {}\n", label, m.node_count(), m.edge_count(),
              testing::hop_diameter(m));
@@ -105,11 +143,17 @@ void solver_rows(const map::TopoMap& m, const std::string& label, int repetition
 
 int main(int argc, char** argv) {
   const int repetitions = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
+  const std::string witham_dir = argc > 2 ? argv[2] : "../shared/data/witham_wharf";
   fmt::print("{:<52} {:>14} {:>8}\n", "measurement (thread CPU time)", "median", "samples");
-  solver_rows(testing::building_map({.rows = 25, .columns = 40, .seed = 1}), "floor grid (building_map 25 x 40)",
-              repetitions);
+  const map::TopoMap grid = testing::building_map({.rows = 25, .columns = 40, .seed = 1});
+  solver_rows(grid, testing::daily_models(grid), "floor grid (building_map 25 x 40), daily models", repetitions);
   const map::TopoMap m = testing::corridor_building_map({});
-  solver_rows(m, "corridor building (corridor_building_map)", repetitions);
+  solver_rows(m, testing::daily_models(m), "corridor building (corridor_building_map), daily models", repetitions);
+  if (const std::vector<double> rates = witham_success_rates(witham_dir); !rates.empty()) {
+    solver_rows(m, witham_rate_models(m, rates),
+                fmt::format("corridor building, p from the {} Witham Wharf edges' success rates", rates.size()),
+                repetitions);
+  }
 
   auto models = std::make_shared<FunctionEdgeModels>(testing::daily_models(m));
   const Time day = *parse_time("2014-09-02T00:00:00Z");

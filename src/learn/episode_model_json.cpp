@@ -42,6 +42,7 @@ Json EpisodePriors::to_json() const {
               {"duration_prior", o.duration_prior},
               {"day_resolutions", o.day_resolutions},
               {"duration_bins", o.duration_bins},
+              {"duration_mixture", o.duration_mixture},
               {"first_success", first_success},
               {"log_retry_length", log_retry_length},
               {"state_successes", array_json(state_successes)},
@@ -88,6 +89,11 @@ Result<EpisodePriors> EpisodePriors::from_json(const Json& j) {
       return Error::invalid("model: 'day_resolutions' must hold divisors of 24");
     }
     p.options.day_resolutions.push_back(static_cast<int>(r));
+  }
+  // Optional (files written before it existed used quantile averaging).
+  if (j.contains("duration_mixture")) {
+    if (!j["duration_mixture"].is_boolean()) return Error::invalid("model: 'duration_mixture' must be true or false");
+    p.options.duration_mixture = j["duration_mixture"].get<bool>();
   }
   p.options.retry_gap = from_seconds(retry_gap_s);
   p.options.duration_half_life = from_seconds(half_life_s);

@@ -1,6 +1,7 @@
 #include "offline_durations.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace rondo::learn {
@@ -65,26 +66,30 @@ std::vector<Sample> samples_of(const std::vector<SlotSample>& v) {
   return out;
 }
 
-// `table` of `samples` shrunk towards `prior` by the samples' effective count.
-QuantileTable shrunk(const std::vector<Sample>& samples, const QuantileTable& prior, double prior_strength) {
+// `samples` shrunk towards `prior` by their effective count n: n / (n + prior_strength) of the
+// samples' table, the rest of the prior's, as a quantile average or (`mixture`) a mixture.
+QuantileTable shrunk(const std::vector<Sample>& samples, const QuantileTable& prior, double prior_strength,
+                     bool mixture) {
   const double n = QuantileTable::effective_count(samples);
   if (n <= 0) return prior;
-  return QuantileTable::blend(QuantileTable::from_weighted_samples(samples), prior, n / (n + prior_strength));
+  const double weight = n / (n + prior_strength);
+  if (!mixture) return QuantileTable::blend(QuantileTable::from_weighted_samples(samples), prior, weight);
+  const std::array<QuantileTable, 2> tables{QuantileTable::from_weighted_samples(samples), prior};
+  const std::array<double, 2> weights{weight, 1 - weight};
+  return QuantileTable::mixture(tables, weights);
 }
 
-// The averaged shifted histograms of one edge: kDaySlots tables, each the knot-wise mean of the
-// tables of the bins (one per resolution and shift) that hold its slot.
+// The averaged shifted histograms of one edge: kDaySlots tables, each the equal-weight quantile
+// average (or mixture) of the tables of the bins (one per resolution and shift) that hold its slot.
 std::vector<QuantileTable> day_tables(const std::vector<SlotSample>& attempts, const QuantileTable& edge,
                                       const EpisodePriors& priors) {
   const auto& o = priors.options;
-  constexpr auto kKnots = static_cast<std::size_t>(QuantileTable::kKnots);
-  std::vector<double> sums(static_cast<std::size_t>(kDaySlots) * kKnots, 0.0);
-  int histograms = 0;
+  std::vector<std::vector<QuantileTable>> per_slot(static_cast<std::size_t>(kDaySlots));
   for (int bins : o.day_resolutions) {
     if (bins < 1 || 24 % bins != 0) continue;  // not on the 15-minute grid: ignored
     const int width = kDaySlots / bins;
     const int shifts = bins == 1 ? 1 : kHistogramShifts;
-    for (int shift = 0; shift < shifts; ++shift, ++histograms) {
+    for (int shift = 0; shift < shifts; ++shift) {
       const int offset = shift * width / kHistogramShifts;
       auto bin_of = [&](int slot) {
         return static_cast<std::size_t>(((slot - offset) % kDaySlots + kDaySlots) % kDaySlots / width);
@@ -92,20 +97,21 @@ std::vector<QuantileTable> day_tables(const std::vector<SlotSample>& attempts, c
       std::vector<std::vector<Sample>> members(static_cast<std::size_t>(bins));
       for (const auto& a : attempts) members[bin_of(a.slot)].push_back(a.sample);
       std::vector<QuantileTable> tables;
-      for (const auto& m : members) tables.push_back(shrunk(m, edge, o.duration_prior));
+      for (const auto& m : members) tables.push_back(shrunk(m, edge, o.duration_prior, o.duration_mixture));
       for (int slot = 0; slot < kDaySlots; ++slot) {
-        const auto& values = tables[bin_of(slot)].values();
-        double* sum = &sums[static_cast<std::size_t>(slot) * kKnots];
-        for (std::size_t k = 0; k < kKnots; ++k) sum[k] += values[k];
+        per_slot[static_cast<std::size_t>(slot)].push_back(tables[bin_of(slot)]);
       }
     }
   }
   std::vector<QuantileTable> out(static_cast<std::size_t>(kDaySlots), edge);
-  if (histograms == 0) return out;
-  std::vector<double> knots(kKnots);
   for (std::size_t slot = 0; slot < out.size(); ++slot) {
-    for (std::size_t k = 0; k < kKnots; ++k) knots[k] = sums[slot * kKnots + k] / histograms;
-    out[slot] = QuantileTable::from_knots(knots);
+    const auto& tables = per_slot[slot];
+    if (tables.empty()) continue;
+    if (o.duration_mixture) {
+      out[slot] = QuantileTable::mixture(tables, std::vector<double>(tables.size(), 1.0));
+    } else {
+      out[slot] = QuantileTable::average(tables);
+    }
   }
   return out;
 }
@@ -131,7 +137,8 @@ std::vector<std::vector<QuantileTable>> offline_duration_tables(const std::vecto
   std::vector<std::vector<QuantileTable>> out;
   out.reserve(edges.size());
   for (const auto& w : weighted) {
-    const QuantileTable edge = shrunk(samples_of(w), pooled_table, priors.options.duration_prior);
+    const auto& o = priors.options;
+    const QuantileTable edge = shrunk(samples_of(w), pooled_table, o.duration_prior, o.duration_mixture);
     auto tables = day_tables(w, edge, priors);
     for (auto& t : tables) t = t.rounded(3);
     out.push_back(std::move(tables));

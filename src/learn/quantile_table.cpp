@@ -106,6 +106,67 @@ QuantileTable QuantileTable::average(std::span<const QuantileTable> tables) {
   return out;
 }
 
+namespace {
+
+// One knot of one table in the sweep of QuantileTable::mixture.
+struct KnotEvent {
+  double value = 0;
+  std::size_t table = 0;
+  std::size_t knot = 0;
+};
+
+}  // namespace
+
+// Sweeps the knots of all tables in value order, keeping the mixture's CDF F: between knots it
+// rises linearly with the summed slopes of the tables' active segments; at a knot it jumps by the
+// table's 0.02 mass when that knot is the first, the last, or equal to the one before (an atom).
+// A level is read where F reaches it: inside a segment by linear interpolation, at a jump there.
+QuantileTable QuantileTable::mixture(std::span<const QuantileTable> tables, std::span<const double> weights) {
+  QuantileTable out;
+  const std::size_t n = std::min(tables.size(), weights.size());
+  double total = 0;
+  for (std::size_t i = 0; i < n; ++i) total += weights[i] > 0 && std::isfinite(weights[i]) ? weights[i] : 0.0;
+  if (!(total > 0)) return out;
+  std::vector<KnotEvent> events;
+  events.reserve(n * kKnots);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(weights[i] > 0) || !std::isfinite(weights[i])) continue;
+    for (std::size_t k = 0; k < tables[i].values_.size(); ++k) events.push_back({tables[i].values_[k], i, k});
+  }
+  std::sort(events.begin(), events.end(), [](const KnotEvent& a, const KnotEvent& b) {
+    return a.value < b.value || (a.value == b.value && (a.table < b.table || (a.table == b.table && a.knot < b.knot)));
+  });
+  constexpr double kStep = 0.02;  // probability between consecutive knots (and in each tail)
+  constexpr double kTolerance = 1e-12;
+  // Knots closer than this (relative) are one atom: a segment of width ~1e-15 (rounding in
+  // from_samples) would add and later remove a slope of ~1e13 and ruin the running sum.
+  auto atom = [](double a, double b) { return b - a <= 1e-9 * (1.0 + std::abs(b)); };
+  const auto last = static_cast<std::size_t>(kKnots - 1);
+  std::size_t next = 0;  // next output knot
+  double cdf = 0, slope = 0, x = events.front().value;
+  for (const KnotEvent& e : events) {
+    // Linear rise from x to e.value.
+    const double rise = slope * (e.value - x);
+    while (next <= last && level(static_cast<int>(next)) <= cdf + rise + kTolerance) {
+      const double need = level(static_cast<int>(next)) - cdf;
+      out.values_[next++] = slope > 0 ? std::clamp(x + need / slope, x, e.value) : e.value;
+    }
+    cdf += rise;
+    x = e.value;
+    const auto& v = tables[e.table].values_;
+    const double w = weights[e.table] / total;
+    if (e.knot > 0 && !atom(v[e.knot - 1], v[e.knot])) slope -= w * kStep / (v[e.knot] - v[e.knot - 1]);
+    if (e.knot == 0 || atom(v[e.knot - 1], v[e.knot])) cdf += w * kStep;
+    if (e.knot == last) cdf += w * kStep;
+    if (e.knot < last && !atom(v[e.knot], v[e.knot + 1])) slope += w * kStep / (v[e.knot + 1] - v[e.knot]);
+    while (next <= last && level(static_cast<int>(next)) <= cdf + kTolerance) out.values_[next++] = x;
+  }
+  for (; next <= last; ++next) out.values_[next] = x;
+  for (std::size_t k = 0; k < out.values_.size(); ++k) out.values_[k] = std::max(0.0, out.values_[k]);
+  for (std::size_t k = 1; k < out.values_.size(); ++k) out.values_[k] = std::max(out.values_[k], out.values_[k - 1]);
+  return out;
+}
+
 QuantileTable QuantileTable::rounded(int decimals) const {
   QuantileTable out = *this;
   const double scale = std::pow(10.0, std::clamp(decimals, 0, 9));  // exact for these powers

@@ -1,76 +1,97 @@
 #include "rondo/plan/exact_solver.h"
 
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <functional>
 #include <utility>
 
 #include <fmt/format.h>
 
 namespace rondo::plan {
-namespace {
 
-constexpr std::uint32_t kAbsent = 0xffffffffu;
-constexpr std::uint32_t kSettled = 0xfffffffeu;
-constexpr std::size_t kArity = 4;
+// The state of one reverse Dijkstra: tentative costs, the chosen edges, and which nodes are final.
+struct ExactSolver::Search {
+  const Mdp& mdp;
+  std::vector<double>& cost;
+  std::vector<PolicyStep>& steps;
+  std::vector<std::uint8_t>& settled;
 
-// The heap operations over (heap, position, cost); the smallest cost at heap[0].
-struct Heap {
-  std::vector<NodeIndex>& heap;
-  std::vector<std::uint32_t>& position;
-  const std::vector<double>& cost;
-
-  void place(std::size_t at, NodeIndex node) {
-    heap[at] = node;
-    position[node] = static_cast<std::uint32_t>(at);
-  }
-  void sift_up(std::size_t at) {
-    const NodeIndex node = heap[at];
-    const double c = cost[node];
-    while (at > 0) {
-      const std::size_t parent = (at - 1) / kArity;
-      if (!(c < cost[heap[parent]])) break;
-      place(at, heap[parent]);
-      at = parent;
+  // Settles v at cost d (if not yet settled) and offers every unsettled node with a usable edge
+  // into v the cost d + τ/p; `queue(u, c)` is called for each improvement.
+  template <typename Queue>
+  void settle(NodeIndex v, Queue&& queue) {
+    if (settled[v]) return;
+    settled[v] = 1;
+    const double d = cost[v];
+    for (const Mdp::InArc& arc : mdp.usable_in(v)) {
+      const NodeIndex u = arc.from;
+      const double candidate = d + arc.crossing_seconds;
+      if (candidate < cost[u] && !settled[u]) {
+        cost[u] = candidate;
+        steps[u].edge = arc.edge;
+        queue(u, candidate);
+      }
     }
-    place(at, node);
-  }
-  void sift_down(std::size_t at) {
-    const NodeIndex node = heap[at];
-    const double c = cost[node];
-    const std::size_t n = heap.size();
-    for (;;) {
-      const std::size_t first = at * kArity + 1;
-      if (first >= n) break;
-      std::size_t best = first;
-      const std::size_t last = std::min(first + kArity, n);
-      for (std::size_t k = first + 1; k < last; ++k)
-        if (cost[heap[k]] < cost[heap[best]]) best = k;
-      if (!(cost[heap[best]] < c)) break;
-      place(at, heap[best]);
-      at = best;
-    }
-    place(at, node);
-  }
-  // Inserts `node` or moves it up after its cost fell.
-  void push_or_decrease(NodeIndex node) {
-    if (position[node] == kAbsent) {
-      heap.push_back(node);
-      position[node] = static_cast<std::uint32_t>(heap.size() - 1);
-    }
-    sift_up(position[node]);
-  }
-  NodeIndex pop() {
-    const NodeIndex top = heap[0];
-    position[top] = kSettled;
-    const NodeIndex last = heap.back();
-    heap.pop_back();
-    if (!heap.empty()) {
-      heap[0] = last;
-      sift_down(0);
-    }
-    return top;
   }
 };
 
-}  // namespace
+bool ExactSolver::uses_buckets(const Mdp& mdp) const {
+  const double width = mdp.min_crossing_seconds();
+  if (!(width > 0) || !std::isfinite(width) || options_.max_buckets < 2) return false;
+  return mdp.max_crossing_seconds() / width <= static_cast<double>(options_.max_buckets - 2);
+}
+
+// Dial's bucket queue: bucket k holds the nodes whose tentative cost lies in [kΔ, (k + 1)Δ), with
+// Δ the cheapest usable crossing. Every node in the lowest non-empty bucket is final, in any
+// order: a path that could still improve it would end with an edge costing at least Δ, from a
+// node of a lower bucket, which is already settled. Live costs span less than max τ/p + Δ, so a
+// ring of 2^k >= max/Δ + 2 buckets never wraps onto itself. Stale entries are skipped.
+void ExactSolver::run_buckets(const Mdp& mdp, Search& search, NodeIndex target) const {
+  const double inverse_width = 1.0 / mdp.min_crossing_seconds();
+  const std::size_t ring = std::bit_ceil(static_cast<std::size_t>(mdp.max_crossing_seconds() * inverse_width) + 2);
+  if (buckets_.size() < ring) buckets_.resize(ring);
+  const std::size_t mask = ring - 1;
+  // Through a signed integer: one instruction, and costs stay far below 2^63 widths (the ring is
+  // at most max_buckets wide, so a cost is at most node_count × max_buckets widths).
+  auto bucket_of = [&](double c) {
+    return static_cast<std::size_t>(static_cast<std::int64_t>(c * inverse_width)) & mask;
+  };
+  std::size_t live = 1;
+  buckets_[bucket_of(0.0)].push_back(target);
+  auto queue = [&](NodeIndex u, double c) {
+    buckets_[bucket_of(c)].push_back(u);
+    ++live;
+  };
+  for (std::size_t k = 0; live > 0; k = (k + 1) & mask) {
+    std::vector<NodeIndex>& bucket = buckets_[k];
+    // Rounding may file an improvement into the bucket being emptied: indices, not iterators.
+    for (std::size_t i = 0; i < bucket.size(); ++i) {
+      --live;
+      search.settle(bucket[i], queue);
+    }
+    bucket.clear();
+  }
+}
+
+// A binary min-heap of (cost, node) with lazy deletion, for M_t whose crossing costs are too
+// spread out for a bucket ring of options_.max_buckets.
+void ExactSolver::run_heap(Search& search, NodeIndex target) const {
+  constexpr std::greater<> kMinFirst;
+  heap_.clear();
+  heap_.emplace_back(0.0, target);
+  auto queue = [&](NodeIndex u, double c) {
+    heap_.emplace_back(c, u);
+    std::push_heap(heap_.begin(), heap_.end(), kMinFirst);
+  };
+  while (!heap_.empty()) {
+    std::pop_heap(heap_.begin(), heap_.end(), kMinFirst);
+    const NodeIndex v = heap_.back().second;
+    heap_.pop_back();
+    search.settle(v, queue);
+  }
+}
 
 Result<Solution> ExactSolver::solve(const Mdp& mdp, NodeIndex target) const {
   const std::size_t n = mdp.node_count();
@@ -78,31 +99,22 @@ Result<Solution> ExactSolver::solve(const Mdp& mdp, NodeIndex target) const {
 
   std::vector<double> cost(n, kInfinity);
   std::vector<PolicyStep> steps(n, PolicyStep{.edge = Policy::kNoEdge});
-  position_.assign(n, kAbsent);
-  heap_.clear();
-  Heap heap{heap_, position_, cost};
+  settled_.assign(n, 0);
   cost[target] = 0.0;
-  heap.push_or_decrease(target);
-  // Reverse Dijkstra on the crossing costs τ/p (never NaN): cost[v] is final when v is popped.
-  while (!heap_.empty()) {
-    const NodeIndex v = heap.pop();
-    const double d = cost[v];
-    for (const Mdp::InArc& arc : mdp.usable_in(v)) {
-      const NodeIndex u = arc.from;
-      const double candidate = d + arc.crossing_seconds;
-      if (candidate < cost[u] && position_[u] != kSettled) {
-        cost[u] = candidate;
-        steps[u].from = u;
-        steps[u].edge = arc.edge;
-        steps[u].to = v;
-        heap.push_or_decrease(u);
-      }
-    }
+  Search search{mdp, cost, steps, settled_};
+  // Reverse Dijkstra on the crossing costs τ/p (never NaN): cost[v] is final when v is settled.
+  if (uses_buckets(mdp)) {
+    run_buckets(mdp, search, target);
+  } else {
+    run_heap(search, target);
   }
   // The chosen edges' outcomes, once per node rather than once per improvement.
-  for (PolicyStep& s : steps) {
+  for (NodeIndex u = 0; u < n; ++u) {
+    PolicyStep& s = steps[u];
     if (s.edge == Policy::kNoEdge) continue;
     const EdgeOutcome& o = mdp.outcome(s.edge);
+    s.from = u;
+    s.to = mdp.topology().to_index(s.edge);
     s.success_probability = o.success_probability;
     s.attempt_seconds = o.expected_seconds;
   }

@@ -42,7 +42,10 @@ void Mdp::build_rows() {
   for (NodeIndex v = 0; v < n; ++v) {
     in_start_[v] = in_arcs_.size();
     for (EdgeIndex e : map_->in_edges(v)) {
-      if (usable(e)) in_arcs_.push_back({map_->from_index(e), e, crossing_[e]});
+      if (!usable(e)) continue;
+      in_arcs_.push_back({map_->from_index(e), e, crossing_[e]});
+      min_crossing_ = std::min(min_crossing_, crossing_[e]);
+      max_crossing_ = std::max(max_crossing_, crossing_[e]);
     }
     out_start_[v] = out_arcs_.size();
     for (EdgeIndex e : map_->out_edges(v)) {

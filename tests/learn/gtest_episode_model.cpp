@@ -142,6 +142,37 @@ TEST(EpisodeModel, OfflineDurationsFollowRecentAttempts) {
   EXPECT_LE(recent, 30.0);
 }
 
+TEST(EpisodeModel, MixtureShrinkageKeepsTheModesOfEdgeAndPool) {
+  // Edge 0: three 10 s crossings; edge 1: 200 crossings of 100 s. The pooled table (each edge
+  // weighs 1) is half 10 s, half 100 s; edge 0 is shrunk towards it with n / (n + 10) ≈ 0.23.
+  std::vector<std::vector<Attempt>> edges(2);
+  for (int d = 0; d < 200; ++d) {
+    const Time t = monday() + hours(24 * d + 10);
+    if (d < 3) edges[0].push_back({t, t + seconds(10), 10.0, true});
+    edges[1].push_back({t, t + seconds(100), 100.0, true});
+  }
+  EpisodeOptions average;
+  average.duration_half_life = seconds(0);
+  EpisodeOptions mixture = average;
+  mixture.duration_mixture = true;
+  const Time at = monday() + hours(10);
+  const auto blended_fit = fit_episode_models(edges, average);
+  const auto mixed_fit = fit_episode_models(edges, mixture);
+  const auto& blended = *blended_fit.edges[0];
+  const auto& mixed = *mixed_fit.edges[0];
+  // Quantile averaging invents durations between the modes (0.23·10 + 0.77·55 at the median) ...
+  EXPECT_GT(blended.quantile_seconds(at, 0.5), 30.0);
+  EXPECT_LT(blended.quantile_seconds(at, 0.98), 90.0);
+  // ... a mixture keeps ~62 % at 10 s and ~38 % at 100 s.
+  EXPECT_NEAR(mixed.quantile_seconds(at, 0.3), 10.0, 1e-3);
+  EXPECT_NEAR(mixed.quantile_seconds(at, 0.5), 10.0, 1e-3);
+  EXPECT_NEAR(mixed.quantile_seconds(at, 0.9), 100.0, 1e-3);
+  // The option travels with the model.
+  auto round_trip = EpisodePriors::from_json(mixed_fit.priors->to_json());
+  ASSERT_TRUE(round_trip) << round_trip.error().message;
+  EXPECT_TRUE(round_trip->options.duration_mixture);
+}
+
 TEST(EpisodePriors, TimeOfDayIsLocalTimeInTheZone) {
   EpisodePriors utc;
   EpisodePriors london;

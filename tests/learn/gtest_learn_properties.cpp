@@ -199,5 +199,84 @@ RC_GTEST_PROP(LearnProperties, WeightedQuantilesMatchTheReference, ()) {
   }
 }
 
+// The CDF a table describes (QuantileTable::mixture's contract), evaluated directly: 0 below the
+// first knot, the last knot's level plus its 0.02 tail at and above it, linear in between.
+double reference_cdf(const QuantileTable& t, double x) {
+  const auto& v = t.values();
+  if (x < v.front()) return 0.0;
+  std::size_t k = 0;
+  while (k + 1 < v.size() && v[k + 1] <= x) ++k;
+  if (k + 1 == v.size()) return 1.0;
+  return QuantileTable::level(static_cast<int>(k)) + 0.02 * (x - v[k]) / (v[k + 1] - v[k]);
+}
+
+// The mixture's quantiles by bisection on the weighted mean of the CDFs.
+std::vector<double> reference_mixture(const std::vector<QuantileTable>& tables, const std::vector<double>& weights) {
+  double total = 0, lo = 1e300, hi = -1e300;
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    total += weights[i];
+    lo = std::min(lo, tables[i].values().front());
+    hi = std::max(hi, tables[i].values().back());
+  }
+  auto cdf = [&](double x) {
+    double f = 0;
+    for (std::size_t i = 0; i < tables.size(); ++i) f += weights[i] / total * reference_cdf(tables[i], x);
+    return f;
+  };
+  std::vector<double> out;
+  for (int k = 0; k < QuantileTable::kKnots; ++k) {
+    double a = lo, b = hi;  // invariant: cdf(b) >= level
+    for (int it = 0; it < 60; ++it) {
+      const double m = (a + b) / 2;
+      (cdf(m) >= QuantileTable::level(k) - 1e-12 ? b : a) = m;
+    }
+    out.push_back(cdf(lo) >= QuantileTable::level(k) - 1e-12 ? lo : b);
+  }
+  return out;
+}
+
+RC_GTEST_PROP(LearnProperties, MixturesMatchTheReference, ()) {
+  const auto n = *rc::gen::inRange<std::size_t>(1, 5);
+  std::vector<QuantileTable> tables;
+  std::vector<double> weights;
+  for (std::size_t i = 0; i < n; ++i) {
+    // Few distinct values: atoms (runs of equal knots) are common.
+    const auto values = *rc::gen::nonEmpty(rc::gen::container<std::vector<int>>(rc::gen::inRange(0, 20)));
+    std::vector<double> v;
+    for (int x : values) v.push_back(5.0 * x);
+    tables.push_back(QuantileTable::from_samples(v));
+    weights.push_back(*rc::gen::inRange(1, 100) / 10.0);
+  }
+  const auto fast = QuantileTable::mixture(tables, weights).values();
+  const auto slow = reference_mixture(tables, weights);
+  for (std::size_t k = 0; k < fast.size(); ++k) {
+    RC_ASSERT(std::abs(fast[k] - slow[k]) <= 1e-6 * (1.0 + std::abs(slow[k])));
+    if (k > 0) RC_ASSERT(fast[k] >= fast[k - 1]);
+    double lo = 1e300, hi = -1e300;
+    for (const auto& t : tables) {
+      lo = std::min(lo, t.values()[k]);
+      hi = std::max(hi, t.values()[k]);
+    }
+    RC_ASSERT(fast[k] >= lo - 1e-9 && fast[k] <= hi + 1e-9);
+  }
+  // A mixture of copies of one table is that table.
+  const std::vector<QuantileTable> copies(3, tables[0]);
+  const auto same = QuantileTable::mixture(copies, std::vector<double>{1.0, 2.0, 3.0}).values();
+  for (std::size_t k = 0; k < same.size(); ++k) RC_ASSERT(std::abs(same[k] - tables[0].values()[k]) <= 1e-9);
+}
+
+TEST(QuantileTable, AMixtureKeepsBothModesWhereABlendAveragesThem) {
+  const std::vector<QuantileTable> modes = {QuantileTable::from_samples({10.0}), QuantileTable::from_samples({100.0})};
+  const auto mixed = QuantileTable::mixture(modes, std::vector<double>{0.7, 0.3});
+  EXPECT_DOUBLE_EQ(mixed.at(0.02), 10.0);
+  EXPECT_DOUBLE_EQ(mixed.at(0.5), 10.0);
+  EXPECT_DOUBLE_EQ(mixed.at(0.68), 10.0);
+  EXPECT_DOUBLE_EQ(mixed.at(0.72), 100.0);
+  EXPECT_DOUBLE_EQ(mixed.at(0.9), 100.0);
+  EXPECT_DOUBLE_EQ(QuantileTable::blend(modes[0], modes[1], 0.7).at(0.9), 37.0);
+  // No weight, no table: all zeros.
+  EXPECT_DOUBLE_EQ(QuantileTable::mixture(modes, std::vector<double>{0.0, -1.0}).at(0.9), 0.0);
+}
+
 }  // namespace
 }  // namespace rondo::learn

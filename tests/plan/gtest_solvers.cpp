@@ -140,6 +140,12 @@ void check_agreement(const Case& c) {
   const NodeIndex target = static_cast<NodeIndex>(c.seed % c.nodes);
   const Solution ex = exact(mdp, target);
   expect_consistent(mdp, ex.policy, 1e-12);
+  // The default solver used its bucket ring here (τ/p spans 1..300 s); the heap agrees with it.
+  ASSERT_TRUE(ExactSolver{}.uses_buckets(mdp));
+  const Solution heap = ExactSolver({.max_buckets = 0}).solve(mdp, target).value();
+  for (NodeIndex i = 0; i < m.node_count(); ++i) {
+    ASSERT_LE(relative_gap(heap.policy.expected_seconds(i), ex.policy.expected_seconds(i)), 1e-12) << "node " << i;
+  }
   // Relative-change tolerance 1e-9; agreement asserted at 1e-6 relative (docs/planning.md: with
   // p >= 0.2 the remaining error is at most (1 − p)/p = 4 times the last change, and in practice
   // far less).
@@ -161,6 +167,31 @@ RC_GTEST_PROP(SolverProperties, ValueIterationAgreesWithTheExactSolver, ()) {
   const Case c{*rc::gen::inRange<std::size_t>(10, 200), *rc::gen::arbitrary<std::uint32_t>(),
                *rc::gen::element(0.2, 0.5, 0.9), *rc::gen::arbitrary<bool>()};
   check_agreement(c);
+}
+
+// Dial's ring of buckets against the binary heap, with crossing costs spread over five orders of
+// magnitude and rings from none to wide: the ring is used exactly when it fits, and both give
+// policies that satisfy the Bellman equation with the same expected times.
+RC_GTEST_PROP(SolverProperties, TheBucketRingAndTheHeapAgree, ()) {
+  const auto nodes = *rc::gen::inRange<std::size_t>(2, 300);
+  const auto seed = *rc::gen::arbitrary<std::uint32_t>();
+  const map::TopoMap m = testing::random_map({.nodes = nodes, .seed = seed});
+  const double max_seconds = *rc::gen::element(2.0, 100.0, 1e4);
+  const Mdp mdp = outcomes_mdp(
+      m, testing::random_outcomes(m, {.seed = seed, .min_probability = 0.1, .min_seconds = 0.1,
+                                      .max_seconds = max_seconds}));
+  const std::size_t ring = *rc::gen::element<std::size_t>(0, 2, 16, 1024, std::size_t{1} << 16);
+  const ExactSolver solver({.max_buckets = ring});
+  const bool fits = mdp.min_crossing_seconds() < kInfinity && ring >= 2 &&
+                    mdp.max_crossing_seconds() / mdp.min_crossing_seconds() <= static_cast<double>(ring - 2);
+  RC_ASSERT(solver.uses_buckets(mdp) == fits);
+  const NodeIndex target = *rc::gen::inRange<std::size_t>(0, nodes);
+  const Solution a = solver.solve(mdp, target).value();
+  const Solution b = ExactSolver({.max_buckets = 0}).solve(mdp, target).value();
+  for (NodeIndex i = 0; i < nodes; ++i) {
+    RC_ASSERT(relative_gap(a.policy.expected_seconds(i), b.policy.expected_seconds(i)) <= 1e-12);
+  }
+  expect_consistent(mdp, a.policy, 1e-12);
 }
 
 RC_GTEST_PROP(SolverProperties, ExpectedTimesAreFiniteExactlyWhereTheTargetIsReachable, ()) {

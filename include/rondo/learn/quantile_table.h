@@ -5,6 +5,7 @@
 //   double p90 = q.at(0.9);          // non-decreasing in the level, >= 0
 //   auto w = QuantileTable::from_weighted_samples({{12.0, 1.0}, {0.7, 0.25}});  // (value, weight)
 //   auto shrunk = QuantileTable::blend(w, q, 0.8);       // 0.8 of w's quantile function, 0.2 of q's
+//   auto mixed = QuantileTable::mixture(std::vector{w, q}, std::vector{0.8, 0.2});  // of the distributions
 #pragma once
 
 #include <span>
@@ -47,6 +48,14 @@ class QuantileTable {
   static QuantileTable from_knots(const std::vector<double>& knots);
   // The knot-wise mean of `tables` (all zero for none): the quantile average with equal weights.
   static QuantileTable average(std::span<const QuantileTable> tables);
+  // The mixture of distributions: `weights[i]` of tables[i]'s distribution (weights normalised;
+  // non-positive and non-finite ones dropped; all zero for none). A table's distribution is the
+  // one its knots describe: 0.02 at the first knot, its CDF linear between knots, 0.02 at the last
+  // (knots equal to 1e-9 relative are an atom). The mixture's CDF is the weighted mean of the
+  // CDFs, so a mixture of equal tables is that table, and each of its quantiles lies between the
+  // smallest and the largest of the inputs' quantiles at the same level. Unlike blend(), mixing 10 s and 100 s
+  // gives a table of 10 s and 100 s, not one of 55 s.
+  static QuantileTable mixture(std::span<const QuantileTable> tables, std::span<const double> weights);
   // The same table with every value rounded to `decimals` (0..9) decimal places, still
   // non-decreasing: short JSON numbers.
   QuantileTable rounded(int decimals) const;

@@ -1,17 +1,23 @@
 // The exact policy solver for M_t. Because a failed attempt leaves the robot where it was, trying
 // an edge e until it succeeds costs τ_e/p_e in expectation, and the optimal policy is a
-// shortest-path tree to the target on those costs (proof: docs/planning.md). One reverse Dijkstra,
-// O((V + E) log V), over the MDP's compressed rows of usable in-edges (Mdp::usable_in).
+// shortest-path tree to the target on those costs (proof: docs/planning.md). One reverse Dijkstra
+// over the MDP's compressed rows of usable in-edges (Mdp::usable_in). Its priority queue is Dial's
+// ring of buckets of width min τ/p when max τ/p / min τ/p is at most `max_buckets` − 2 (O(V + E +
+// cost span / width)), else a binary heap of (cost, node) pairs, O((V + E) log V); both with lazy
+// deletion. bench/plan_bench.cpp shows the gain of the buckets.
 //
 //   Result<Solution> s = ExactSolver{}.solve(mdp, target);   // status kExact
 //   double eta = s->policy.expected_seconds(start);
+//   ExactSolver heap_only({.max_buckets = 0});               // always the binary heap
 //
 // Unusable edges (p = 0, infinite τ) are never taken; nodes that cannot reach the target get
-// +inf and no edge. Ties between equally good edges go to the one found first (the lowest
-// in-edge position of the closer node): deterministic for a given map.
+// +inf and no edge. Costs agree with any other Dijkstra up to floating-point rounding; between
+// equally good edges the choice is deterministic for a given M_t and queue.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "rondo/core/result.h"
@@ -20,17 +26,32 @@
 
 namespace rondo::plan {
 
+struct ExactSolverOptions {
+  // The largest ring of buckets worth using; below 2: always the heap.
+  std::size_t max_buckets = std::size_t{1} << 16;
+};
+
 class ExactSolver {
  public:
+  explicit ExactSolver(ExactSolverOptions options = {}) : options_(options) {}
+  // Whether solve() uses the bucket ring on `mdp` (else the binary heap).
+  bool uses_buckets(const Mdp& mdp) const;
+
   // An error (kInvalidInput) only when target >= mdp.node_count(). Not thread-safe: a solver
   // keeps its scratch space (heap, settled flags) between calls, so use one per thread.
   Result<Solution> solve(const Mdp& mdp, NodeIndex target) const;
 
  private:
-  // An indexed 4-ary min-heap of nodes keyed by their tentative cost, with decrease-key: at most
-  // one entry per node. Kept between calls so that a solve allocates only its result.
-  mutable std::vector<NodeIndex> heap_;
-  mutable std::vector<std::uint32_t> position_;  // in heap_; kAbsent / kSettled otherwise
+  struct Search;  // one solve's costs, steps and settled flags
+  void run_buckets(const Mdp& mdp, Search& search, NodeIndex target) const;
+  void run_heap(Search& search, NodeIndex target) const;
+
+  ExactSolverOptions options_;
+  // Scratch space kept between calls so that a solve allocates only its result. Queues may hold
+  // stale entries (nodes settled since).
+  mutable std::vector<std::pair<double, NodeIndex>> heap_;  // (tentative cost, node)
+  mutable std::vector<std::vector<NodeIndex>> buckets_;     // the ring
+  mutable std::vector<std::uint8_t> settled_;               // per node
 };
 
 }  // namespace rondo::plan

@@ -49,6 +49,9 @@ class Mdp {
   // +inf, or the quotient overflows. Such edges are unusable: no policy takes them.
   double expected_crossing_seconds(EdgeIndex edge) const { return crossing_[edge]; }
   bool usable(EdgeIndex edge) const { return crossing_[edge] < kInfinity; }
+  // The smallest and largest τ/p over usable edges; +inf and 0 when no edge is usable.
+  double min_crossing_seconds() const { return min_crossing_; }
+  double max_crossing_seconds() const { return max_crossing_; }
 
   // The usable edges in compressed rows (CSR), for the solvers' inner loops: contiguous arrays,
   // no unusable edge, no lookups. Rows keep the map's in_edges / out_edges order.
@@ -79,6 +82,7 @@ class Mdp {
   Time at_;
   std::vector<EdgeOutcome> outcomes_;
   std::vector<double> crossing_;
+  double min_crossing_ = kInfinity, max_crossing_ = 0.0;
   std::vector<std::size_t> in_start_, out_start_;  // node_count() + 1 each
   std::vector<InArc> in_arcs_;
   std::vector<OutArc> out_arcs_;
