@@ -7,28 +7,28 @@ namespace rondo::plan {
 Policy::Policy(NodeIndex target, std::vector<PolicyStep> steps, std::vector<double> expected_seconds)
     : target_(target),
       steps_(std::move(steps)),
-      has_step_(steps_.size(), false),
       expected_(std::move(expected_seconds)) {
   if (steps_.size() != expected_.size() || target_ >= expected_.size()) {
     throw std::invalid_argument("Policy: one step and one expected time per node, and a target among the nodes");
   }
-  for (std::size_t i = 0; i < steps_.size(); ++i) has_step_[i] = steps_[i].edge != kNoEdge && i != target_;
+  // The target has no step: a solver may leave one there, it is never taken.
+  steps_[target_].edge = kNoEdge;
 }
 
 std::optional<EdgeIndex> Policy::next_edge(NodeIndex node) const {
-  if (!has_step_.at(node)) return std::nullopt;
+  if (steps_.at(node).edge == kNoEdge) return std::nullopt;
   return steps_[node].edge;
 }
 
 std::optional<PolicyStep> Policy::step(NodeIndex node) const {
-  if (!has_step_.at(node)) return std::nullopt;
+  if (steps_.at(node).edge == kNoEdge) return std::nullopt;
   return steps_[node];
 }
 
 std::vector<PolicyStep> Policy::route(NodeIndex from) const {
   std::vector<PolicyStep> out;
   NodeIndex at = from;
-  while (at != target_ && has_step_.at(at) && out.size() < steps_.size()) {
+  while (at != target_ && steps_.at(at).edge != kNoEdge && out.size() < steps_.size()) {
     out.push_back(steps_[at]);
     at = steps_[at].to;
   }

@@ -51,7 +51,7 @@ class Policy {
   std::size_t node_count() const { return expected_.size(); }
 
   // Preconditions below: node < node_count().
-  bool reaches_target(NodeIndex node) const { return node == target_ || has_step_[node]; }
+  bool reaches_target(NodeIndex node) const { return node == target_ || steps_[node].edge != kNoEdge; }
   // The edge to try from `node`; nothing at the target and at nodes that cannot reach it.
   std::optional<EdgeIndex> next_edge(NodeIndex node) const;
   // Expected seconds from `node` to the target following this policy: 0 at the target, +inf when
@@ -72,7 +72,6 @@ class Policy {
  private:
   NodeIndex target_;
   std::vector<PolicyStep> steps_;
-  std::vector<bool> has_step_;
   std::vector<double> expected_;
 };
 
