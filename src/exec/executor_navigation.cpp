@@ -27,32 +27,28 @@ void Executor::step_navigation() {
     arrived();
     return;
   }
-  const bool task = phase_ == Phase::kNavigating;
   if (failed_edges_ >= options_.max_failed_edges) {
-    const std::string reason = fmt::format("navigation gave up: {} failed edge attempts near {}",
-                                           failed_edges_, map_.node(here).name);
-    if (task) {
-      finish_task(TaskState::kFailed, reason);
-    } else {
-      phase_ = Phase::kIdle;
-      wait_timer_ = clock_.schedule_after(options_.slot_width, [this] { kick(); });
-    }
-    return;
+    return abandon_navigation(fmt::format("navigation gave up: {} failed edge attempts near {}", failed_edges_,
+                                          map_.node(here).name));
   }
   const plan::Policy& policy = planner_->policy(nav_target_, clock_.now());
   const std::optional<map::EdgeIndex> edge = policy.next_edge(here);
   if (!edge) {
-    const std::string reason = fmt::format("no route: from {} to {} at {}", map_.node(here).name,
-                                           map_.node(nav_target_).name, fmt_time(clock_.now()));
-    if (task) {
-      finish_task(TaskState::kFailed, reason);
-    } else {
-      phase_ = Phase::kIdle;
-      wait_timer_ = clock_.schedule_after(options_.slot_width, [this] { kick(); });
-    }
-    return;
+    return abandon_navigation(fmt::format("no route: from {} to {} at {}", map_.node(here).name,
+                                          map_.node(nav_target_).name, fmt_time(clock_.now())));
   }
   robot_.traverse(*edge);
+}
+
+// A task's navigation fails with `reason`; a trip of the executor's own (to the dock) is dropped,
+// and the executor looks again after a slot.
+void Executor::abandon_navigation(const std::string& reason) {
+  if (phase_ == Phase::kNavigating) {
+    finish_task(TaskState::kFailed, reason);
+  } else {
+    phase_ = Phase::kIdle;
+    wait_timer_ = clock_.schedule_after(options_.slot_width, [this] { kick(); });
+  }
 }
 
 void Executor::on_edge_finished(const EdgeAttempt& a) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "histogram_family.h"
 #include "offline_durations.h"
 
 namespace rondo::learn {
@@ -118,22 +119,16 @@ void for_each_histogram(Time t, const EpisodePriors& priors, const EpisodeStats&
   }
   const double edge = (successes + o.edge_prior * priors.first_success) / (attempts + o.edge_prior);
   const int slot = priors.day_slot(t);
-  for (int bins : o.day_resolutions) {
-    if (bins < 1 || 24 % bins != 0) continue;  // not on the 15-minute grid: ignored
-    const int width = kDaySlots / bins;
-    const int shifts = bins == 1 ? 1 : kHistogramShifts;
-    for (int shift = 0; shift < shifts; ++shift) {
-      const int offset = shift * width / kHistogramShifts;
-      const int first = slot - (((slot - offset) % width) + width) % width;
-      double s = 0, n = 0;
-      for (int k = 0; k < width; ++k) {
-        const auto i = idx((first + k + kDaySlots) % kDaySlots);
-        s += live.first_successes[i];
-        n += live.first_attempts[i];
-      }
-      f((s + o.bin_prior * edge) / (n + o.bin_prior));
+  for_each_shifted_histogram(o.day_resolutions, [&](int width, int offset) {
+    const int first = slot - (((slot - offset) % width) + width) % width;
+    double s = 0, n = 0;
+    for (int k = 0; k < width; ++k) {
+      const auto i = idx((first + k + kDaySlots) % kDaySlots);
+      s += live.first_successes[i];
+      n += live.first_attempts[i];
     }
-  }
+    f((s + o.bin_prior * edge) / (n + o.bin_prior));
+  });
 }
 
 }  // namespace

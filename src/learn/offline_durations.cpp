@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "histogram_family.h"
+
 namespace rondo::learn {
 namespace {
 
@@ -85,24 +87,18 @@ std::vector<QuantileTable> day_tables(const std::vector<SlotSample>& attempts, c
                                       const EpisodePriors& priors) {
   const auto& o = priors.options;
   std::vector<std::vector<QuantileTable>> per_slot(static_cast<std::size_t>(kDaySlots));
-  for (int bins : o.day_resolutions) {
-    if (bins < 1 || 24 % bins != 0) continue;  // not on the 15-minute grid: ignored
-    const int width = kDaySlots / bins;
-    const int shifts = bins == 1 ? 1 : kHistogramShifts;
-    for (int shift = 0; shift < shifts; ++shift) {
-      const int offset = shift * width / kHistogramShifts;
-      auto bin_of = [&](int slot) {
-        return static_cast<std::size_t>(((slot - offset) % kDaySlots + kDaySlots) % kDaySlots / width);
-      };
-      std::vector<std::vector<Sample>> members(static_cast<std::size_t>(bins));
-      for (const auto& a : attempts) members[bin_of(a.slot)].push_back(a.sample);
-      std::vector<QuantileTable> tables;
-      for (const auto& m : members) tables.push_back(shrunk(m, edge, o.duration_prior, o.duration_mixture));
-      for (int slot = 0; slot < kDaySlots; ++slot) {
-        per_slot[static_cast<std::size_t>(slot)].push_back(tables[bin_of(slot)]);
-      }
+  for_each_shifted_histogram(o.day_resolutions, [&](int width, int offset) {
+    auto bin_of = [&](int slot) {
+      return static_cast<std::size_t>(((slot - offset) % kDaySlots + kDaySlots) % kDaySlots / width);
+    };
+    std::vector<std::vector<Sample>> members(static_cast<std::size_t>(kDaySlots / width));
+    for (const auto& a : attempts) members[bin_of(a.slot)].push_back(a.sample);
+    std::vector<QuantileTable> tables;
+    for (const auto& m : members) tables.push_back(shrunk(m, edge, o.duration_prior, o.duration_mixture));
+    for (int slot = 0; slot < kDaySlots; ++slot) {
+      per_slot[static_cast<std::size_t>(slot)].push_back(tables[bin_of(slot)]);
     }
-  }
+  });
   std::vector<QuantileTable> out(static_cast<std::size_t>(kDaySlots), edge);
   for (std::size_t slot = 0; slot < out.size(); ++slot) {
     const auto& tables = per_slot[slot];

@@ -48,7 +48,8 @@ bool ExactSolver::uses_buckets(const Mdp& mdp) const {
 // order: a path that could still improve it would end with an edge costing at least Δ, from a
 // node of a lower bucket, which is already settled. Live costs span less than max τ/p + Δ, so a
 // ring of 2^k >= max/Δ + 2 buckets never wraps onto itself. Stale entries are skipped.
-void ExactSolver::run_buckets(const Mdp& mdp, Search& search, NodeIndex target) const {
+void ExactSolver::run_buckets(Search& search, NodeIndex target) const {
+  const Mdp& mdp = search.mdp;
   const double inverse_width = 1.0 / mdp.min_crossing_seconds();
   const std::size_t ring = std::bit_ceil(static_cast<std::size_t>(mdp.max_crossing_seconds() * inverse_width) + 2);
   if (buckets_.size() < ring) buckets_.resize(ring);
@@ -104,7 +105,7 @@ Result<Solution> ExactSolver::solve(const Mdp& mdp, NodeIndex target) const {
   Search search{mdp, cost, steps, settled_};
   // Reverse Dijkstra on the crossing costs τ/p (never NaN): cost[v] is final when v is settled.
   if (uses_buckets(mdp)) {
-    run_buckets(mdp, search, target);
+    run_buckets(search, target);
   } else {
     run_heap(search, target);
   }

@@ -156,6 +156,7 @@ class Executor final : public RobotListener {
   void start_task(const TaskId& id);
   void begin_navigation(map::NodeIndex target, Duration expected);
   void step_navigation();
+  void abandon_navigation(const std::string& reason);
   void arrived();
   void start_actions();
   void run_next_action();

@@ -43,7 +43,7 @@ class ExactSolver {
 
  private:
   struct Search;  // one solve's costs, steps and settled flags
-  void run_buckets(const Mdp& mdp, Search& search, NodeIndex target) const;
+  void run_buckets(Search& search, NodeIndex target) const;
   void run_heap(Search& search, NodeIndex target) const;
 
   ExactSolverOptions options_;
