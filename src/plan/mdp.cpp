@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <fmt/format.h>
+
+#include "region_search.h"
 
 namespace rondo::plan {
 
@@ -25,14 +28,19 @@ double expected_crossing_seconds(const EdgeOutcome& sanitized) {
   return std::isfinite(c) ? c : kInfinity;
 }
 
-Mdp::Mdp(const map::TopoMap& map, std::vector<EdgeOutcome> outcomes, Time at)
-    : map_(&map), at_(at), outcomes_(std::move(outcomes)) {
+Mdp::Mdp(const map::TopoMap& map, std::vector<EdgeOutcome> outcomes, Time at, std::shared_ptr<const DeadEnds> dead_ends)
+    : map_(&map), at_(at), outcomes_(std::move(outcomes)), dead_ends_(std::move(dead_ends)) {
+  if (!dead_ends_) dead_ends_ = std::make_shared<const DeadEnds>(DeadEnds::find(map));
+  if (dead_ends_->node_count() != map.node_count()) {
+    throw std::invalid_argument("Mdp: the dead ends are of another map (node counts differ)");
+  }
   crossing_.reserve(outcomes_.size());
   for (EdgeOutcome& o : outcomes_) {
     o = sanitize(o);
     crossing_.push_back(plan::expected_crossing_seconds(o));
   }
   build_rows();
+  build_dead_ends();
 }
 
 void Mdp::build_rows() {
@@ -58,18 +66,56 @@ void Mdp::build_rows() {
   out_start_[n] = out_arcs_.size();
 }
 
-Mdp Mdp::build(const map::TopoMap& map, const EdgeModelView& models, Time at) {
+void Mdp::build_dead_ends() {
+  const std::size_t n = map_->node_count();
+  if (dead_ends_->region_count() == 0) return;
+  core_start_.assign(n + 1, 0);
+  for (NodeIndex v = 0; v < n; ++v) {
+    core_start_[v] = core_arcs_.size();
+    if (!dead_ends_->in_core(v)) continue;
+    for (const InArc& arc : usable_in(v)) {
+      if (dead_ends_->in_core(arc.from)) core_arcs_.push_back(arc);
+    }
+  }
+  core_start_[n] = core_arcs_.size();
+
+  // Each region's routes to its door; the scratch is reset only where a search wrote.
+  std::vector<double> cost(n, kInfinity);
+  std::vector<EdgeIndex> edge(n, kNoExit);
+  std::vector<std::uint8_t> settled(n, 0);
+  exits_.reserve(dead_ends_->region_members().size());
+  for (std::uint32_t r = 0; r < dead_ends_->region_count(); ++r) {
+    const NodeIndex door = dead_ends_->door(r);
+    detail::search_region(*this, r, door, cost, edge, settled);
+    for (NodeIndex v : dead_ends_->nodes(r)) {
+      exits_.push_back({.seconds = cost[v], .edge = edge[v]});
+      cost[v] = kInfinity;
+      edge[v] = kNoExit;
+      settled[v] = 0;
+    }
+    cost[door] = kInfinity;
+    settled[door] = 0;
+  }
+}
+
+Mdp Mdp::build(const map::TopoMap& map, const EdgeModelView& models, Time at,
+               std::shared_ptr<const DeadEnds> dead_ends) {
   std::vector<EdgeOutcome> outcomes;
   outcomes.reserve(map.edge_count());
   for (EdgeIndex e = 0; e < map.edge_count(); ++e) outcomes.push_back(models.outcome(e, at));
-  return Mdp(map, std::move(outcomes), at);
+  return Mdp(map, std::move(outcomes), at, std::move(dead_ends));
 }
 
-Result<Mdp> Mdp::from_outcomes(const map::TopoMap& map, std::vector<EdgeOutcome> outcomes, Time at) {
+Result<Mdp> Mdp::from_outcomes(const map::TopoMap& map, std::vector<EdgeOutcome> outcomes, Time at,
+                               std::shared_ptr<const DeadEnds> dead_ends) {
   if (outcomes.size() != map.edge_count()) {
     return Error::invalid(fmt::format("{} edge outcomes for a map with {} edges", outcomes.size(), map.edge_count()));
   }
-  return Mdp(map, std::move(outcomes), at);
+  if (dead_ends && dead_ends->node_count() != map.node_count()) {
+    return Error::invalid(
+        fmt::format("dead ends of a map with {} nodes for a map with {} nodes", dead_ends->node_count(), map.node_count()));
+  }
+  return Mdp(map, std::move(outcomes), at, std::move(dead_ends));
 }
 
 }  // namespace rondo::plan

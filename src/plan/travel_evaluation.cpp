@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numeric>
 
 #include <fmt/format.h>
@@ -31,6 +32,7 @@ struct Context {
   std::vector<learn::EdgeSpec> specs;      // one per map edge
   DistancePrior prior;
   const TravelEvaluationOptions* options;
+  std::shared_ptr<const DeadEnds> dead_ends;  // the map's, shared by every journey's M_t
 };
 
 // The journeys of the test window that can be scored, with the counts of those that cannot.
@@ -98,7 +100,7 @@ Result<Errors> score(const Context& c, learn::FamilyEdgeModels& models, bool onl
       if (!(a.start + a.duration < j.start + c.options->start_resolution)) break;
       if (a.start >= training.to) models.observe(a);
     }
-    RONDO_ASSIGN_OR_RETURN(Mdp mdp, Mdp::from_outcomes(*c.map, outcomes_at(c, models, index, j.start), j.start));
+    RONDO_ASSIGN_OR_RETURN(Mdp mdp, Mdp::from_outcomes(*c.map, outcomes_at(c, models, index, j.start), j.start, c.dead_ends));
     double route = 0;
     for (EdgeIndex e : j.route) route += mdp.expected_crossing_seconds(e);
     // Unusable edges give +inf; keep the summaries finite and say so through a huge error.
@@ -155,7 +157,8 @@ Result<TravelEvaluation> evaluate_travel(const map::TopoMap& map, std::span<cons
             .by_end = {},
             .specs = edge_specs(map, options.travel),
             .prior = DistancePrior(map, {.success_probability = 1.0, .travel = options.travel}),
-            .options = &options};
+            .options = &options,
+            .dead_ends = std::make_shared<const DeadEnds>(DeadEnds::find(map))};
   TravelEvaluation out;
   select_journeys(c, out);
   out.journeys = c.journeys.size();

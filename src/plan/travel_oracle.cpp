@@ -23,7 +23,10 @@ void check_node(const map::TopoMap& map, NodeIndex node) {
 
 TravelOracle::TravelOracle(const map::TopoMap& map, std::shared_ptr<const EdgeModelView> models,
                            const TravelOracleOptions& options)
-    : map_(&map), models_(std::move(models)), options_(options) {
+    : map_(&map),
+      models_(std::move(models)),
+      options_(options),
+      dead_ends_(std::make_shared<const DeadEnds>(DeadEnds::find(map))) {
   if (!models_) throw std::invalid_argument("TravelOracle: no edge models");
   if (options_.slot_width <= Duration::zero()) throw std::invalid_argument("TravelOracle: slot width must be > 0");
   options_.max_cached_policies = std::max<std::size_t>(options_.max_cached_policies, 1);
@@ -54,7 +57,7 @@ const Mdp& TravelOracle::slot_mdp(std::int64_t slot) {
   if (it == slots_.end()) {
     if (slots_.size() >= options_.max_cached_slots) slots_.clear();
     const Time at{options_.slot_width * slot};
-    it = slots_.emplace(slot, std::make_shared<const Mdp>(Mdp::build(*map_, *models_, at))).first;
+    it = slots_.emplace(slot, std::make_shared<const Mdp>(Mdp::build(*map_, *models_, at, dead_ends_))).first;
   }
   return *it->second;
 }

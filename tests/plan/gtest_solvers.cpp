@@ -181,17 +181,47 @@ RC_GTEST_PROP(SolverProperties, TheBucketRingAndTheHeapAgree, ()) {
       m, testing::random_outcomes(m, {.seed = seed, .min_probability = 0.1, .min_seconds = 0.1,
                                       .max_seconds = max_seconds}));
   const std::size_t ring = *rc::gen::element<std::size_t>(0, 2, 16, 1024, std::size_t{1} << 16);
-  const ExactSolver solver({.max_buckets = ring});
+  const ExactSolver solver({.max_buckets = ring, .use_dead_ends = *rc::gen::arbitrary<bool>()});
   const bool fits = mdp.min_crossing_seconds() < kInfinity && ring >= 2 &&
                     mdp.max_crossing_seconds() / mdp.min_crossing_seconds() <= static_cast<double>(ring - 2);
   RC_ASSERT(solver.uses_buckets(mdp) == fits);
   const NodeIndex target = *rc::gen::inRange<std::size_t>(0, nodes);
   const Solution a = solver.solve(mdp, target).value();
-  const Solution b = ExactSolver({.max_buckets = 0}).solve(mdp, target).value();
+  const Solution b = ExactSolver({.max_buckets = 0, .use_dead_ends = false}).solve(mdp, target).value();
   for (NodeIndex i = 0; i < nodes; ++i) {
     RC_ASSERT(relative_gap(a.policy.expected_seconds(i), b.policy.expected_seconds(i)) <= 1e-12);
   }
   expect_consistent(mdp, a.policy, 1e-12);
+}
+
+// The default solver searches the core and fills the dead ends from their exits (dead_ends.h);
+// it must give the plain reverse Dijkstra's expected times for targets anywhere: in the core, on a
+// door, inside a region. Sparse random maps have many dead ends; closed edges cut some off.
+RC_GTEST_PROP(SolverProperties, SkippingTheDeadEndsChangesNoExpectedTime, ()) {
+  const auto nodes = *rc::gen::inRange<std::size_t>(2, 300);
+  const auto seed = *rc::gen::arbitrary<std::uint32_t>();
+  const bool building = *rc::gen::arbitrary<bool>();
+  const map::TopoMap m = building ? testing::corridor_building_map({.floors = 2, .corridor_nodes = 6,
+                                                                    .rooms_per_side = 2})
+                                  : testing::random_map({.nodes = nodes, .seed = seed, .max_out_degree = 2});
+  const Mdp mdp = outcomes_mdp(m, testing::random_outcomes(m, {.seed = seed, .closed_fraction = 0.1}));
+  const DeadEnds& d = mdp.dead_ends();
+  // Targets of every kind, when the map has them.
+  std::vector<NodeIndex> targets{static_cast<NodeIndex>(seed % m.node_count())};
+  if (d.region_count() > 0) {
+    const auto r = static_cast<std::uint32_t>(seed % d.region_count());
+    targets.push_back(d.door(r));
+    targets.push_back(d.nodes(r).back());
+  }
+  const ExactSolver plain({.use_dead_ends = false});
+  for (NodeIndex target : targets) {
+    const Solution a = ExactSolver{}.solve(mdp, target).value();
+    const Solution b = plain.solve(mdp, target).value();
+    for (NodeIndex i = 0; i < m.node_count(); ++i) {
+      RC_ASSERT(relative_gap(a.policy.expected_seconds(i), b.policy.expected_seconds(i)) <= 1e-12);
+    }
+    expect_consistent(mdp, a.policy, 1e-12);
+  }
 }
 
 RC_GTEST_PROP(SolverProperties, ExpectedTimesAreFiniteExactlyWhereTheTargetIsReachable, ()) {

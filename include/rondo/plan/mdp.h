@@ -12,12 +12,14 @@
 
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "rondo/core/result.h"
 #include "rondo/core/time.h"
 #include "rondo/map/topo_map.h"
+#include "rondo/plan/dead_ends.h"
 #include "rondo/plan/edge_model_view.h"
 
 namespace rondo::plan {
@@ -32,10 +34,15 @@ inline constexpr double kMinAttemptSeconds = 1e-3;
 
 class Mdp {
  public:
-  // Reads models.outcome(e, at) for every edge of `map`.
-  static Mdp build(const map::TopoMap& map, const EdgeModelView& models, Time at);
-  // The same from outcomes given directly, one per edge; an error if the count is wrong.
-  static Result<Mdp> from_outcomes(const map::TopoMap& map, std::vector<EdgeOutcome> outcomes, Time at);
+  // Reads models.outcome(e, at) for every edge of `map`. `dead_ends`: the map's, from
+  // DeadEnds::find(map), to share one between the many M_t of a map (they depend on its topology
+  // only); found here when null.
+  static Mdp build(const map::TopoMap& map, const EdgeModelView& models, Time at,
+                   std::shared_ptr<const DeadEnds> dead_ends = nullptr);
+  // The same from outcomes given directly, one per edge; an error if the count is wrong or
+  // `dead_ends` is not of a map with this many nodes.
+  static Result<Mdp> from_outcomes(const map::TopoMap& map, std::vector<EdgeOutcome> outcomes, Time at,
+                                   std::shared_ptr<const DeadEnds> dead_ends = nullptr);
 
   const map::TopoMap& topology() const { return *map_; }
   Time time() const { return at_; }
@@ -74,9 +81,26 @@ class Mdp {
     return {out_arcs_.data() + out_start_[node], out_arcs_.data() + out_start_[node + 1]};
   }
 
+  // The map's dead ends (dead_ends.h), found when M_t is built, and what the exact solver needs
+  // of them: the usable in-arcs of each core node that come from core nodes (none for region
+  // nodes), and each region node's best way to its region's door inside the region, at t.
+  const DeadEnds& dead_ends() const { return *dead_ends_; }
+  std::span<const InArc> core_in(NodeIndex node) const {
+    if (core_start_.empty()) return usable_in(node);  // no dead ends: every node is in the core
+    return {core_arcs_.data() + core_start_[node], core_arcs_.data() + core_start_[node + 1]};
+  }
+  static constexpr EdgeIndex kNoExit = std::numeric_limits<EdgeIndex>::max();
+  struct Exit {
+    double seconds;   // expected time to the door; +inf when the door cannot be reached
+    EdgeIndex edge;   // the edge to take first; kNoExit when seconds is +inf
+  };
+  // One per node of DeadEnds::region_members(), in that order.
+  std::span<const Exit> exits() const { return exits_; }
+
  private:
-  Mdp(const map::TopoMap& map, std::vector<EdgeOutcome> outcomes, Time at);
+  Mdp(const map::TopoMap& map, std::vector<EdgeOutcome> outcomes, Time at, std::shared_ptr<const DeadEnds> dead_ends);
   void build_rows();
+  void build_dead_ends();
 
   const map::TopoMap* map_;
   Time at_;
@@ -86,6 +110,10 @@ class Mdp {
   std::vector<std::size_t> in_start_, out_start_;  // node_count() + 1 each
   std::vector<InArc> in_arcs_;
   std::vector<OutArc> out_arcs_;
+  std::shared_ptr<const DeadEnds> dead_ends_;
+  std::vector<std::size_t> core_start_;  // node_count() + 1; empty when there are no dead ends
+  std::vector<InArc> core_arcs_;
+  std::vector<Exit> exits_;
 };
 
 // The sanitising rule of Mdp, exposed for tests and for callers that build costs themselves.

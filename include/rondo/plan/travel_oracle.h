@@ -93,6 +93,7 @@ class TravelOracle {
   const map::TopoMap* map_;
   std::shared_ptr<const EdgeModelView> models_;
   TravelOracleOptions options_;
+  std::shared_ptr<const DeadEnds> dead_ends_;  // the map's, shared by every slot's M_t
   std::uint64_t version_ = 0;
   std::map<std::int64_t, std::shared_ptr<const Mdp>> slots_;
   std::map<std::pair<std::int64_t, NodeIndex>, Policy> policies_;
