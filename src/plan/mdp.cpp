@@ -112,8 +112,8 @@ Result<Mdp> Mdp::from_outcomes(const map::TopoMap& map, std::vector<EdgeOutcome>
     return Error::invalid(fmt::format("{} edge outcomes for a map with {} edges", outcomes.size(), map.edge_count()));
   }
   if (dead_ends && dead_ends->node_count() != map.node_count()) {
-    return Error::invalid(
-        fmt::format("dead ends of a map with {} nodes for a map with {} nodes", dead_ends->node_count(), map.node_count()));
+    return Error::invalid(fmt::format("dead ends of a map with {} nodes for a map with {} nodes",
+                                      dead_ends->node_count(), map.node_count()));
   }
   return Mdp(map, std::move(outcomes), at, std::move(dead_ends));
 }

@@ -100,7 +100,8 @@ Result<Errors> score(const Context& c, learn::FamilyEdgeModels& models, bool onl
       if (!(a.start + a.duration < j.start + c.options->start_resolution)) break;
       if (a.start >= training.to) models.observe(a);
     }
-    RONDO_ASSIGN_OR_RETURN(Mdp mdp, Mdp::from_outcomes(*c.map, outcomes_at(c, models, index, j.start), j.start, c.dead_ends));
+    RONDO_ASSIGN_OR_RETURN(Mdp mdp,
+                           Mdp::from_outcomes(*c.map, outcomes_at(c, models, index, j.start), j.start, c.dead_ends));
     double route = 0;
     for (EdgeIndex e : j.route) route += mdp.expected_crossing_seconds(e);
     // Unusable edges give +inf; keep the summaries finite and say so through a huge error.

@@ -201,9 +201,9 @@ RC_GTEST_PROP(SolverProperties, SkippingTheDeadEndsChangesNoExpectedTime, ()) {
   const auto nodes = *rc::gen::inRange<std::size_t>(2, 300);
   const auto seed = *rc::gen::arbitrary<std::uint32_t>();
   const bool building = *rc::gen::arbitrary<bool>();
-  const map::TopoMap m = building ? testing::corridor_building_map({.floors = 2, .corridor_nodes = 6,
-                                                                    .rooms_per_side = 2})
-                                  : testing::random_map({.nodes = nodes, .seed = seed, .max_out_degree = 2});
+  const map::TopoMap m = building
+                             ? testing::corridor_building_map({.floors = 2, .corridor_nodes = 6, .rooms_per_side = 2})
+                             : testing::random_map({.nodes = nodes, .seed = seed, .max_out_degree = 2});
   const Mdp mdp = outcomes_mdp(m, testing::random_outcomes(m, {.seed = seed, .closed_fraction = 0.1}));
   const DeadEnds& d = mdp.dead_ends();
   // Targets of every kind, when the map has them.

@@ -91,8 +91,8 @@ class Mdp {
   }
   static constexpr EdgeIndex kNoExit = std::numeric_limits<EdgeIndex>::max();
   struct Exit {
-    double seconds;   // expected time to the door; +inf when the door cannot be reached
-    EdgeIndex edge;   // the edge to take first; kNoExit when seconds is +inf
+    double seconds;  // expected time to the door; +inf when the door cannot be reached
+    EdgeIndex edge;  // the edge to take first; kNoExit when seconds is +inf
   };
   // One per node of DeadEnds::region_members(), in that order.
   std::span<const Exit> exits() const { return exits_; }
