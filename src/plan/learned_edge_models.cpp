@@ -42,7 +42,8 @@ void LearnedEdgeModels::set(std::shared_ptr<const learn::EdgeModels> models) {
 EdgeOutcome LearnedEdgeModels::outcome(map::EdgeIndex edge, Time at) const {
   const std::size_t i = index_.at(edge);
   if (i == kUnknown) return prior_.outcome(edge, at);
-  return {.success_probability = models_->success_probability(i, at), .expected_seconds = models_->expected_seconds(i, at)};
+  return {.success_probability = models_->success_probability(i, at),
+          .expected_seconds = models_->expected_seconds(i, at)};
 }
 
 }  // namespace rondo::plan
