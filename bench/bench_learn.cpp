@@ -103,11 +103,11 @@ int main(int argc, char** argv) {
   options.episode.zone = *TimeZone::named("Europe/London");  // Witham Wharf, Lincoln (UK)
   const double fit_ns = median_ns(7, 1, [&] { models = *EdgeModels::fit(edges, *log, options); });
   fmt::print("{:<52} {:>11.1f} ms\n", "EdgeModels::fit, all edges (episode model)", fit_ns / 1e6);
-  EdgeModelsOptions mixture = options;
-  mixture.episode.duration_mixture = true;
-  const double mixture_fit_ns =
-      median_ns(7, 1, [&] { g_sink = g_sink + (*EdgeModels::fit(edges, *log, mixture))->expected_seconds(0, at); });
-  fmt::print("{:<52} {:>11.1f} ms\n", "EdgeModels::fit, duration_mixture = true", mixture_fit_ns / 1e6);
+  EdgeModelsOptions averaging = options;
+  averaging.episode.duration_mixture = false;
+  const double averaging_fit_ns =
+      median_ns(7, 1, [&] { g_sink = g_sink + (*EdgeModels::fit(edges, *log, averaging))->expected_seconds(0, at); });
+  fmt::print("{:<52} {:>11.1f} ms\n", "EdgeModels::fit, duration_mixture = false", averaging_fit_ns / 1e6);
 
   const double fremen_fit_ns = median_ns(7, 1, [&] {
     for (const auto& id : ids) {

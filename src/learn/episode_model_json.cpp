@@ -90,7 +90,8 @@ Result<EpisodePriors> EpisodePriors::from_json(const Json& j) {
     }
     p.options.day_resolutions.push_back(static_cast<int>(r));
   }
-  // Optional (files written before it existed used quantile averaging).
+  // Optional: files written before it existed used quantile averaging.
+  p.options.duration_mixture = false;
   if (j.contains("duration_mixture")) {
     if (!j["duration_mixture"].is_boolean()) return Error::invalid("model: 'duration_mixture' must be true or false");
     p.options.duration_mixture = j["duration_mixture"].get<bool>();

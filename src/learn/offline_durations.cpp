@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 
 #include "histogram_family.h"
 
@@ -81,35 +82,93 @@ QuantileTable shrunk(const std::vector<Sample>& samples, const QuantileTable& pr
   return QuantileTable::mixture(tables, weights);
 }
 
-// The averaged shifted histograms of one edge: kDaySlots tables, each the equal-weight quantile
-// average (or mixture) of the tables of the bins (one per resolution and shift) that hold its slot.
+// The bins of every shifted histogram of one edge: their samples, and for each 15-minute slot the
+// bins (one per histogram) that hold it.
+struct ShiftedBins {
+  std::vector<std::vector<Sample>> members;       // per bin, over all histograms
+  std::vector<std::vector<std::size_t>> of_slot;  // per slot, its bins
+
+  ShiftedBins(const std::vector<SlotSample>& attempts, const std::vector<int>& day_resolutions)
+      : of_slot(static_cast<std::size_t>(kDaySlots)) {
+    for_each_shifted_histogram(day_resolutions, [&](int width, int offset) {
+      auto bin_of = [&](int slot) {
+        return static_cast<std::size_t>(((slot - offset) % kDaySlots + kDaySlots) % kDaySlots / width);
+      };
+      const std::size_t first = members.size();
+      members.resize(first + static_cast<std::size_t>(kDaySlots / width));
+      for (const auto& a : attempts) members[first + bin_of(a.slot)].push_back(a.sample);
+      for (int slot = 0; slot < kDaySlots; ++slot) {
+        of_slot[static_cast<std::size_t>(slot)].push_back(first + bin_of(slot));
+      }
+    });
+  }
+};
+
+// Quantile averaging: each bin's table shrunk towards the edge's (a quantile average), and each
+// slot's table the equal-weight quantile average of its bins' tables.
+std::vector<QuantileTable> averaged_day_tables(const ShiftedBins& bins, const QuantileTable& edge, double prior) {
+  std::vector<QuantileTable> tables;
+  tables.reserve(bins.members.size());
+  for (const auto& m : bins.members) tables.push_back(shrunk(m, edge, prior, false));
+  std::vector<QuantileTable> out(static_cast<std::size_t>(kDaySlots), edge);
+  std::vector<QuantileTable> of_slot;
+  for (std::size_t slot = 0; slot < out.size(); ++slot) {
+    if (bins.of_slot[slot].empty()) continue;
+    of_slot.clear();
+    for (std::size_t b : bins.of_slot[slot]) of_slot.push_back(tables[b]);
+    out[slot] = QuantileTable::average(of_slot);
+  }
+  return out;
+}
+
+// Mixtures: a bin with effective count n is n / (n + prior) of its own distribution and the rest
+// the edge's, and a slot is the equal-weight mixture of its bins. A mixture of mixtures is one
+// mixture, so each slot mixes its bins' own tables (weight n / (n + prior) each) with the edge's
+// (the sum of the rest), once per distinct set of bins (neighbouring slots often share all).
+std::vector<QuantileTable> mixed_day_tables(const ShiftedBins& bins, const QuantileTable& edge, double prior) {
+  std::vector<QuantileTable> own;
+  std::vector<double> own_weight;
+  own.reserve(bins.members.size());
+  for (const auto& m : bins.members) {
+    const double n = QuantileTable::effective_count(m);
+    own.push_back(n > 0 ? QuantileTable::from_weighted_samples(m) : QuantileTable{});
+    own_weight.push_back(n > 0 ? n / (n + prior) : 0.0);
+  }
+  std::vector<QuantileTable> out(static_cast<std::size_t>(kDaySlots), edge);
+  std::map<std::vector<std::size_t>, std::size_t> done;  // a slot's bins -> the first slot with them
+  std::vector<QuantileTable> tables;
+  std::vector<double> weights;
+  for (std::size_t slot = 0; slot < out.size(); ++slot) {
+    const auto& of_slot = bins.of_slot[slot];
+    if (of_slot.empty()) continue;
+    if (auto [it, inserted] = done.try_emplace(of_slot, slot); !inserted) {
+      out[slot] = out[it->second];
+      continue;
+    }
+    tables.clear();
+    weights.clear();
+    double edge_weight = 0;
+    for (std::size_t b : of_slot) {
+      edge_weight += 1 - own_weight[b];
+      if (own_weight[b] <= 0) continue;
+      tables.push_back(own[b]);
+      weights.push_back(own_weight[b]);
+    }
+    tables.push_back(edge);
+    weights.push_back(edge_weight);
+    out[slot] = QuantileTable::mixture(tables, weights);
+  }
+  return out;
+}
+
+// The averaged shifted histograms of one edge: kDaySlots tables, each the equal-weight mixture (or
+// quantile average) of the bins (one per resolution and shift) that hold its slot.
 std::vector<QuantileTable> day_tables(const std::vector<SlotSample>& attempts, const QuantileTable& edge,
                                       const EpisodePriors& priors) {
   const auto& o = priors.options;
-  std::vector<std::vector<QuantileTable>> per_slot(static_cast<std::size_t>(kDaySlots));
-  for_each_shifted_histogram(o.day_resolutions, [&](int width, int offset) {
-    auto bin_of = [&](int slot) {
-      return static_cast<std::size_t>(((slot - offset) % kDaySlots + kDaySlots) % kDaySlots / width);
-    };
-    std::vector<std::vector<Sample>> members(static_cast<std::size_t>(kDaySlots / width));
-    for (const auto& a : attempts) members[bin_of(a.slot)].push_back(a.sample);
-    std::vector<QuantileTable> tables;
-    for (const auto& m : members) tables.push_back(shrunk(m, edge, o.duration_prior, o.duration_mixture));
-    for (int slot = 0; slot < kDaySlots; ++slot) {
-      per_slot[static_cast<std::size_t>(slot)].push_back(tables[bin_of(slot)]);
-    }
-  });
-  std::vector<QuantileTable> out(static_cast<std::size_t>(kDaySlots), edge);
-  for (std::size_t slot = 0; slot < out.size(); ++slot) {
-    const auto& tables = per_slot[slot];
-    if (tables.empty()) continue;
-    if (o.duration_mixture) {
-      out[slot] = QuantileTable::mixture(tables, std::vector<double>(tables.size(), 1.0));
-    } else {
-      out[slot] = QuantileTable::average(tables);
-    }
-  }
-  return out;
+  const ShiftedBins bins(attempts, o.day_resolutions);
+  return o.duration_mixture ? mixed_day_tables(bins, edge, o.duration_prior)
+                            : averaged_day_tables(bins, edge, o.duration_prior);
 }
 
 }  // namespace

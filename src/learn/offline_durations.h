@@ -11,9 +11,11 @@
 //     the edge's retry length (EpisodeEdgeModel::retry_length), so one storm cannot own the table;
 //   - recency: each attempt's weight halves every `duration_half_life` before the newest attempt
 //     of the fit (edges drift: a door that starts sticking makes long failures common);
-//   - time of day without a bin width to pick: per slot, the quantile average (Vincentisation) of
-//     the averaged shifted histograms of `day_resolutions`; each bin's table is shrunk towards the
-//     edge's (`duration_prior` effective observations), the edge's towards the pooled one.
+//   - time of day without a bin width to pick: per slot, the equal-weight mixture of the
+//     distributions of the bins (one per resolution and shift of `day_resolutions`) that hold it;
+//     each bin is shrunk towards the edge's distribution (`duration_prior` effective
+//     observations), the edge's towards the pooled one. With `duration_mixture = false`, quantile
+//     averages (Vincentisation) instead of mixtures.
 #pragma once
 
 #include <vector>

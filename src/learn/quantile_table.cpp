@@ -127,15 +127,30 @@ QuantileTable QuantileTable::mixture(std::span<const QuantileTable> tables, std:
   double total = 0;
   for (std::size_t i = 0; i < n; ++i) total += weights[i] > 0 && std::isfinite(weights[i]) ? weights[i] : 0.0;
   if (!(total > 0)) return out;
-  std::vector<KnotEvent> events;
+  // Every table's knots are a sorted run; merging the runs pairwise (stable: ties keep table, then
+  // knot order) sorts the events in O(K log n) for K knots.
+  std::vector<KnotEvent> events, buffer;
+  std::vector<std::size_t> runs{0};  // run boundaries in `events`
   events.reserve(n * kKnots);
   for (std::size_t i = 0; i < n; ++i) {
     if (!(weights[i] > 0) || !std::isfinite(weights[i])) continue;
     for (std::size_t k = 0; k < tables[i].values_.size(); ++k) events.push_back({tables[i].values_[k], i, k});
+    runs.push_back(events.size());
   }
-  std::sort(events.begin(), events.end(), [](const KnotEvent& a, const KnotEvent& b) {
-    return a.value < b.value || (a.value == b.value && (a.table < b.table || (a.table == b.table && a.knot < b.knot)));
-  });
+  buffer.resize(events.size());
+  auto by_value = [](const KnotEvent& a, const KnotEvent& b) { return a.value < b.value; };
+  while (runs.size() > 2) {
+    std::vector<std::size_t> merged{0};
+    for (std::size_t r = 0; r + 1 < runs.size(); r += 2) {
+      const auto first = events.begin() + static_cast<std::ptrdiff_t>(runs[r]);
+      const auto middle = events.begin() + static_cast<std::ptrdiff_t>(runs[r + 1]);
+      const auto end = r + 2 < runs.size() ? events.begin() + static_cast<std::ptrdiff_t>(runs[r + 2]) : middle;
+      std::merge(first, middle, middle, end, buffer.begin() + static_cast<std::ptrdiff_t>(runs[r]), by_value);
+      merged.push_back(static_cast<std::size_t>(end - events.begin()));
+    }
+    events.swap(buffer);
+    runs = std::move(merged);
+  }
   constexpr double kStep = 0.02;  // probability between consecutive knots (and in each tail)
   constexpr double kTolerance = 1e-12;
   // Knots closer than this (relative) are one atom: a segment of width ~1e-15 (rounding in

@@ -153,6 +153,7 @@ TEST(EpisodeModel, MixtureShrinkageKeepsTheModesOfEdgeAndPool) {
   }
   EpisodeOptions average;
   average.duration_half_life = seconds(0);
+  average.duration_mixture = false;
   EpisodeOptions mixture = average;
   mixture.duration_mixture = true;
   const Time at = monday() + hours(10);
@@ -171,6 +172,45 @@ TEST(EpisodeModel, MixtureShrinkageKeepsTheModesOfEdgeAndPool) {
   auto round_trip = EpisodePriors::from_json(mixed_fit.priors->to_json());
   ASSERT_TRUE(round_trip) << round_trip.error().message;
   EXPECT_TRUE(round_trip->options.duration_mixture);
+  // Files written before the option existed were fitted with quantile averaging.
+  Json older = mixed_fit.priors->to_json();
+  older.erase("duration_mixture");
+  auto loaded = EpisodePriors::from_json(older);
+  ASSERT_TRUE(loaded) << loaded.error().message;
+  EXPECT_FALSE(loaded->options.duration_mixture);
+}
+
+TEST(EpisodeModel, MixedShiftedHistogramsKeepEachTimeOfDaysModes) {
+  // 10 s crossings at 09:00 and 100 s crossings at 21:00 (UTC), 100 days of each. Histograms of 1
+  // and of 2 bins a day (4 shifts of 3 h): at 09:00 one histogram of 5 (the whole day) is half
+  // 100 s, the four 12-hour bins hold 10 s only; a mixture keeps ~85 % of the slot at exactly
+  // 10 s and the 100 s mode in its top few per cent, where quantile averaging would move the whole
+  // slot towards 55 s. 21:00 is the mirror image (and must not share 09:00's table).
+  std::vector<Attempt> attempts;
+  for (int d = 0; d < 100; ++d) {
+    const Time morning = monday() + hours(24 * d + 9);
+    const Time evening = monday() + hours(24 * d + 21);
+    attempts.push_back({morning, morning + seconds(10), 10.0, true});
+    attempts.push_back({evening, evening + seconds(100), 100.0, true});
+  }
+  EpisodeOptions mixture;
+  mixture.duration_half_life = seconds(0);
+  mixture.day_resolutions = {1, 2};
+  mixture.duration_prior = 1e-9;  // every bin is its own data
+  EpisodeOptions average = mixture;
+  average.duration_mixture = false;
+  const auto mixed_fit = fit_episode_models({attempts}, mixture);
+  const auto averaged_fit = fit_episode_models({attempts}, average);
+  const auto& mixed = *mixed_fit.edges[0];
+  const Time nine = monday() + hours(9), twenty_one = monday() + hours(21);
+  EXPECT_DOUBLE_EQ(mixed.quantile_seconds(nine, 0.02), 10.0);
+  EXPECT_DOUBLE_EQ(mixed.quantile_seconds(nine, 0.8), 10.0);
+  EXPECT_GT(mixed.quantile_seconds(nine, 0.9), 10.0);
+  EXPECT_DOUBLE_EQ(mixed.quantile_seconds(nine, 0.98), 100.0);
+  EXPECT_DOUBLE_EQ(mixed.quantile_seconds(twenty_one, 0.02), 10.0);
+  EXPECT_DOUBLE_EQ(mixed.quantile_seconds(twenty_one, 0.2), 100.0);
+  EXPECT_DOUBLE_EQ(mixed.quantile_seconds(twenty_one, 0.98), 100.0);
+  EXPECT_GT(averaged_fit.edges[0]->quantile_seconds(nine, 0.5), 15.0);
 }
 
 TEST(EpisodePriors, TimeOfDayIsLocalTimeInTheZone) {

@@ -58,13 +58,12 @@ struct EpisodeOptions {
   // attempt of the fit; zero or less: no decay.
   Duration duration_half_life = std::chrono::days(7);
   // Offline duration quantiles: how the tables are shrunk (a bin towards the edge, the edge towards
-  // the pooled table) and how the shifted histograms are averaged. false: quantile averaging
-  // (Vincentisation); true: mixtures of the distributions (the posterior predictive of a Dirichlet
-  // process whose base measure is the prior table, and averaged shifted histograms proper). Off by
-  // default: it makes a fit about 3x slower (Witham: 445 ms against 158 ms; a 21-day `rondo run`
-  // with its nightly refits 10.7 s against 2.1 s), and its gains are mixed: better on both
-  // validation splits and on the MAE, worse on the default split's 0.9 pinball (docs/learning.md).
-  bool duration_mixture = false;
+  // the pooled table) and how the shifted histograms are averaged. true: mixtures of the
+  // distributions (the posterior predictive of a Dirichlet process whose base measure is the prior
+  // table, and averaged shifted histograms proper); false: quantile averaging (Vincentisation),
+  // which invents durations between modes and makes a fit about 2x faster (Witham: 62 against
+  // 133 ms). Mixtures won on seven time-ordered validation periods (docs/learning.md).
+  bool duration_mixture = true;
   // Prior strengths, in pseudo-observations.
   double bin_prior = 10;          // a time-of-day bin towards the edge's first-attempt rate
   double edge_prior = 2;          // an edge's first-attempt rate towards the pooled rate
