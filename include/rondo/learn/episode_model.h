@@ -62,7 +62,8 @@ struct EpisodeOptions {
   // distributions (the posterior predictive of a Dirichlet process whose base measure is the prior
   // table, and averaged shifted histograms proper); false: quantile averaging (Vincentisation),
   // which invents durations between modes and makes a fit about 2x faster (Witham: 62 against
-  // 133 ms). Mixtures won on seven time-ordered validation periods (docs/learning.md).
+  // 133 ms). Mixtures scored better on time-ordered validation periods before the default split
+  // (docs/learning.md).
   bool duration_mixture = true;
   // Prior strengths, in pseudo-observations.
   double bin_prior = 10;          // a time-of-day bin towards the edge's first-attempt rate
