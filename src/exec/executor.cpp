@@ -54,15 +54,19 @@ Result<std::vector<TaskId>> Executor::insert_tasks(std::vector<Task> tasks, std:
     if (auto ok = accept(t); !ok) return ok.error();
     if (!ids.insert(t.id).second) return Error::invalid(fmt::format("task {}: the id appears twice", t.id));
   }
+  // All or nothing: a batch the store refuses (or cannot write) leaves no task behind, in the store
+  // or in memory, so the caller can send it again.
+  const Time now = clock_.now();
+  const std::string reason = fmt::format("added by {}", source);
+  std::vector<store::TaskRecord> records;
+  records.reserve(tasks.size());
+  for (const Task& t : tasks) {
+    records.push_back(
+        {.id = t.id, .task = encode(t), .state = to_string(TaskState::kQueued), .created = now, .updated = now});
+  }
+  if (auto ok = store::add_tasks(store_, records, reason); !ok) return ok.error();
   std::vector<TaskId> standard;
   for (Task& t : tasks) {
-    const Time now = clock_.now();
-    const std::string reason = fmt::format("added by {}", source);
-    if (auto ok = store::add_task(store_, {.id = t.id, .task = encode(t), .state = to_string(TaskState::kQueued),
-                                           .created = now, .updated = now},
-                                  reason);
-        !ok)
-      return ok.error();
     const TaskId id = t.id;
     const bool on_demand = t.kind == TaskKind::kOnDemand;
     tasks_.emplace(id, TaskRecord{.task = std::move(t), .state = TaskState::kQueued, .reason = reason,

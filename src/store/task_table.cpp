@@ -40,22 +40,33 @@ Result<std::vector<TaskRecord>> read_tasks(const Store& store, SQLite::Statement
 }  // namespace
 
 Status add_task(Store& store, const TaskRecord& task, std::string_view reason) {
-  if (task.id.empty()) return Error::invalid(store.file().string() + ": a task needs a non-empty id");
-  return guarded(store, fmt::format("adding task '{}'", task.id), [&]() -> Status {
+  return add_tasks(store, std::span<const TaskRecord>(&task, 1), reason);
+}
+
+Status add_tasks(Store& store, std::span<const TaskRecord> tasks, std::string_view reason) {
+  for (const TaskRecord& t : tasks) {
+    if (t.id.empty()) return Error::invalid(store.file().string() + ": a task needs a non-empty id");
+  }
+  const std::string what =
+      tasks.size() == 1 ? fmt::format("adding task '{}'", tasks[0].id) : fmt::format("adding {} tasks", tasks.size());
+  return guarded(store, what, [&]() -> Status {
     SQLite::Database& db = connection(store);
     SQLite::Transaction tx(db, SQLite::TransactionBehavior::IMMEDIATE);
     SQLite::Statement insert(db,
                              "INSERT INTO tasks (id, state, task_json, created_ms, updated_ms) VALUES (?, ?, ?, ?, ?) "
                              "ON CONFLICT (id) DO NOTHING");
-    insert.bind(1, task.id);
-    insert.bind(2, task.state);
-    insert.bind(3, task.task.dump());
-    insert.bind(4, to_db(task.created));
-    insert.bind(5, to_db(task.updated));
-    if (insert.exec() == 0) {
-      return Error::invalid(fmt::format("{}: task '{}' is already stored", store.file().string(), task.id));
+    for (const TaskRecord& task : tasks) {
+      insert.reset();
+      insert.bind(1, task.id);
+      insert.bind(2, task.state);
+      insert.bind(3, task.task.dump());
+      insert.bind(4, to_db(task.created));
+      insert.bind(5, to_db(task.updated));
+      if (insert.exec() == 0) {  // the transaction rolls back: none of `tasks` is stored
+        return Error::invalid(fmt::format("{}: task '{}' is already stored", store.file().string(), task.id));
+      }
+      insert_event_row(db, task.created, task.id, task.state, reason);
     }
-    insert_event_row(db, task.created, task.id, task.state, reason);
     tx.commit();  // with synchronous=FULL the WAL is synced to disk here
     return {};
   });

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <set>
 
+#include "rondo/store/task_table.h"
 #include "scenario.h"
 
 namespace rondo::exec::testing {
@@ -120,6 +121,31 @@ TEST(ExecutorScenario, AnEarlyTaskWaitsForItsWindow) {
   EXPECT_GE(acting, s.at("08:05"));
   EXPECT_LE(acting, s.at("08:05:05"));
   EXPECT_LT(event_time(s, "A", "waiting"), event_time(s, "A", "navigating"));
+}
+
+// The store already holds a task "B" (say, from another executive on the same file): a batch that
+// names it is refused whole, in the store and in memory, and the same batch without it runs.
+TEST(ExecutorScenario, ABatchTheStoreRefusesLeavesNoTaskBehind) {
+  Scenario s(kCalmWorld);
+  ASSERT_TRUE(store::add_task(
+      s.store(),
+      {.id = "B", .task = Json::object(), .state = "queued", .created = s.at("07:00"), .updated = s.at("07:00")}));
+  s.executor().start();
+  auto a = task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(5));
+  auto c = task("C", "Kitchen", s.at("08:00"), s.at("10:00"), minutes(5));
+  const Status refused =
+      s.executor().add_tasks({a, task("B", "Lab", s.at("08:00"), s.at("10:00"), minutes(5)), c}, "test");
+  ASSERT_FALSE(refused);
+  EXPECT_THAT(refused.error().message, HasSubstr("'B' is already stored"));
+  EXPECT_TRUE(s.executor().tasks().empty());
+  EXPECT_TRUE(s.events_of("A").empty());
+  EXPECT_TRUE(s.events_of("C").empty());
+
+  ASSERT_TRUE(s.executor().add_tasks({a, c}, "test"));
+  s.run_until("10:00");
+  EXPECT_EQ(s.final_state("A"), "succeeded");
+  EXPECT_EQ(s.final_state("C"), "succeeded");
+  EXPECT_EQ(s.final_state("B"), "unknown");
 }
 
 TEST(ExecutorScenario, ALateTaskFailsAndTheRestIsRescheduled) {

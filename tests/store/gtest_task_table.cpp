@@ -82,6 +82,39 @@ TEST_F(TaskTable, RefusesADuplicateIdAndKeepsTheFirst) {
   EXPECT_EQ(read_task_events_of(db(), "t1")->size(), 1u);  // no event for the refused one
 }
 
+TEST_F(TaskTable, StoresABatchWhole) {
+  const std::vector<TaskRecord> batch{sample("a", 10), sample("b", 10), sample("c", 10)};
+  ASSERT_TRUE(add_tasks(db(), batch, "routine").ok());
+  auto all = list_tasks(db());
+  ASSERT_TRUE(all.ok());
+  EXPECT_EQ(*all, batch);
+  for (const auto& t : batch) {
+    auto events = read_task_events_of(db(), t.id);
+    ASSERT_EQ(events->size(), 1u);
+    EXPECT_EQ((*events)[0].reason, "routine");
+  }
+}
+
+TEST_F(TaskTable, StoresNoneOfABatchWithAStoredId) {
+  ASSERT_TRUE(add_task(db(), sample("b")).ok());
+  const std::vector<TaskRecord> batch{sample("a", 200), sample("b", 200), sample("c", 200)};
+  Status s = add_tasks(db(), batch);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.error().code, ErrorCode::kInvalidInput);
+  EXPECT_NE(s.error().message.find("'b' is already stored"), std::string::npos) << s.error().message;
+  auto all = list_tasks(db());
+  ASSERT_EQ(all->size(), 1u);  // "a", before the refused one, was rolled back too
+  EXPECT_EQ((*all)[0], sample("b"));
+  EXPECT_TRUE(read_task_events_of(db(), "a")->empty());
+  EXPECT_EQ(read_task_events_of(db(), "b")->size(), 1u);
+}
+
+TEST_F(TaskTable, StoresNoneOfABatchThatRepeatsAnId) {
+  Status s = add_tasks(db(), std::vector<TaskRecord>{sample("a"), sample("a", 300)});
+  ASSERT_FALSE(s.ok());
+  EXPECT_TRUE(list_tasks(db())->empty());
+}
+
 TEST_F(TaskTable, RefusesAnEmptyId) {
   Status s = add_task(db(), sample(""));
   ASSERT_FALSE(s.ok());

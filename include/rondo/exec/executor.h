@@ -110,8 +110,8 @@ class Executor final : public RobotListener {
   Executor& operator=(const Executor&) = delete;
 
   // Accepts tasks (committed to the store before this returns), then schedules them together.
-  // kInvalidInput for a task that cannot be run here (unknown node, no window, duplicate id);
-  // then nothing is added.
+  // kInvalidInput for a task that cannot be run here (unknown node, no window, duplicate id, an
+  // id the store already holds), kStorage when the store cannot write; either way nothing is added.
   Status add_tasks(std::vector<Task> tasks, std::string_view source);
   Status add_task(Task task, std::string_view source) { return add_tasks({std::move(task)}, source); }
   // Routines become tasks every day at local midnight (and at start() for the current day).
@@ -138,7 +138,8 @@ class Executor final : public RobotListener {
 
   // bookkeeping (executor.cpp)
   Status accept(const Task& task);
-  // Validates, stores and records tasks; returns the standard ones (on-demand ones are queued).
+  // Validates, stores (all or nothing) and records tasks; returns the standard ones (on-demand ones
+  // are queued).
   Result<std::vector<TaskId>> insert_tasks(std::vector<Task> tasks, std::string_view source);
   void transition(const TaskId& id, TaskState state, const std::string& reason);
   void note(const TaskId& id, const std::string& event, const std::string& reason);

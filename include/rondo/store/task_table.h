@@ -8,6 +8,7 @@
 //   Result<TaskRecord> back = get_task(db, "t1");           // state "navigating", updated later
 #pragma once
 
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -34,6 +35,10 @@ struct TaskRecord {
 // crash right after never loses it. Errors: kInvalidInput (the id is already stored, or it is
 // empty), kStorage.
 Status add_task(Store& store, const TaskRecord& task, std::string_view reason = "accepted");
+
+// Accepts several tasks at once, all or nothing: one transaction, one sync. If any id is empty,
+// already stored or repeated in `tasks`, nothing is stored. Errors as add_task's.
+Status add_tasks(Store& store, std::span<const TaskRecord> tasks, std::string_view reason = "accepted");
 
 // Moves task `id` to `state` at time `at` and appends the event (at, id, state, reason), in one
 // transaction. Errors: kNotFound (no such task), kStorage.
