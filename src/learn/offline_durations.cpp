@@ -83,13 +83,16 @@ QuantileTable shrunk(const std::vector<Sample>& samples, const QuantileTable& pr
 }
 
 // The bins of every shifted histogram of one edge: their samples, and for each 15-minute slot the
-// bins (one per histogram) that hold it.
+// bins (one per histogram) that hold it. Each bin's samples are in value order, so that building
+// its table does not sort them again.
 struct ShiftedBins {
-  std::vector<std::vector<Sample>> members;       // per bin, over all histograms
+  std::vector<std::vector<Sample>> members;       // per bin, over all histograms, by value
   std::vector<std::vector<std::size_t>> of_slot;  // per slot, its bins
 
-  ShiftedBins(const std::vector<SlotSample>& attempts, const std::vector<int>& day_resolutions)
+  ShiftedBins(std::vector<SlotSample> attempts, const std::vector<int>& day_resolutions)
       : of_slot(static_cast<std::size_t>(kDaySlots)) {
+    std::stable_sort(attempts.begin(), attempts.end(),
+                     [](const SlotSample& a, const SlotSample& b) { return a.sample.value < b.sample.value; });
     for_each_shifted_histogram(day_resolutions, [&](int width, int offset) {
       auto bin_of = [&](int slot) {
         return static_cast<std::size_t>(((slot - offset) % kDaySlots + kDaySlots) % kDaySlots / width);

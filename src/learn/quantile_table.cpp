@@ -29,8 +29,8 @@ QuantileTable QuantileTable::from_weighted_samples(std::vector<WeightedValue> sa
   std::erase_if(samples, [](const WeightedValue& s) { return !(s.weight > 0) || !std::isfinite(s.weight); });
   QuantileTable out;
   if (samples.empty()) return out;
-  std::sort(samples.begin(), samples.end(),
-            [](const WeightedValue& a, const WeightedValue& b) { return a.value < b.value; });
+  auto by_value = [](const WeightedValue& a, const WeightedValue& b) { return a.value < b.value; };
+  if (!std::is_sorted(samples.begin(), samples.end(), by_value)) std::sort(samples.begin(), samples.end(), by_value);
   // Equal values are one point mass (so the order of ties cannot matter).
   std::size_t kept = 0;
   for (std::size_t i = 1; i < samples.size(); ++i) {

@@ -61,8 +61,8 @@ struct EpisodeOptions {
   // the pooled table) and how the shifted histograms are averaged. true: mixtures of the
   // distributions (the posterior predictive of a Dirichlet process whose base measure is the prior
   // table, and averaged shifted histograms proper); false: quantile averaging (Vincentisation),
-  // which invents durations between modes and makes a fit about 2x faster (Witham: 62 against
-  // 133 ms). Mixtures scored better on time-ordered validation periods before the default split
+  // which invents durations between modes and makes a fit about 3x faster (Witham: 36 against
+  // 105 ms). Mixtures scored better on time-ordered validation periods before the default split
   // (docs/learning.md).
   bool duration_mixture = true;
   // Prior strengths, in pseudo-observations.

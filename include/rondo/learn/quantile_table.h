@@ -32,10 +32,10 @@ class QuantileTable {
     double weight = 0;  // >= 0; non-positive and non-finite weights are dropped
   };
   // Quantiles of a weighted sample: each distinct value holds its share of the total weight (equal
-  // values pool their weights), centred on
-  // the middle of its share (Hazen's plotting positions), interpolated linearly between those
-  // centres and constant beyond the first and last. Negative values are clamped to 0; all zero
-  // when no weight is positive.
+  // values pool their weights), centred on the middle of its share (Hazen's plotting positions),
+  // interpolated linearly between those centres and constant beyond the first and last. Negative
+  // values are clamped to 0; all zero when no weight is positive. O(n) for samples already in
+  // value order, O(n log n) otherwise.
   static QuantileTable from_weighted_samples(std::vector<WeightedValue> samples);
   // The effective number of observations of a weighted sample, (sum w)^2 / sum w^2 (Kish).
   static double effective_count(const std::vector<WeightedValue>& samples);
