@@ -44,6 +44,7 @@ Status add_task(Store& store, const TaskRecord& task, std::string_view reason) {
 }
 
 Status add_tasks(Store& store, std::span<const TaskRecord> tasks, std::string_view reason) {
+  if (tasks.empty()) return {};
   for (const TaskRecord& t : tasks) {
     if (t.id.empty()) return Error::invalid(store.file().string() + ": a task needs a non-empty id");
   }

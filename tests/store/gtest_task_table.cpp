@@ -109,6 +109,11 @@ TEST_F(TaskTable, StoresNoneOfABatchWithAStoredId) {
   EXPECT_EQ(read_task_events_of(db(), "b")->size(), 1u);
 }
 
+TEST_F(TaskTable, AnEmptyBatchStoresNothing) {
+  ASSERT_TRUE(add_tasks(db(), {}).ok());
+  EXPECT_TRUE(list_tasks(db())->empty());
+}
+
 TEST_F(TaskTable, StoresNoneOfABatchThatRepeatsAnId) {
   Status s = add_tasks(db(), std::vector<TaskRecord>{sample("a"), sample("a", 300)});
   ASSERT_FALSE(s.ok());
