@@ -83,16 +83,14 @@ QuantileTable shrunk(const std::vector<Sample>& samples, const QuantileTable& pr
 }
 
 // The bins of every shifted histogram of one edge: their samples, and for each 15-minute slot the
-// bins (one per histogram) that hold it. Each bin's samples are in value order, so that building
-// its table does not sort them again.
+// bins (one per histogram) that hold it. `attempts` come in value order, and so does each bin's
+// share of them, so that building a bin's table does not sort it again.
 struct ShiftedBins {
   std::vector<std::vector<Sample>> members;       // per bin, over all histograms, by value
   std::vector<std::vector<std::size_t>> of_slot;  // per slot, its bins
 
-  ShiftedBins(std::vector<SlotSample> attempts, const std::vector<int>& day_resolutions)
+  ShiftedBins(const std::vector<SlotSample>& attempts, const std::vector<int>& day_resolutions)
       : of_slot(static_cast<std::size_t>(kDaySlots)) {
-    std::stable_sort(attempts.begin(), attempts.end(),
-                     [](const SlotSample& a, const SlotSample& b) { return a.sample.value < b.sample.value; });
     for_each_shifted_histogram(day_resolutions, [&](int width, int offset) {
       auto bin_of = [&](int slot) {
         return static_cast<std::size_t>(((slot - offset) % kDaySlots + kDaySlots) % kDaySlots / width);
@@ -164,8 +162,9 @@ std::vector<QuantileTable> mixed_day_tables(const ShiftedBins& bins, const Quant
   return out;
 }
 
-// The averaged shifted histograms of one edge: kDaySlots tables, each the equal-weight mixture (or
-// quantile average) of the bins (one per resolution and shift) that hold its slot.
+// The averaged shifted histograms of one edge (`attempts` in value order): kDaySlots tables, each
+// the equal-weight mixture (or quantile average) of the bins (one per resolution and shift) that
+// hold its slot.
 std::vector<QuantileTable> day_tables(const std::vector<SlotSample>& attempts, const QuantileTable& edge,
                                       const EpisodePriors& priors) {
   const auto& o = priors.options;
@@ -186,6 +185,9 @@ std::vector<std::vector<QuantileTable>> offline_duration_tables(const std::vecto
   std::vector<Sample> pooled;  // every edge with total weight 1
   for (const auto& attempts : edges) {
     weighted.push_back(weighted_attempts(attempts, priors, newest));
+    // In value order from here on: the edge's table and its bins' tables then need no sort.
+    std::stable_sort(weighted.back().begin(), weighted.back().end(),
+                     [](const SlotSample& a, const SlotSample& b) { return a.sample.value < b.sample.value; });
     double total = 0;
     for (const auto& s : weighted.back()) total += s.sample.weight;
     if (total <= 0) continue;
