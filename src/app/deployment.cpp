@@ -85,6 +85,7 @@ Result<Deployment> decode(const Field& root, const std::filesystem::path& file) 
   d.zone = *tz;
   RONDO_ASSIGN_OR_RETURN(const Field dock, root.required("dock"));
   RONDO_ASSIGN_OR_RETURN(d.dock, dock.as_string());
+  d.dock_where = dock.where();
   RONDO_ASSIGN_OR_RETURN(const Field start, root.required("start"));
   RONDO_ASSIGN_OR_RETURN(const Time start_time, start.as_time(&d.zone));
   d.start = d.zone.local_date(start_time);

@@ -35,6 +35,7 @@ struct Deployment {
   std::filesystem::path map;
   TimeZone zone = TimeZone::utc();
   std::string dock;
+  std::string dock_where;  // "file:line: dock", for errors found once the map is loaded
   std::chrono::year_month_day start{};
   int days = 21;
   std::uint64_t seed = 1;

@@ -11,12 +11,12 @@
 #include "rondo/core/task_codec.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
-#include "rondo/map/map_loader.h"
 #include "rondo/sim/request_generator.h"
 #include "rondo/sim/sim_robot.h"
 #include "rondo/sim/sim_world.h"
 #include "rondo/store/store.h"
 #include "rondo/store/traversal_log.h"
+#include "deployment_parts.h"
 #include "run_report.h"
 
 namespace rondo::app {
@@ -45,32 +45,22 @@ void draw_progress(std::ostream& out, int done, int total) {
 
 // Everything one run needs, alive for the whole run.
 struct Session {
-  map::TopoMap map;
-  TaskFile plan;
-  sim::SimWorld world;
-  std::optional<sim::RequestGenerator> people;
+  DeploymentParts parts;
   store::Store store;
 };
 
+// The whole deployment is loaded and checked before the run folder is touched: a deployment that
+// fails validation leaves --out as it was.
 Result<Session> open_session(const RunRequest& request) {
-  const Deployment& d = request.deployment;
-  RONDO_ASSIGN_OR_RETURN(map::TopoMap map, map::load_map(d.map));
-  if (!map.find_node(d.dock))
-    return Error::invalid(fmt::format("{}: dock: node '{}' is not on the map {}", d.file.string(), d.dock,
-                                      d.map.string()));
-  TaskFile plan;
-  if (d.routines) { RONDO_ASSIGN_OR_RETURN(plan, load_task_file(*d.routines)); }
-  RONDO_ASSIGN_OR_RETURN(sim::SimWorld world, sim::load_world(d.world, map, d.zone));
-  std::optional<sim::RequestGenerator> people;
-  if (d.requests) { RONDO_ASSIGN_OR_RETURN(people, sim::RequestGenerator::load(*d.requests, map, d.zone)); }
-  std::error_code ec;
-  std::filesystem::create_directories(request.out / "days", ec);
-  if (ec) return Error::io(fmt::format("{}: cannot create the run folder: {}", request.out.string(), ec.message()));
+  RONDO_ASSIGN_OR_RETURN(DeploymentParts parts, load_parts(request.deployment));
   const std::filesystem::path db = request.out / "rondo.sqlite";
   if (std::filesystem::exists(db))
     return Error::invalid(fmt::format("{}: already exists; give a fresh --out folder", db.string()));
+  std::error_code ec;
+  std::filesystem::create_directories(request.out / "days", ec);
+  if (ec) return Error::io(fmt::format("{}: cannot create the run folder: {}", request.out.string(), ec.message()));
   RONDO_ASSIGN_OR_RETURN(store::Store store, store::Store::open(db, {.sync_commits = request.realtime}));
-  return Session{std::move(map), std::move(plan), std::move(world), std::move(people), std::move(store)};
+  return Session{std::move(parts), std::move(store)};
 }
 
 }  // namespace
@@ -79,20 +69,21 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   const auto wall_start = std::chrono::steady_clock::now();
   const Deployment& d = request.deployment;
   RONDO_ASSIGN_OR_RETURN(Session s, open_session(request));
-  const map::NodeIndex dock = *s.map.find_node(d.dock);
+  const map::TopoMap& map = s.parts.map;
+  const map::NodeIndex dock = s.parts.dock;
 
   const Time start = request.realtime ? std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now())
                                       : d.zone.at(d.start, Duration{0});
   exec::SimClock sim_clock(start);
   exec::SystemClock system_clock;
   exec::Clock& clock = request.realtime ? static_cast<exec::Clock&>(system_clock) : sim_clock;
-  sim::SimRobot robot(clock, s.map, s.world, {.start = dock, .dock = dock, .seed = d.seed});
+  sim::SimRobot robot(clock, map, s.parts.world, {.start = dock, .dock = dock, .seed = d.seed});
   exec::ExecutorOptions options = d.executor;
   options.dock = dock;
   options.seed = d.seed;
-  exec::Executor executor(clock, robot, s.map, s.store, d.zone, options);
-  executor.add_routines(s.plan.routines);
-  if (!s.plan.tasks.empty()) RONDO_RETURN_IF_ERROR(executor.add_tasks(s.plan.tasks, "deployment"));
+  exec::Executor executor(clock, robot, map, s.store, d.zone, options);
+  executor.add_routines(s.parts.plan.routines);
+  if (!s.parts.plan.tasks.empty()) RONDO_RETURN_IF_ERROR(executor.add_tasks(s.parts.plan.tasks, "deployment"));
   executor.start();
 
   // Spans on the charger for the day pictures, sampled once a minute (reads only: the run is the
@@ -122,8 +113,8 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
     const auto tomorrow = std::chrono::year_month_day{std::chrono::sys_days{today} + std::chrono::days{1}};
     const Time day_from = std::max(start, d.zone.at(today, Duration{0}));
     const Time day_to = d.zone.at(tomorrow, Duration{0});
-    if (s.people) {
-      for (sim::Request& r : s.people->between(day_from, day_to, people_rng))
+    if (s.parts.people) {
+      for (sim::Request& r : s.parts.people->between(day_from, day_to, people_rng))
         clock.schedule_at(r.at, [&executor, task = std::move(r.task)]() mutable {
           (void)executor.add_task(std::move(task), "request");
         });
@@ -149,7 +140,7 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   result.report["seed"] = d.seed;
   result.report["days"] = d.days;
   RONDO_ASSIGN_OR_RETURN(const std::vector<Traversal> log, store::find_traversals(s.store));
-  result.report["travel_table"] = travel_table(s.map, log, start, d.days);
+  result.report["travel_table"] = travel_table(map, log, start, d.days);
   result.write_errors = static_cast<int>(executor.write_errors().size());
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   RONDO_RETURN_IF_ERROR(write_file(request.out / "report.json", result.report.dump(2) + "\n"));

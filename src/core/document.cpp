@@ -362,6 +362,13 @@ Result<Time> Field::as_time(const TimeZone* zone) const {
 
 Error Field::error(std::string_view what) const { return error_at("", what); }
 
+std::string Field::where() const {
+  std::string where = doc_.source();
+  if (auto line = doc_.line_of(path_)) where += ":" + std::to_string(*line);
+  if (!path_.empty()) where += ": " + path_;
+  return where;
+}
+
 Error Field::error_at(std::string_view relative_path, std::string_view what) const {
   std::string path = path_;
   if (!relative_path.empty()) {

@@ -61,6 +61,10 @@ std::optional<Problem> first_problem(const Routine& r) {
   if (r.window_end > hours(24)) return Problem{"window.to", "must be 24:00 at the latest"};
   if (r.every) {
     if (*r.every <= Duration{0}) return Problem{"every", "the repeat interval must be longer than zero"};
+    if (*r.every < kMinRoutineEvery) {
+      return Problem{"every", "the repeat interval " + format_duration(*r.every) +
+                                  " is below the minimum of 1m (instance ids name the minute they start)"};
+    }
     if (*r.every > r.window_end - r.window_start) {
       return Problem{"every", "the repeat interval " + format_duration(*r.every) + " is longer than the daily window"};
     }

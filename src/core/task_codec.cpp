@@ -74,7 +74,12 @@ Result<Delivery> decode_delivery(const Field& f) {
 
 // Everything of a task except id, kind and window, which tasks and routine templates treat
 // differently.
-Status decode_task_body(const Field& f, Task& t) {
+Status check_place(const Field& f, std::string_view key, const std::string& node, const PlaceCheck* places) {
+  if (!places || node.empty() || places->known(node)) return {};
+  return f.error_at(key, fmt::format("node '{}' is not on the map '{}'", node, places->map_name));
+}
+
+Status decode_task_body(const Field& f, Task& t, const PlaceCheck* places) {
   RONDO_ASSIGN_OR_RETURN(t.activity, optional_string(f, "activity"));
   if (auto d = f.optional("duration")) {
     RONDO_ASSIGN_OR_RETURN(t.duration, d->as_duration());
@@ -86,6 +91,8 @@ Status decode_task_body(const Field& f, Task& t) {
   }
   RONDO_ASSIGN_OR_RETURN(t.start_node, optional_string(f, "start_node"));
   RONDO_ASSIGN_OR_RETURN(t.end_node, optional_string(f, "end_node"));
+  RONDO_RETURN_IF_ERROR(check_place(f, "start_node", t.start_node, places));
+  RONDO_RETURN_IF_ERROR(check_place(f, "end_node", t.end_node, places));
   if (auto actions = f.optional("actions")) {
     RONDO_ASSIGN_OR_RETURN(auto items, actions->items());
     for (const auto& item : items) {
@@ -178,7 +185,7 @@ std::string format_date(std::chrono::year_month_day d) {
 
 }  // namespace
 
-Result<Task> decode_task(const Field& f, const TimeZone* zone) {
+Result<Task> decode_task(const Field& f, const TimeZone* zone, const PlaceCheck* places) {
   RONDO_RETURN_IF_ERROR(f.expect_keys({"id", "activity", "kind", "window", "duration", "priority", "start_node",
                                        "end_node", "actions", "interruptible", "delivery", "after"}));
   Task t;
@@ -199,12 +206,12 @@ Result<Task> decode_task(const Field& f, const TimeZone* zone) {
     RONDO_ASSIGN_OR_RETURN(window.deadline, deadline.as_time(zone));
     t.window = window;
   }
-  RONDO_RETURN_IF_ERROR(decode_task_body(f, t));
+  RONDO_RETURN_IF_ERROR(decode_task_body(f, t, places));
   if (auto p = detail::first_problem(t)) return f.error_at(p->field, p->message);
   return t;
 }
 
-Result<Routine> decode_routine(const Field& f) {
+Result<Routine> decode_routine(const Field& f, const PlaceCheck* places) {
   RONDO_RETURN_IF_ERROR(
       f.expect_keys({"name", "task", "window", "every", "days", "days_off", "dates_off", "first_day", "last_day"}));
   Routine r;
@@ -213,7 +220,7 @@ Result<Routine> decode_routine(const Field& f) {
   RONDO_ASSIGN_OR_RETURN(auto task, f.required("task"));
   RONDO_RETURN_IF_ERROR(task.expect_keys(
       {"activity", "duration", "priority", "start_node", "end_node", "actions", "interruptible"}));
-  RONDO_RETURN_IF_ERROR(decode_task_body(task, r.task));
+  RONDO_RETURN_IF_ERROR(decode_task_body(task, r.task, places));
   RONDO_ASSIGN_OR_RETURN(auto window, f.required("window"));
   RONDO_RETURN_IF_ERROR(window.expect_keys({"from", "to"}));
   RONDO_ASSIGN_OR_RETURN(auto from, window.required("from"));
@@ -261,7 +268,7 @@ Result<Routine> decode_routine(const Field& f) {
   return r;
 }
 
-Result<TaskFile> decode_task_file(const Document& doc) {
+Result<TaskFile> decode_task_file(const Document& doc, const PlaceCheck* places) {
   const Field root = doc.root();
   if (root.is_null()) return root.error("the file is empty: expected 'tasks' and/or 'routines'");
   RONDO_RETURN_IF_ERROR(root.expect_keys({"timezone", "tasks", "routines"}));
@@ -276,7 +283,7 @@ Result<TaskFile> decode_task_file(const Document& doc) {
   if (auto tasks = root.optional("tasks")) {
     RONDO_ASSIGN_OR_RETURN(auto items, tasks->items());
     for (const auto& item : items) {
-      RONDO_ASSIGN_OR_RETURN(auto t, decode_task(item, zone));
+      RONDO_ASSIGN_OR_RETURN(auto t, decode_task(item, zone, places));
       file.tasks.push_back(std::move(t));
     }
     if (auto p = detail::first_problem(file.tasks)) {
@@ -289,24 +296,42 @@ Result<TaskFile> decode_task_file(const Document& doc) {
     }
     RONDO_ASSIGN_OR_RETURN(auto items, routines->items());
     for (std::size_t i = 0; i < items.size(); ++i) {
-      RONDO_ASSIGN_OR_RETURN(auto r, decode_routine(items[i]));
+      RONDO_ASSIGN_OR_RETURN(auto r, decode_routine(items[i], places));
       for (const auto& other : file.routines) {
         if (other.name == r.name) return items[i].error_at("name", "duplicate routine name '" + r.name + "'");
       }
       file.routines.push_back(std::move(r));
     }
   }
+  // A one-off task named like a routine's instances would collide with one of them on some day.
+  if (!file.tasks.empty() && !file.routines.empty()) {
+    RONDO_ASSIGN_OR_RETURN(auto tasks, root.required("tasks"));
+    RONDO_ASSIGN_OR_RETURN(auto items, tasks.items());
+    for (std::size_t i = 0; i < file.tasks.size(); ++i) {
+      const std::string& id = file.tasks[i].id;
+      const std::size_t at = id.find('@');
+      if (at == std::string::npos) continue;
+      for (const auto& r : file.routines) {
+        if (id.compare(0, at, r.name) == 0 && at == r.name.size()) {
+          return items[i].error_at("id", fmt::format("'{}' has the form of the ids of routine '{}' ('{}@<date>T<hh:mm>'); "
+                                                     "give the task another id",
+                                                     id, r.name, r.name));
+        }
+      }
+    }
+  }
   return file;
 }
 
-Result<TaskFile> load_task_file(const std::filesystem::path& file) {
+Result<TaskFile> load_task_file(const std::filesystem::path& file, const PlaceCheck* places) {
   RONDO_ASSIGN_OR_RETURN(auto doc, Document::load(file));
-  return decode_task_file(doc);
+  return decode_task_file(doc, places);
 }
 
-Result<TaskFile> parse_task_file(std::string_view text, DocumentFormat format, std::string source) {
+Result<TaskFile> parse_task_file(std::string_view text, DocumentFormat format, std::string source,
+                                 const PlaceCheck* places) {
   RONDO_ASSIGN_OR_RETURN(auto doc, Document::parse(text, format, std::move(source)));
-  return decode_task_file(doc);
+  return decode_task_file(doc, places);
 }
 
 namespace {

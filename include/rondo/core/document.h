@@ -97,6 +97,8 @@ class Field {
   // An ISO 8601 string; without a zone it is read in `zone` (an error if `zone` is null).
   Result<Time> as_time(const TimeZone* zone) const;
 
+  // Where this field is, as errors name it: "file:line: path" (no line when the format has none).
+  std::string where() const;
   // An invalid-input error located at this field: "file:line: path: what".
   Error error(std::string_view what) const;
   // The same for a field below this one, named by a relative path such as "window.deadline";

@@ -24,6 +24,10 @@
 
 namespace rondo {
 
+// The shortest repeat interval: instance ids name the local minute an instance starts, so they are
+// unique within a day only when instances start at least a minute apart.
+inline constexpr Duration kMinRoutineEvery = std::chrono::minutes(1);
+
 struct Routine {
   std::string name;   // unique; instance ids are "<name>@<local date>T<hh:mm>"
   Task task;          // the template: everything but id and window
@@ -47,7 +51,7 @@ bool runs_on(const Routine& r, std::chrono::year_month_day day);
 std::vector<Task> instances_on(const Routine& r, std::chrono::year_month_day day, const TimeZone& zone);
 
 // Checks what cannot be meant: no name, a window that ends before it starts or after 24:00, a
-// repeat interval of zero or one longer than the window, a template duration that does not fit
+// repeat interval under kMinRoutineEvery or longer than the window, a template duration that does not fit
 // in an instance's window, a template with a window or an id.
 Status validate(const Routine& r, const std::string& path = "");
 

@@ -9,7 +9,10 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "rondo/core/document.h"
@@ -27,14 +30,25 @@ struct TaskFile {
   std::vector<Routine> routines;
 };
 
+// The places a file may name, when the map is known (a deployment): a start_node or end_node that
+// `known` refuses is an error at its field ("routines.yaml:12: routines[0].task.start_node: node
+// 'Lab' is not on the map 'g4s'"). Without one, node names are not checked.
+struct PlaceCheck {
+  std::function<bool(std::string_view)> known;
+  std::string map_name;
+};
+
 // Times without an explicit zone are read in `zone`; with no zone they are an error.
-Result<Task> decode_task(const Field& field, const TimeZone* zone);
-Result<Routine> decode_routine(const Field& field);
+Result<Task> decode_task(const Field& field, const TimeZone* zone, const PlaceCheck* places = nullptr);
+Result<Routine> decode_routine(const Field& field, const PlaceCheck* places = nullptr);
 // An action: a name, or {name, args: {key: text | number | bool}}.
 Result<Action> decode_action(const Field& field);
-Result<TaskFile> decode_task_file(const Document& doc);
-Result<TaskFile> load_task_file(const std::filesystem::path& file);
-Result<TaskFile> parse_task_file(std::string_view text, DocumentFormat format, std::string source);
+// Besides each task and routine: task ids are unique, routine names are unique, and no task id
+// has the form of a routine's instance ids ("<routine name>@...").
+Result<TaskFile> decode_task_file(const Document& doc, const PlaceCheck* places = nullptr);
+Result<TaskFile> load_task_file(const std::filesystem::path& file, const PlaceCheck* places = nullptr);
+Result<TaskFile> parse_task_file(std::string_view text, DocumentFormat format, std::string source,
+                                 const PlaceCheck* places = nullptr);
 
 // Times are written in UTC ("...Z"), durations in their human form ("1h30m"); fields that hold
 // their default value are left out, so decode(encode(x)) == x.

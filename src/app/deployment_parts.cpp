@@ -1,0 +1,29 @@
+#include "deployment_parts.h"
+
+#include <fmt/format.h>
+
+#include "rondo/map/map_loader.h"
+
+namespace rondo::app {
+
+Result<DeploymentParts> load_parts(const Deployment& d) {
+  RONDO_ASSIGN_OR_RETURN(map::TopoMap map, map::load_map(d.map));
+  const std::optional<map::NodeIndex> dock = map.find_node(d.dock);
+  if (!dock) {
+    return Error::invalid(fmt::format("{}: node '{}' is not on the map '{}' ({})", d.dock_where, d.dock, map.name(),
+                                      d.map.string()));
+  }
+  TaskFile plan;
+  if (d.routines) {
+    const PlaceCheck places{.known = [&map](std::string_view node) { return map.find_node(node).has_value(); },
+                            .map_name = map.name()};
+    RONDO_ASSIGN_OR_RETURN(plan, load_task_file(*d.routines, &places));
+  }
+  // The world and the requests decoders check their nodes against the map themselves.
+  RONDO_ASSIGN_OR_RETURN(sim::SimWorld world, sim::load_world(d.world, map, d.zone));
+  std::optional<sim::RequestGenerator> people;
+  if (d.requests) { RONDO_ASSIGN_OR_RETURN(people, sim::RequestGenerator::load(*d.requests, map, d.zone)); }
+  return DeploymentParts{std::move(map), *dock, std::move(plan), std::move(world), std::move(people)};
+}
+
+}  // namespace rondo::app

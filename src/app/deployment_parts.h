@@ -1,0 +1,30 @@
+// Everything a deployment names, loaded and checked against each other before anything runs or is
+// written (the map, the dock, the routines and tasks, the simulated world, the requests): every
+// node they name is on the map, and every error names the file, the line and the node.
+//
+//   Result<DeploymentParts> parts = load_parts(deployment);   // reads files, writes nothing
+//   if (!parts) return parts.error();   // "routines.yaml:12: routines[0].task.start_node: node ..."
+#pragma once
+
+#include <optional>
+
+#include "deployment.h"
+#include "rondo/core/result.h"
+#include "rondo/core/task_codec.h"
+#include "rondo/map/topo_map.h"
+#include "rondo/sim/request_generator.h"
+#include "rondo/sim/sim_world.h"
+
+namespace rondo::app {
+
+struct DeploymentParts {
+  map::TopoMap map;
+  map::NodeIndex dock = 0;
+  TaskFile plan;  // routines and one-off tasks
+  sim::SimWorld world;
+  std::optional<sim::RequestGenerator> people;
+};
+
+Result<DeploymentParts> load_parts(const Deployment& deployment);
+
+}  // namespace rondo::app

@@ -1,0 +1,152 @@
+// `rondo run` validates the whole deployment before anything runs or is written: every node named
+// by the tasks, routines, requests, world and executor options is on the map (the error names the
+// file, the line and the node), routine instance ids are unique, and a run folder that exists
+// before a refused run is left byte-identical.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "cli_runner.h"
+#include "rondo/core/document.h"
+
+namespace rondo {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::filesystem::path fresh_dir(const std::string& name) {
+  auto dir = std::filesystem::temp_directory_path() / ("rondo-validate-test-" + std::to_string(::getpid())) / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::string slurp(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Every file below `dir` with its bytes.
+std::map<std::string, std::string> snapshot(const std::filesystem::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+    files[std::filesystem::relative(e.path(), dir).string()] = e.is_regular_file() ? slurp(e.path()) : "<dir>";
+  return files;
+}
+
+// A copy of the G4S example with one file's text replaced: `from` -> `to` (which must occur).
+std::filesystem::path edited_example(const std::filesystem::path& dir, const std::string& file, const std::string& from,
+                                     const std::string& to) {
+  for (const char* f : {"deployment.yaml", "map.yaml", "routines.yaml", "world.yaml", "requests.yaml"})
+    std::filesystem::copy_file(std::filesystem::path("examples/g4s") / f, dir / f);
+  std::string text = slurp(dir / file);
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << file << " has no '" << from << "'";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  std::ofstream(dir / file, std::ios::binary | std::ios::trunc) << text;
+  return dir / "deployment.yaml";
+}
+
+int line_of(const std::string& text, const std::string& needle) {
+  const auto at = text.find(needle);
+  return at == std::string::npos ? -1 : 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+}
+
+struct UnknownNodeCase {
+  const char* name;
+  const char* file;  // edited, and named in the error with the line where `node` stands
+  const char* from;
+  const char* to;
+  const char* node;  // named in the error
+};
+
+void PrintTo(const UnknownNodeCase& c, std::ostream* os) { *os << c.name; }
+
+class UnknownNode : public ::testing::TestWithParam<UnknownNodeCase> {};
+
+TEST_P(UnknownNode, IsExitCode2BeforeAnythingIsWritten) {
+  const UnknownNodeCase& c = GetParam();
+  const auto dir = fresh_dir(c.name);
+  const auto deployment = edited_example(dir, c.file, c.from, c.to);
+  // A run folder that exists before the run, with a file in it: it must come out as it went in.
+  const auto out = dir / "run";
+  std::filesystem::create_directories(out);
+  std::ofstream(out / "notes.txt") << "kept\n";
+  const auto before = snapshot(out);
+
+  const auto r = test::run_cli({"run", deployment.string(), "--days", "2", "--out", out.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  const int line = line_of(slurp(dir / c.file), c.node);
+  EXPECT_THAT(r.err, HasSubstr(std::string(c.file) + ":" + std::to_string(line)));
+  EXPECT_THAT(r.err, HasSubstr(std::string("'") + c.node + "'"));
+  EXPECT_EQ(snapshot(out), before);
+  std::filesystem::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    RunCommand, UnknownNode,
+    ::testing::Values(
+        UnknownNodeCase{"routine", "routines.yaml", "start_node: WayPoint14", "start_node: WayPoint99", "WayPoint99"},
+        UnknownNodeCase{"task", "routines.yaml", "routines:\n",
+                        "tasks:\n  - {id: once, start_node: WayPoint2, end_node: Atrium, duration: 1m,\n"
+                        "     window: {release: \"2026-11-23T10:00\", deadline: \"2026-11-23T11:00\"}}\nroutines:\n",
+                        "Atrium"},
+        UnknownNodeCase{"dock", "deployment.yaml", "dock: ChargingPoint", "dock: Charger", "Charger"},
+        UnknownNodeCase{"request", "requests.yaml", "WayPoint43, WayPoint44", "WayPoint43, Cellar", "Cellar"},
+        UnknownNodeCase{"world", "world.yaml", "nodes: [WayPoint2, WayPoint20", "nodes: [WayPoint2, Loft", "Loft"}),
+    [](const ::testing::TestParamInfo<UnknownNodeCase>& param) { return std::string(param.param.name); });
+
+TEST(RunCommand, ARoutineRepeatingFasterThanAMinuteIsRefused) {
+  const auto dir = fresh_dir("every");
+  const auto deployment = edited_example(dir, "routines.yaml", "every: 3h", "every: 30s");
+  const auto r = test::run_cli({"run", deployment.string(), "--days", "1", "--out", (dir / "run").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("routines.yaml:" + std::to_string(line_of(slurp(dir / "routines.yaml"), "every: 30s"))));
+  EXPECT_THAT(r.err, HasSubstr("minimum of 1m"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "run"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(RunCommand, ARoutineEveryMinuteMakesATaskAMinuteAndLosesNone) {
+  const auto dir = fresh_dir("minute");
+  // One routine instance a minute for half an hour: 30 tasks a day with distinct ids, none refused.
+  const auto deployment = edited_example(
+      dir, "routines.yaml", "routines:\n",
+      "routines:\n  - name: tick\n    task: {activity: tick, duration: 10s, priority: 0, start_node: WayPoint2}\n"
+      "    window: {from: \"09:00\", to: \"09:30\"}\n    every: 1m\n    days: weekdays\n");
+  const auto out = dir / "run";
+  const auto r = test::run_cli({"run", deployment.string(), "--days", "1", "--out", out.string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(slurp(out / "run.json"), HasSubstr("\"store_write_errors\": []"));
+  const Json report = Json::parse(r.out);
+  EXPECT_GE(report["tasks"]["added"].get<int>(), 30);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(TaskFile, ATaskIdOfARoutinesFormIsRefused) {
+  const auto dir = fresh_dir("collide");
+  std::ofstream(dir / "day.yaml") << "timezone: Europe/London\n"
+                                     "tasks:\n"
+                                     "  - {id: \"tick@2026-11-23T09:00\", start_node: A, duration: 1m,\n"
+                                     "     window: {release: \"2026-11-23T09:00\", deadline: \"2026-11-23T10:00\"}}\n"
+                                     "routines:\n"
+                                     "  - {name: tick, task: {duration: 1m, start_node: A},\n"
+                                     "     window: {from: \"09:00\", to: \"10:00\"}}\n";
+  const auto r = test::run_cli({"task", "check", (dir / "day.yaml").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("day.yaml:3"));
+  EXPECT_THAT(r.err, HasSubstr("routine 'tick'"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace rondo
