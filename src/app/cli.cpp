@@ -14,6 +14,7 @@ int exit_code_for(const Error& error) {
   switch (error.code) {
     case ErrorCode::kInvalidInput:
     case ErrorCode::kNotFound:
+    case ErrorCode::kConflict:
       return 2;
     default:
       return 1;

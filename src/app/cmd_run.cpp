@@ -64,9 +64,12 @@ void run_run(const RunArgs& args, CommandContext& ctx) {
     for (const auto& [reason, k] : by_reason.items()) n += k.get<int>();
     return n;
   };
-  ctx.out << fmt::format("tasks      {} added, {} completed, {} failed, {} dropped, {} preempted, {} pending\n",
+  ctx.out << fmt::format("tasks      {} added, {} completed, {} failed, {} dropped, {} cancelled, {} pending\n",
                          t["added"].get<int>(), t["completed"].get<int>(), count(t["failed"]), count(t["dropped"]),
-                         count(t["preempted"]), t["pending"].get<int>());
+                         count(t["cancelled"]), t["pending"].get<int>());
+  ctx.out << fmt::format("events     {} preemptions (back to the queue), {} drops for now, {} re-offers\n",
+                         count(r["events"]["preempted"]), count(r["events"]["dropped_for_now"]),
+                         count(r["events"]["re_offered"]));
   const Json& n = r["navigation"];
   ctx.out << fmt::format("navigation {} of {} edge attempts succeeded, {:.0f} m driven\n",
                          n["successes"].get<int>(), n["attempts"].get<int>(), n["distance_m"].get<double>());

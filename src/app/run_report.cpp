@@ -2,22 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
 #include "rondo/plan/travel_evaluation.h"
 
 namespace rondo::app {
-
-std::string reason_category(TaskState state, const std::string& reason) {
-  if (state == TaskState::kDropped) {
-    if (reason.find("dropped for higher-priority") != std::string::npos) return "dropped for higher-priority tasks";
-    if (reason.find("lowest priority") != std::string::npos) return "lowest priority of the tasks that did not fit";
-    return "does not fit";
-  }
-  const std::size_t colon = reason.find(':');
-  return colon == std::string::npos ? reason : reason.substr(0, colon);
-}
 
 Json task_summary(const exec::Executor& executor) {
   int completed = 0, pending = 0;
@@ -31,18 +22,39 @@ Json task_summary(const exec::Executor& executor) {
       ++completed;
       continue;
     }
-    ++by_state[to_string(r.state)][reason_category(r.state, r.reason)];
+    ++by_state[to_string(r.state)][std::string(exec::to_string(r.outcome))];
   }
   Json tasks = Json::object();
   tasks["added"] = executor.tasks().size();
   tasks["completed"] = completed;
   tasks["pending"] = pending;
-  for (const char* state : {"failed", "dropped", "cancelled", "preempted"}) {
+  for (const char* state : {"failed", "dropped", "cancelled"}) {
     Json reasons = Json::object();
     for (const auto& [reason, n] : by_state[state]) reasons[reason] = n;
     tasks[state] = reasons;
   }
   return tasks;
+}
+
+// What happened on the way that is not a final outcome: preemptions (the task went back to the
+// queue), drops for now and re-offers, cancels that waited, robot faults; each by outcome code.
+Json event_summary(const exec::Executor& executor) {
+  const auto& counts = executor.book().event_counts();
+  const auto by_code = [&](const std::string& event, std::initializer_list<exec::Outcome> only = {}) {
+    Json j = Json::object();
+    const auto it = counts.find(event);
+    if (it == counts.end()) return j;
+    for (const auto& [code, n] : it->second)
+      if (only.size() == 0 || std::find(only.begin(), only.end(), code) != only.end())
+        j[std::string(exec::to_string(code))] = n;
+    return j;
+  };
+  return Json{{"preempted", by_code("queued", {exec::Outcome::kPreemptedOnDemand, exec::Outcome::kOutranked})},
+              {"dropped_for_now", by_code("dropped for now")},
+              {"re_offered", by_code("re-offered")},
+              {"cancel_pending", by_code("cancel pending")},
+              {"robot_faults", by_code("fault")},
+              {"rejected_requests", by_code("rejected")}};
 }
 
 Json travel_table(const map::TopoMap& map, std::span<const Traversal> log, Time start, int days) {
@@ -70,6 +82,7 @@ Json run_report(const exec::Executor& executor, const RunFigures& figures) {
   j["from"] = format_time(figures.from);
   j["to"] = format_time(figures.to);
   j["tasks"] = task_summary(executor);
+  j["events"] = event_summary(executor);
   j["navigation"] = Json{{"attempts", s.navigation_attempts},
                          {"successes", s.navigation_successes},
                          {"distance_m", std::round(figures.distance_m * 10) / 10}};

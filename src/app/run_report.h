@@ -15,10 +15,6 @@
 
 namespace rondo::app {
 
-// The stable part of a reason, used to count tasks by reason: the text before the first ':'
-// ("too late", "navigation overrun"), or for the scheduler's drop reasons the rule that applied.
-std::string reason_category(TaskState state, const std::string& reason);
-
 struct RunFigures {
   Time from{};
   Time to{};

@@ -4,13 +4,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <set>
 #include <utility>
 
-#include "rondo/core/task_codec.h"
 #include "rondo/plan/distance_prior.h"
-#include "rondo/store/task_events.h"
-#include "rondo/store/task_table.h"
+#include "rondo/store/events.h"
+#include "rondo/store/observations.h"
 
 namespace rondo::exec {
 
@@ -23,7 +21,8 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
       zone_(zone),
       options_(options),
       models_(std::make_shared<plan::LearnedEdgeModels>(map, nullptr)),
-      rng_(options.seed) {
+      rng_(options.seed),
+      book_(store, clock) {
   planner_ = std::make_unique<plan::TravelOracle>(map_, models_, plan::TravelOracleOptions{.slot_width = options_.slot_width});
   travel_ = std::make_unique<TravelCache>(map_, models_, *planner_, options_.slot_width);
   robot_.set_listener(this);
@@ -38,7 +37,7 @@ std::string Executor::fmt_time(Time t) const {
 
 Status Executor::accept(const Task& task) {
   if (auto ok = validate(task, "task " + task.id); !ok) return ok;
-  if (tasks_.contains(task.id)) return Error::invalid(fmt::format("task {}: the id is already taken", task.id));
+  if (book_.contains(task.id)) return Error::invalid(fmt::format("task {}: the id is already taken", task.id));
   for (const std::string* node : {&task.start_node, &task.end_node}) {
     if (!node->empty() && !map_.find_node(*node))
       return Error::invalid(fmt::format("task {}: node '{}' is not on the map", task.id, *node));
@@ -49,30 +48,13 @@ Status Executor::accept(const Task& task) {
 }
 
 Result<std::vector<TaskId>> Executor::insert_tasks(std::vector<Task> tasks, std::string_view source) {
-  std::set<TaskId> ids;
-  for (const Task& t : tasks) {
-    if (auto ok = accept(t); !ok) return ok.error();
-    if (!ids.insert(t.id).second) return Error::invalid(fmt::format("task {}: the id appears twice", t.id));
-  }
-  // All or nothing: a batch the store refuses (or cannot write) leaves no task behind, in the store
-  // or in memory, so the caller can send it again.
-  const Time now = clock_.now();
-  const std::string reason = fmt::format("added by {}", source);
-  std::vector<store::TaskRecord> records;
-  records.reserve(tasks.size());
-  for (const Task& t : tasks) {
-    records.push_back(
-        {.id = t.id, .task = encode(t), .state = to_string(TaskState::kQueued), .created = now, .updated = now});
-  }
-  if (auto ok = store::add_tasks(store_, records, reason); !ok) return ok.error();
+  for (const Task& t : tasks) RONDO_RETURN_IF_ERROR(accept(t));
+  std::vector<TaskId> ids;
+  for (const Task& t : tasks) ids.push_back(t.id);
+  RONDO_RETURN_IF_ERROR(book_.add(std::move(tasks), source));
   std::vector<TaskId> standard;
-  for (Task& t : tasks) {
-    const TaskId id = t.id;
-    const bool on_demand = t.kind == TaskKind::kOnDemand;
-    tasks_.emplace(id, TaskRecord{.task = std::move(t), .state = TaskState::kQueued, .reason = reason,
-                                  .source = std::string(source), .added = now});
-    order_.push_back(id);
-    if (on_demand)
+  for (const TaskId& id : ids) {
+    if (book_.at(id).task.kind == TaskKind::kOnDemand)
       on_demand_.push_back(id);
     else
       standard.push_back(id);
@@ -81,19 +63,65 @@ Result<std::vector<TaskId>> Executor::insert_tasks(std::vector<Task> tasks, std:
 }
 
 Status Executor::add_tasks(std::vector<Task> tasks, std::string_view source) {
-  RONDO_ASSIGN_OR_RETURN(std::vector<TaskId> standard, insert_tasks(std::move(tasks), source));
+  std::string ids;
+  for (const Task& t : tasks) ids += (ids.empty() ? "" : ",") + t.id;
+  auto inserted = insert_tasks(std::move(tasks), source);
+  if (!inserted) {
+    // A refused request is part of the record too.
+    book_.note_request(ids, "rejected", Outcome::kInvalidRequest,
+                       fmt::format("from {}: {}", source, inserted.error().message));
+    return inserted.error();
+  }
+  std::vector<TaskId> standard = std::move(*inserted);
   if (!started_) return Status{};  // start() schedules everything added before it
   if (!standard.empty()) reschedule(std::move(standard), "new tasks");
-  if (!on_demand_.empty() && current_ && tasks_.at(*current_).task.kind == TaskKind::kStandard &&
+  if (!on_demand_.empty() && current_ && book_.at(*current_).task.kind == TaskKind::kStandard &&
       (phase_ == Phase::kNavigating || phase_ == Phase::kActing)) {
     const TaskId& od = on_demand_.front();
     if (interruptible_now()) {
-      preempt_for(fmt::format("preempted by an on-demand task: {}", od), {});
+      preempt_for(Outcome::kPreemptedOnDemand, fmt::format("preempted by an on-demand task: {}", od), {});
       return Status{};
     }
-    note(od, "waiting", fmt::format("the running task {} cannot be interrupted now; runs right after it", *current_));
+    book_.note(od, "waiting", Outcome::kRunsAfterCurrent,
+         fmt::format("the running task {} cannot be interrupted now; runs right after it", *current_));
   }
   kick();
+  return Status{};
+}
+
+Status Executor::cancel_task(const TaskId& id, const std::string& reason) {
+  if (!book_.contains(id)) return Error::not_found(fmt::format("no task '{}'", id));
+  const TaskRecord& r = book_.at(id);
+  if (is_final(r.state))
+    return Error{ErrorCode::kConflict, fmt::format("task {} is already {}: it cannot be cancelled", id, to_string(r.state))};
+  const std::string why = reason.empty() ? "cancelled" : "cancelled: " + reason;
+  if (current_ && *current_ == id) {
+    if (phase_ == Phase::kWaiting) {
+      clock_.cancel(wait_timer_);
+      wait_timer_ = 0;
+      stats_.waiting += clock_.now() - wait_start_;
+      current_.reset();
+      phase_ = Phase::kIdle;
+    } else if (interruptible_now()) {
+      stop_current(CancelIntent::kCancel, Outcome::kCancelled, why);
+      return Status{};
+    } else {
+      cancel_pending_ = why;
+      book_.note(id, "cancel pending", Outcome::kCancelPending,
+                 why + "; the task cannot be interrupted now, so it stops at its next interruptible moment");
+      return Status{};
+    }
+  }
+  std::erase(schedule_, id);
+  std::erase(deferred_, id);
+  std::erase(on_demand_, id);
+  book_.at(id).planned_start.reset();
+  book_.at(id).planned_end.reset();
+  book_.transition(id, TaskState::kCancelled, Outcome::kCancelled, why);
+  if (started_) {
+    reschedule({}, "task " + id + " cancelled");  // its room may let a dropped task back in
+    kick();
+  }
   return Status{};
 }
 
@@ -105,10 +133,11 @@ void Executor::start() {
   if (started_) return;
   started_ = true;
   robot_interruptible_ = true;
+  if (auto up = robot_.activate(); !up) on_fault({.kind = RobotFault::Kind::kError, .message = up.error().message});
   create_routine_tasks(zone_.local_date(clock_.now()));
   std::vector<TaskId> pending;
-  for (const TaskId& id : order_)
-    if (tasks_.at(id).task.kind == TaskKind::kStandard && tasks_.at(id).state == TaskState::kQueued &&
+  for (const TaskId& id : book_.order())
+    if (book_.at(id).task.kind == TaskKind::kStandard && book_.at(id).state == TaskState::kQueued &&
         std::find(schedule_.begin(), schedule_.end(), id) == schedule_.end())
       pending.push_back(id);
   if (!pending.empty()) reschedule(std::move(pending), "start");
@@ -117,25 +146,54 @@ void Executor::start() {
   clock_.schedule_at(clock_.now(), [this] { kick(); });
 }
 
-void Executor::transition(const TaskId& id, TaskState state, const std::string& reason) {
-  TaskRecord& r = tasks_.at(id);
-  r.state = state;
-  r.reason = reason;
-  if (is_final(state)) r.ended = clock_.now();
-  // The store is the record of what happened: a failed write is reported, the run goes on.
-  if (auto ok = store::set_task_state(store_, id, to_string(state), clock_.now(), reason); !ok)
-    write_errors_.push_back(ok.error().message);
+void Executor::log_battery() {
+  const store::Observation o{.what = "battery", .where = map_.node(robot_.location()).name, .when = clock_.now(),
+                             .value = std::clamp(robot_.battery(), 0.0, 1.0), .text = std::nullopt};
+  if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
 }
 
-void Executor::note(const TaskId& id, const std::string& event, const std::string& reason) {
-  if (auto ok = store::append_task_event(store_, {.time = clock_.now(), .task_id = id, .event = event, .reason = reason});
-      !ok)
-    write_errors_.push_back(ok.error().message);
+void Executor::on_observation(const Observation& seen) {
+  const store::Observation o{.what = seen.what, .where = seen.where, .when = seen.when, .value = seen.value,
+                             .text = seen.text.empty() ? std::nullopt : std::optional<std::string>(seen.text)};
+  if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
+}
+
+void Executor::on_fault(const RobotFault& fault) {
+  const bool first = !fault_;
+  fault_ = fault;
+  if (!first) return;
+  fault_since_ = clock_.now();
+  book_.note_robot("fault", Outcome::kRobotFault, fmt::format("{}: {}; dispatch paused", to_string(fault.kind), fault.message));
+  suspend_monitors();
+  if (wait_timer_ != 0 && phase_ == Phase::kIdle) {  // an idle look-again timer: ready() kicks instead
+    clock_.cancel(wait_timer_);
+    wait_timer_ = 0;
+  }
+}
+
+void Executor::on_ready() {
+  if (!fault_) return;
+  const Duration down = clock_.now() - fault_since_.value_or(clock_.now());
+  fault_.reset();
+  fault_since_.reset();
+  book_.note_robot("ready", Outcome::kRobotReady,
+             fmt::format("ready again after {}; dispatch resumes",
+                         format_duration(std::chrono::round<std::chrono::seconds>(down))));
+  resume_monitors();
+  if (phase_ == Phase::kNavigating || phase_ == Phase::kDocking) {
+    if (!robot_.busy()) step_navigation();
+    return;
+  }
+  if (phase_ == Phase::kActing) {
+    if (!robot_.busy()) run_next_action();
+    return;
+  }
+  kick();
 }
 
 bool Executor::interruptible_now() const {
   if (!current_) return true;
-  return tasks_.at(*current_).task.interruptible && robot_interruptible_;
+  return book_.at(*current_).task.interruptible && robot_interruptible_;
 }
 
 }  // namespace rondo::exec

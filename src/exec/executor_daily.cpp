@@ -22,9 +22,9 @@ void Executor::create_routine_tasks(std::chrono::year_month_day day) {
   const Time now = clock_.now();
   for (const Routine& r : routines_)
     for (Task& t : instances_on(r, day, zone_))
-      if (t.window && t.window->deadline > now && !tasks_.contains(t.id)) batch.push_back(std::move(t));
+      if (t.window && t.window->deadline > now && !book_.contains(t.id)) batch.push_back(std::move(t));
   if (batch.empty()) return;
-  if (auto ok = add_tasks(std::move(batch), "routine"); !ok) write_errors_.push_back(ok.error().message);
+  if (auto ok = add_tasks(std::move(batch), "routine"); !ok) book_.write_error(ok.error().message);
 }
 
 void Executor::schedule_midnight() {
@@ -50,7 +50,7 @@ void Executor::schedule_refit() {
 void Executor::refit() {
   auto log = store::find_traversals(store_);
   if (!log) {
-    write_errors_.push_back(log.error().message);
+    book_.write_error(log.error().message);
     return;
   }
   if (log->empty()) return;
@@ -62,7 +62,7 @@ void Executor::refit() {
   options.episode.duration_bins = options_.duration_bins;
   auto fitted = learn::EdgeModels::fit(specs, *log, options);
   if (!fitted) {
-    write_errors_.push_back(fitted.error().message);
+    book_.write_error(fitted.error().message);
     return;
   }
   models_->set(*fitted);

@@ -27,24 +27,42 @@ void Executor::step_navigation() {
     arrived();
     return;
   }
+  if (fault_) return;  // on_ready() goes on from where the robot is
   if (failed_edges_ >= options_.max_failed_edges) {
-    return abandon_navigation(fmt::format("navigation gave up: {} failed edge attempts near {}", failed_edges_,
+    return abandon_navigation(Outcome::kNavigationGaveUp, fmt::format("navigation gave up: {} failed edge attempts near {}", failed_edges_,
                                           map_.node(here).name));
   }
   const plan::Policy& policy = planner_->policy(nav_target_, clock_.now());
   const std::optional<map::EdgeIndex> edge = policy.next_edge(here);
   if (!edge) {
-    return abandon_navigation(fmt::format("no route: from {} to {} at {}", map_.node(here).name,
-                                          map_.node(nav_target_).name, fmt_time(clock_.now())));
+    return abandon_navigation(Outcome::kNoRoute, fmt::format("no route: from {} to {} at {}", map_.node(here).name,
+                                                             map_.node(nav_target_).name, fmt_time(clock_.now())));
   }
-  robot_.traverse(*edge);
+  // The next edge is committed; the rest of the policy's expected route is the horizon.
+  robot_.drive(Route{.edges = expected_route(policy, here), .committed = 1});
+}
+
+// The edges the policy expects to take from `from` to the target if every attempt succeeds (the
+// first is the policy's next edge), cut where it would loop.
+std::vector<map::EdgeIndex> Executor::expected_route(const plan::Policy& policy, map::NodeIndex from) const {
+  std::vector<map::EdgeIndex> route;
+  std::vector<bool> seen(map_.node_count(), false);
+  map::NodeIndex at = from;
+  while (at != nav_target_ && !seen[at] && route.size() < map_.node_count()) {
+    seen[at] = true;
+    const std::optional<map::EdgeIndex> e = policy.next_edge(at);
+    if (!e) break;
+    route.push_back(*e);
+    at = map_.to_index(*e);
+  }
+  return route;
 }
 
 // A task's navigation fails with `reason`; a trip of the executor's own (to the dock) is dropped,
 // and the executor looks again after a slot.
-void Executor::abandon_navigation(const std::string& reason) {
+void Executor::abandon_navigation(Outcome outcome, const std::string& reason) {
   if (phase_ == Phase::kNavigating) {
-    finish_task(TaskState::kFailed, reason);
+    finish_task(TaskState::kFailed, outcome, reason);
   } else {
     phase_ = Phase::kIdle;
     wait_timer_ = clock_.schedule_after(options_.slot_width, [this] { kick(); });
@@ -53,24 +71,38 @@ void Executor::abandon_navigation(const std::string& reason) {
 
 void Executor::on_edge_finished(const EdgeAttempt& a) {
   const map::Edge& edge = map_.edge(a.edge);
-  const Traversal t{.edge_id = edge.id, .from = edge.from, .to = edge.to, .start = a.start, .duration = a.duration,
-                    .success = a.success};
-  if (auto ok = store::add_traversal(store_, t); !ok) write_errors_.push_back(ok.error().message);
-  ++stats_.navigation_attempts;
-  if (a.success) ++stats_.navigation_successes;
   stats_.travelling += a.duration;
-  if (a.cancelled) {
+  if (is_learning_data(a.outcome)) {
+    // Experience of the way: the traversal log, which the models learn from.
+    const Traversal t{.edge_id = edge.id, .from = edge.from, .to = edge.to, .start = a.start, .duration = a.duration,
+                      .success = a.succeeded()};
+    if (auto ok = store::add_traversal(store_, t); !ok) book_.write_error(ok.error().message);
+    ++stats_.navigation_attempts;
+    if (a.succeeded()) ++stats_.navigation_successes;
+  } else {
+    // A cancelled attempt or one cut by a fault says nothing about the way: the event log only.
+    const std::string what = fmt::format("edge {} {} after {}{}{}", edge.id, to_string(a.outcome),
+                                         format_duration(std::chrono::round<std::chrono::seconds>(a.duration)),
+                                         a.message.empty() ? "" : ": ", a.message);
+    if (current_)
+      book_.note(*current_, "edge", a.outcome == EdgeOutcome::kCancelled ? Outcome::kCancelled : Outcome::kRobotFault, what);
+    else
+      book_.note_robot("edge", a.outcome == EdgeOutcome::kCancelled ? Outcome::kCancelled : Outcome::kRobotFault, what);
+  }
+  if (a.outcome == EdgeOutcome::kCancelled) {
     handle_cancelled();
     return;
   }
   if (phase_ != Phase::kNavigating && phase_ != Phase::kDocking) return;
-  if (!a.success) ++failed_edges_;
+  if (robot_.busy()) return;  // more of a committed route to come
+  if (a.outcome == EdgeOutcome::kFailed) ++failed_edges_;
   step_navigation();
 }
 
 void Executor::arrived() {
   if (nav_monitor_ != 0) clock_.cancel(nav_monitor_);
   nav_monitor_ = 0;
+  nav_due_.left.reset();
   if (phase_ == Phase::kDocking) {
     phase_ = Phase::kIdle;
     next();

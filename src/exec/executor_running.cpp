@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <tuple>
+#include <utility>
 
 #include "rondo/exec/executor.h"
 
@@ -36,7 +38,7 @@ void Executor::kick() {
       const TaskId id = *current_;
       current_.reset();
       phase_ = Phase::kIdle;
-      transition(id, TaskState::kQueued, "waiting interrupted: the schedule changed");
+      book_.transition(id, TaskState::kQueued, Outcome::kScheduleChanged, "waiting interrupted: the schedule changed");
       if (std::find(schedule_.begin(), schedule_.end(), id) == schedule_.end()) schedule_.insert(schedule_.begin(), id);
       next();
       return;
@@ -48,7 +50,7 @@ void Executor::kick() {
 }
 
 void Executor::next() {
-  if (phase_ != Phase::kIdle || robot_.busy()) return;
+  if (phase_ != Phase::kIdle || robot_.busy() || fault_) return;  // a fault: on_ready() comes back here
   if (wait_timer_ != 0) clock_.cancel(wait_timer_);
   wait_timer_ = 0;
   const Time now = clock_.now();
@@ -61,7 +63,7 @@ void Executor::next() {
   }
   while (!schedule_.empty()) {
     const TaskId id = schedule_.front();
-    const Task& task = tasks_.at(id).task;
+    const Task& task = book_.at(id).task;
     const map::NodeIndex start = *map_.find_node(task.start_node);
     const Duration travel = travel_->travel(here, start, now);
     const Time latest_start = task.window->deadline - task.duration;
@@ -75,7 +77,7 @@ void Executor::next() {
                             "{} that finishes by {}",
                             map_.node(here).name, fmt_time(now), task.start_node, fmt_time(now + travel),
                             minutes_text(travel), fmt_time(latest_start), fmt_time(task.window->deadline));
-      transition(id, TaskState::kFailed, reason);
+      book_.transition(id, TaskState::kFailed, travel >= kUnreachable ? Outcome::kNoRoute : Outcome::kTooLate, reason);
       reschedule({}, "task " + id + " failed");
       continue;
     }
@@ -97,9 +99,9 @@ void Executor::next() {
       current_ = id;
       phase_ = Phase::kWaiting;
       wait_start_ = now;
-      TaskRecord& r = tasks_.at(id);
+      TaskRecord& r = book_.at(id);
       if (!r.started) r.started = now;
-      transition(id, TaskState::kWaiting,
+      book_.transition(id, TaskState::kWaiting, Outcome::kEarly,
                  fmt::format("early: waits {} at {} so as to arrive at {} when the window opens at {}",
                              minutes_text(wait), map_.node(here).name, task.start_node,
                              fmt_time(task.window->release)));
@@ -120,7 +122,7 @@ void Executor::next() {
 }
 
 void Executor::start_task(const TaskId& id) {
-  TaskRecord& r = tasks_.at(id);
+  TaskRecord& r = book_.at(id);
   const Task& task = r.task;
   const Time now = clock_.now();
   current_ = id;
@@ -138,11 +140,11 @@ void Executor::start_task(const TaskId& id) {
   }
   if (expected >= kUnreachable) {
     phase_ = Phase::kNavigating;
-    finish_task(TaskState::kFailed,
+    finish_task(TaskState::kFailed, Outcome::kNoRoute,
                 fmt::format("no route: from {} to {} at {}", map_.node(here).name, task.start_node, fmt_time(now)));
     return;
   }
-  transition(id, TaskState::kNavigating,
+  book_.transition(id, TaskState::kNavigating, Outcome::kDeparted,
              fmt::format("to {} from {}, expected travel {}", map_.node(target).name, map_.node(here).name,
                          minutes_text(expected)));
   begin_navigation(target, expected);
@@ -150,12 +152,12 @@ void Executor::start_task(const TaskId& id) {
 
 void Executor::start_actions() {
   const TaskId& id = *current_;
-  const Task& task = tasks_.at(id).task;
+  const Task& task = book_.at(id).task;
   const Time now = clock_.now();
   phase_ = Phase::kActing;
   acting_start_ = now;
   action_index_ = 0;
-  transition(id, TaskState::kActing,
+  book_.transition(id, TaskState::kActing, Outcome::kArrived,
              fmt::format("arrived at {} after {} (expected {}); expected processing {}", map_.node(nav_target_).name,
                          minutes_text(now - nav_start_), minutes_text(nav_expected_), minutes_text(task.duration)));
   action_monitor_ = arm_monitor(CancelIntent::kActionOverrun, "action overrun: still acting", "the processing time",
@@ -164,10 +166,14 @@ void Executor::start_actions() {
 }
 
 void Executor::run_next_action() {
-  const Task& task = tasks_.at(*current_).task;
+  if (cancel_pending_) {  // between two actions the task can be stopped: the moment a cancel waited for
+    finish_task(TaskState::kCancelled, Outcome::kCancelled, *cancel_pending_);
+    return;
+  }
+  const Task& task = book_.at(*current_).task;
   const std::size_t n = std::max<std::size_t>(1, task.actions.size());
   if (action_index_ >= n) {
-    finish_task(TaskState::kSucceeded, fmt::format("done: {} of actions (expected {})",
+    finish_task(TaskState::kSucceeded, Outcome::kDone, fmt::format("done: {} of actions (expected {})",
                                                    minutes_text(clock_.now() - acting_start_),
                                                    minutes_text(task.duration)));
     return;
@@ -185,8 +191,16 @@ void Executor::on_action_finished(const ActionResult& result) {
     return;
   }
   if (phase_ != Phase::kActing || !current_) return;
+  if (result.outcome == ActionOutcome::kRobotFault) {
+    // Not the action's fault: it runs again once the robot is ready.
+    book_.note(*current_, "interrupted", Outcome::kRobotFault,
+         fmt::format("action {} stopped by a robot fault{}{}; it runs again when the robot is ready", result.name,
+                     result.message.empty() ? "" : ": ", result.message));
+    if (!fault_) run_next_action();
+    return;
+  }
   if (result.outcome == ActionOutcome::kFailed) {
-    finish_task(TaskState::kFailed, fmt::format("action {} failed{}{}", result.name,
+    finish_task(TaskState::kFailed, Outcome::kActionFailed, fmt::format("action {} failed{}{}", result.name,
                                                 result.message.empty() ? "" : ": ", result.message));
     return;
   }
@@ -197,15 +211,21 @@ void Executor::on_action_finished(const ActionResult& result) {
 void Executor::on_interruptible_changed(bool interruptible) {
   robot_interruptible_ = interruptible;
   if (!interruptible || !current_) return;
+  if (cancel_pending_ && interruptible_now()) {
+    const std::string reason = *std::exchange(cancel_pending_, std::nullopt);
+    stop_current(CancelIntent::kCancel, Outcome::kCancelled, reason);
+    return;
+  }
   if (overrun_pending_) {
     const auto [why, reason] = *overrun_pending_;
     overrun_pending_.reset();
     monitor_fired(why, reason);
     return;
   }
-  if (!on_demand_.empty() && tasks_.at(*current_).task.kind == TaskKind::kStandard &&
+  if (!on_demand_.empty() && book_.at(*current_).task.kind == TaskKind::kStandard &&
       (phase_ == Phase::kNavigating || phase_ == Phase::kActing))
-    preempt_for(fmt::format("preempted by an on-demand task: {}", on_demand_.front()), {});
+    preempt_for(Outcome::kPreemptedOnDemand, fmt::format("preempted by an on-demand task: {}", on_demand_.front()),
+                {});
 }
 
 TimerId Executor::arm_monitor(CancelIntent why, const char* what, const char* of, Duration expected, double factor,
@@ -214,21 +234,50 @@ TimerId Executor::arm_monitor(CancelIntent why, const char* what, const char* of
   const std::string reason = fmt::format("{} after {}, the limit is {} x {} {} + {}", what, minutes_text(limit),
                                          factor, of, minutes_text(expected), minutes_text(slack));
   TimerId* slot = why == CancelIntent::kNavigationOverrun ? &nav_monitor_ : &action_monitor_;
+  MonitorDue* due = why == CancelIntent::kNavigationOverrun ? &nav_due_ : &action_due_;
+  *due = {.at = clock_.now() + limit, .reason = reason, .left = std::nullopt};
   return clock_.schedule_after(limit, [this, why, reason, slot] {
     *slot = 0;
     monitor_fired(why, reason);
   });
 }
 
+// Monitors stand still while the robot is in fault: the time left is kept and runs on when it is
+// ready again.
+void Executor::suspend_monitors() {
+  const Time now = clock_.now();
+  for (auto [slot, due] : {std::pair{&nav_monitor_, &nav_due_}, std::pair{&action_monitor_, &action_due_}}) {
+    if (*slot == 0) continue;
+    clock_.cancel(*slot);
+    *slot = 0;
+    due->left = due->at - now;
+  }
+}
+
+void Executor::resume_monitors() {
+  for (auto [why, slot, due] : {std::tuple{CancelIntent::kNavigationOverrun, &nav_monitor_, &nav_due_},
+                                std::tuple{CancelIntent::kActionOverrun, &action_monitor_, &action_due_}}) {
+    if (!due->left) continue;
+    const Duration left = *due->left;
+    const std::string reason = due->reason;
+    *due = {.at = clock_.now() + left, .reason = reason, .left = std::nullopt};
+    *slot = clock_.schedule_after(left, [this, why, reason, slot] {
+      *slot = 0;
+      monitor_fired(why, reason);
+    });
+  }
+}
+
 void Executor::monitor_fired(CancelIntent why, const std::string& reason) {
   if (!current_) return;
   if (!interruptible_now()) {
     if (!overrun_pending_)
-      note(*current_, "overrun", reason + "; the task is not interruptible now, so it goes on");
+      book_.note(*current_, "overrun", Outcome::kOverrunHeld, reason + "; the task is not interruptible now, so it goes on");
     overrun_pending_ = std::make_pair(why, reason);
     return;
   }
   cancel_intent_ = why;
+  cancel_outcome_ = why == CancelIntent::kNavigationOverrun ? Outcome::kNavigationOverrun : Outcome::kActionOverrun;
   cancel_reason_ = reason;
   if (robot_.busy())
     robot_.cancel();
@@ -236,10 +285,17 @@ void Executor::monitor_fired(CancelIntent why, const std::string& reason) {
     handle_cancelled();
 }
 
-void Executor::preempt_for(const std::string& reason, std::vector<TaskId> then_schedule) {
-  if (!current_ || cancel_intent_ == CancelIntent::kPreempt) return;
+void Executor::preempt_for(Outcome outcome, const std::string& reason, std::vector<TaskId> then_schedule) {
+  if (!current_ || cancel_intent_ == CancelIntent::kPreempt || cancel_intent_ == CancelIntent::kCancel) return;
   after_cancel_schedule_ = std::move(then_schedule);
-  cancel_intent_ = CancelIntent::kPreempt;
+  stop_current(CancelIntent::kPreempt, outcome, reason);
+}
+
+// Ends what the robot does for the current task; handle_cancelled() finishes the job once the
+// robot has answered (at once when it is between commands).
+void Executor::stop_current(CancelIntent intent, Outcome outcome, const std::string& reason) {
+  cancel_intent_ = intent;
+  cancel_outcome_ = outcome;
   cancel_reason_ = reason;
   if (robot_.busy())
     robot_.cancel();
@@ -249,13 +305,18 @@ void Executor::preempt_for(const std::string& reason, std::vector<TaskId> then_s
 
 void Executor::handle_cancelled() {
   const CancelIntent intent = cancel_intent_;
+  const Outcome outcome = cancel_outcome_;
   const std::string reason = cancel_reason_;
   cancel_intent_ = CancelIntent::kNone;
+  cancel_outcome_ = Outcome::kNone;
   cancel_reason_.clear();
   switch (intent) {
     case CancelIntent::kNavigationOverrun:
     case CancelIntent::kActionOverrun:
-      finish_task(TaskState::kFailed, reason);
+      finish_task(TaskState::kFailed, outcome, reason);
+      return;
+    case CancelIntent::kCancel:
+      finish_task(TaskState::kCancelled, outcome, reason);
       return;
     case CancelIntent::kLeaveDockTrip:
       phase_ = Phase::kIdle;
@@ -263,7 +324,7 @@ void Executor::handle_cancelled() {
       return;
     case CancelIntent::kNone:  // the robot stopped by itself
       if (current_) {
-        finish_task(TaskState::kFailed, "stopped by the robot");
+        finish_task(TaskState::kFailed, Outcome::kActionFailed, "stopped by the robot");
       } else {
         phase_ = Phase::kIdle;
         next();
@@ -272,41 +333,46 @@ void Executor::handle_cancelled() {
     case CancelIntent::kPreempt:
       break;
   }
-  // Preempted: the task ends, and comes back as a new task when its window still allows it.
+  // Preempted: the task keeps its id and goes back to the queue, to be scheduled again.
   const TaskId id = *current_;
   clear_timers();
-  TaskRecord& r = tasks_.at(id);
+  TaskRecord& r = book_.at(id);
   if (r.started) stats_.busy += clock_.now() - *r.started;
-  transition(id, TaskState::kPreempted, reason);
   current_.reset();
   phase_ = Phase::kIdle;
   robot_interruptible_ = true;
   overrun_pending_.reset();
+  cancel_pending_.reset();
   std::vector<TaskId> again = std::move(after_cancel_schedule_);
   after_cancel_schedule_.clear();
-  const Task& task = r.task;
-  if (task.kind == TaskKind::kStandard && clock_.now() + task.duration <= task.window->deadline) {
-    Task copy = task;
-    const std::string base = id.substr(0, id.find('~'));
-    copy.id = fmt::format("{}~{}", base, ++requeues_[base]);
-    auto added = insert_tasks({std::move(copy)}, "preempted " + id);
-    if (added) again.insert(again.end(), added->begin(), added->end());
-  }
+  requeue_preempted(id, outcome, reason);
+  if (book_.at(id).state == TaskState::kQueued) again.push_back(id);
   if (!again.empty()) reschedule(std::move(again), "after preempting " + id);
   next();
 }
 
-void Executor::finish_task(TaskState state, const std::string& reason) {
+void Executor::requeue_preempted(const TaskId& id, Outcome outcome, const std::string& reason) {
+  const Task& task = book_.at(id).task;
+  if (task.kind == TaskKind::kStandard && clock_.now() + task.duration <= task.window->deadline) {
+    book_.transition(id, TaskState::kQueued, outcome, reason + "; back in the queue");
+    return;
+  }
+  book_.transition(id, TaskState::kFailed, outcome, reason + "; its window no longer allows it");
+}
+
+void Executor::finish_task(TaskState state, Outcome outcome, const std::string& reason) {
   const TaskId id = *current_;
   clear_timers();
-  TaskRecord& r = tasks_.at(id);
+  TaskRecord& r = book_.at(id);
   if (r.started) stats_.busy += clock_.now() - *r.started;
-  transition(id, state, reason);
+  book_.transition(id, state, outcome, reason);
+  log_battery();
   current_.reset();
   phase_ = Phase::kIdle;
   robot_interruptible_ = true;
   overrun_pending_.reset();
-  if (state == TaskState::kFailed) reschedule({}, "task " + id + " failed");
+  cancel_pending_.reset();
+  if (state == TaskState::kFailed || state == TaskState::kCancelled) reschedule({}, "task " + id + " " + to_string(state));
   next();
 }
 
@@ -315,6 +381,8 @@ void Executor::clear_timers() {
     if (*t != 0) clock_.cancel(*t);
     *t = 0;
   }
+  nav_due_.left.reset();
+  action_due_.left.reset();
 }
 
 }  // namespace rondo::exec

@@ -10,6 +10,19 @@
 #include "rondo/schedule/try_schedule.h"
 
 namespace rondo::exec {
+namespace {
+
+Outcome drop_outcome(schedule::DropCause cause) {
+  switch (cause) {
+    case schedule::DropCause::kUnreachable: return Outcome::kOutOfReach;
+    case schedule::DropCause::kHigherPriority: return Outcome::kDroppedForHigherPriority;
+    case schedule::DropCause::kLowestPriority: return Outcome::kDroppedLowestPriority;
+    case schedule::DropCause::kDoesNotFit: break;
+  }
+  return Outcome::kDoesNotFit;
+}
+
+}  // namespace
 
 std::pair<map::NodeIndex, Time> Executor::free_at() const {
   const Time now = clock_.now();
@@ -29,18 +42,39 @@ std::pair<map::NodeIndex, Time> Executor::free_at() const {
     here = task.end_node.empty() ? start : *map_.find_node(task.end_node);
   };
   if (current_ && (phase_ == Phase::kNavigating || phase_ == Phase::kActing))
-    run(tasks_.at(*current_).task, phase_ == Phase::kActing ? std::optional<Time>(acting_start_) : std::nullopt);
-  for (const TaskId& id : on_demand_) run(tasks_.at(id).task, std::nullopt);
+    run(book_.at(*current_).task, phase_ == Phase::kActing ? std::optional<Time>(acting_start_) : std::nullopt);
+  for (const TaskId& id : on_demand_) run(book_.at(id).task, std::nullopt);
   return {here, t};
 }
 
+std::vector<TaskId> Executor::reoffer_deferred() {
+  std::vector<TaskId> still;
+  const Time now = clock_.now();
+  for (const TaskId& id : deferred_) {
+    TaskRecord& r = book_.at(id);
+    if (r.state != TaskState::kQueued || !r.dropped_for_now) continue;
+    if (now + r.task.duration <= r.task.window->deadline) {
+      still.push_back(id);
+      continue;
+    }
+    const auto [outcome, reason] = *r.dropped_for_now;
+    book_.transition(id, TaskState::kDropped, outcome, reason);
+  }
+  deferred_ = still;
+  return still;
+}
+
 void Executor::reschedule(std::vector<TaskId> new_ids, const std::string& why) {
+  const std::vector<TaskId> offered_again = reoffer_deferred();
   std::vector<TaskId> ids;
   if (phase_ == Phase::kWaiting && current_) ids.push_back(*current_);  // waiting = still pending
   for (const TaskId& id : schedule_)
     if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
   const std::size_t old_count = ids.size();
   for (const TaskId& id : new_ids)
+    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+  const std::size_t first_deferred = ids.size();
+  for (const TaskId& id : offered_again)
     if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
   if (ids.empty()) {
     schedule_.clear();
@@ -58,7 +92,7 @@ void Executor::reschedule(std::vector<TaskId> new_ids, const std::string& why) {
     return it->second;
   };
   for (const TaskId& id : ids) {
-    const Task& t = tasks_.at(id).task;
+    const Task& t = book_.at(id).task;
     const schedule::LocationIndex start = location_of(t.start_node);
     problem.tasks.push_back({.id = id,
                              .release = t.window->release,
@@ -74,8 +108,9 @@ void Executor::reschedule(std::vector<TaskId> new_ids, const std::string& why) {
 
   schedule::TryScheduleRequest request{.problem = std::move(problem), .new_tasks = {}};
   for (std::size_t i = old_count; i < ids.size(); ++i) request.new_tasks.push_back(i);
+  for (std::size_t i = first_deferred; i < ids.size(); ++i) request.cannot_preempt.push_back(i);
   if (current_ && (phase_ == Phase::kNavigating || phase_ == Phase::kActing)) {
-    const Task& t = tasks_.at(*current_).task;
+    const Task& t = book_.at(*current_).task;
     // An on-demand task is never given up for scheduled work.
     request.running = schedule::RunningTask{*current_, t.priority,
                                             t.kind == TaskKind::kStandard && interruptible_now()};
@@ -93,7 +128,7 @@ void Executor::reschedule(std::vector<TaskId> new_ids, const std::string& why) {
     stats_.schedules += result.attempts;
   }
   if (result.outcome == schedule::TryScheduleOutcome::kPreemptRunning) {
-    preempt_for("outranked by new tasks: " + result.preempt_reason, std::move(new_ids));
+    preempt_for(Outcome::kOutranked, "outranked by new tasks: " + result.preempt_reason, std::move(new_ids));
     return;
   }
   apply_schedule(ids, result.schedule, why);
@@ -103,13 +138,19 @@ void Executor::apply_schedule(const std::vector<TaskId>& ids, const schedule::Sc
   schedule_.clear();
   for (const schedule::ScheduledTask& e : s.entries) {
     const TaskId& id = ids[e.task];
-    TaskRecord& r = tasks_.at(id);
+    TaskRecord& r = book_.at(id);
     // The event log shows every (re)scheduling that moved a task, and why it happened.
     if (r.planned_start != e.start)
-      note(id, "scheduled", fmt::format("planned start {} ({}: position {} of {})", fmt_time(e.start), why,
+      book_.note(id, "scheduled", Outcome::kScheduled, fmt::format("planned start {} ({}: position {} of {})", fmt_time(e.start), why,
                                         schedule_.size() + 1, s.entries.size()));
     r.planned_start = e.start;
     r.planned_end = e.end;
+    if (r.dropped_for_now) {
+      book_.note(id, "re-offered", Outcome::kScheduled,
+                 fmt::format("fits again after its drop: planned start {} ({})", fmt_time(e.start), why));
+      r.dropped_for_now.reset();
+      std::erase(deferred_, id);
+    }
     schedule_.push_back(id);  // a task being waited for too: kick() reconsiders it
   }
   for (const schedule::DroppedTask& d : s.dropped) {
@@ -121,9 +162,20 @@ void Executor::apply_schedule(const std::vector<TaskId>& ids, const schedule::Sc
       current_.reset();
       phase_ = Phase::kIdle;
     }
-    tasks_.at(id).planned_start.reset();
-    tasks_.at(id).planned_end.reset();
-    transition(id, TaskState::kDropped, d.reason);
+    TaskRecord& r = book_.at(id);
+    r.planned_start.reset();
+    r.planned_end.reset();
+    // Dropped for now: offered again at every reschedule while its window can still be met.
+    const Outcome outcome = drop_outcome(d.cause);
+    if (r.state != TaskState::kQueued) book_.transition(id, TaskState::kQueued, outcome, d.reason);
+    if (!r.dropped_for_now) {
+      book_.note(id, "dropped for now", outcome, d.reason);
+      // When its window can no longer be met it is dropped for good, whatever else happens.
+      clock_.schedule_at(r.task.window->deadline - r.task.duration + milliseconds(1),
+                         [this] { (void)reoffer_deferred(); });
+    }
+    r.dropped_for_now = std::make_pair(outcome, d.reason);
+    if (std::find(deferred_.begin(), deferred_.end(), id) == deferred_.end()) deferred_.push_back(id);
   }
 }
 

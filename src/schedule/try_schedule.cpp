@@ -55,14 +55,16 @@ std::string clock_of(Time t) {
   return s.size() >= 16 ? s.substr(11, 5) : s;
 }
 
-std::string reason_for(const Problem& p, std::size_t i, const Schedule& kept, const std::vector<std::size_t>& index) {
+DroppedTask reason_for(const Problem& p, std::size_t i, const Schedule& kept, const std::vector<std::size_t>& index) {
   const ProblemTask& t = p.tasks[i];
   const std::string window = fmt::format("window {}–{}", clock_of(t.release), clock_of(t.deadline));
   // Alone from the robot's position?
   const Duration first_travel = p.travel->travel(p.robot.location, t.start_location, p.robot.time);
   if (p.robot.time + first_travel > t.latest_start())
-    return fmt::format("{} cannot be reached from the robot's position at {} (travel {})", window,
-                       clock_of(p.robot.time), format_duration(first_travel));
+    return {i,
+            fmt::format("{} cannot be reached from the robot's position at {} (travel {})", window,
+                        clock_of(p.robot.time), format_duration(first_travel)),
+            DropCause::kUnreachable};
   // Where would it go? After the last kept task that starts before its latest start.
   std::vector<std::string> stronger;
   for (const auto& e : kept.entries) {
@@ -84,9 +86,10 @@ std::string reason_for(const Problem& p, std::size_t i, const Schedule& kept, co
   if (!stronger.empty()) {
     std::string list;
     for (const auto& s : stronger) list += (list.empty() ? "" : ", ") + s;
-    return fmt::format("{}; dropped for higher-priority tasks {}", where, list);
+    return {i, fmt::format("{}; dropped for higher-priority tasks {}", where, list), DropCause::kHigherPriority};
   }
-  return fmt::format("{}; lowest priority ({}) among the new tasks that did not fit", where, t.priority);
+  return {i, fmt::format("{}; lowest priority ({}) among the new tasks that did not fit", where, t.priority),
+          DropCause::kLowestPriority};
 }
 
 }  // namespace
@@ -114,7 +117,7 @@ TryScheduleResult try_schedule(const TryScheduleRequest& request, Scheduler& sol
       out.outcome = TryScheduleOutcome::kOldTasksInfeasible;
       out.schedule.status = found.status;
       for (std::size_t i : request.new_tasks)
-        out.schedule.dropped.push_back({i, "the tasks already accepted leave no room for it"});
+        out.schedule.dropped.push_back({i, "the tasks already accepted leave no room for it", DropCause::kDoesNotFit});
       return out;
     }
     // The lowest-priority 20 % (at least one), ties broken at random.
@@ -126,7 +129,9 @@ TryScheduleResult try_schedule(const TryScheduleRequest& request, Scheduler& sol
     if (request.running) {
       std::vector<std::string> higher;
       for (std::size_t v : victims)
-        if (p.tasks[v].priority > request.running->priority) higher.push_back(p.tasks[v].id);
+        if (p.tasks[v].priority > request.running->priority &&
+            std::find(request.cannot_preempt.begin(), request.cannot_preempt.end(), v) == request.cannot_preempt.end())
+          higher.push_back(p.tasks[v].id);
       if (!higher.empty()) {
         std::string list;
         for (const auto& h : higher) list += (list.empty() ? "" : ", ") + h;
@@ -184,10 +189,10 @@ TryScheduleResult try_schedule(const TryScheduleRequest& request, Scheduler& sol
   s.dropped.clear();
   for (std::size_t i = 0; i < p.tasks.size(); ++i) {
     if (keep[i]) continue;
-    std::string reason = reason_for(p, i, best, best_index);
+    DroppedTask d = reason_for(p, i, best, best_index);
     if (!blocked_by.empty() && request.running && p.tasks[i].priority > request.running->priority)
-      reason += fmt::format("; the running task {} cannot be interrupted", blocked_by);
-    s.dropped.push_back({i, std::move(reason)});
+      d.reason += fmt::format("; the running task {} cannot be interrupted", blocked_by);
+    s.dropped.push_back(std::move(d));
   }
   // The objective covers the scheduled tasks only (as the checker recomputes it).
   out.outcome = s.dropped.empty() ? TryScheduleOutcome::kAllScheduled : TryScheduleOutcome::kSomeDropped;

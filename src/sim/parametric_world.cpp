@@ -61,9 +61,7 @@ EdgeConditions ParametricWorld::conditions(map::EdgeIndex edge, Time start, Rng&
   c.failure_probability = spec_.failure_probability;
   for (std::size_t i : effects_of_.at(edge)) {
     const EdgeEffect& effect = spec_.effects[i];
-    const bool on = (effect.when.empty() || any_matches(effect.when, zone_, start)) &&
-                    !any_matches(effect.unless, zone_, start);
-    if (!on) continue;
+    if (!active(effect, start)) continue;
     c.closed = c.closed || effect.closed;
     c.failure_probability = combine_failure(c.failure_probability, effect.failure_probability);
     c.duration_factor *= effect.duration_factor;
@@ -75,6 +73,16 @@ EdgeConditions ParametricWorld::conditions(map::EdgeIndex edge, Time start, Rng&
   }
   if (c.closed) c.failure_probability = 1.0;
   return c;
+}
+
+bool ParametricWorld::active(const EdgeEffect& effect, Time t) const {
+  return (effect.when.empty() || any_matches(effect.when, zone_, t)) && !any_matches(effect.unless, zone_, t);
+}
+
+std::optional<bool> ParametricWorld::closed_at(map::EdgeIndex edge, Time t) const {
+  for (std::size_t i : effects_of_.at(edge))
+    if (spec_.effects[i].closed && active(spec_.effects[i], t)) return true;
+  return false;
 }
 
 EdgeSample ParametricWorld::sample_edge(map::EdgeIndex edge, Time start, Rng& rng) {

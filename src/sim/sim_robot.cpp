@@ -1,5 +1,7 @@
 #include "rondo/sim/sim_robot.h"
 
+#include <cmath>
+#include <set>
 #include <stdexcept>
 
 #include "rondo/map/map_geometry.h"
@@ -12,6 +14,7 @@ SimRobot::SimRobot(exec::Clock& clock, const map::TopoMap& map, SimWorld& world,
       world_(world),
       options_(options),
       rng_(options.seed),
+      sensor_rng_(options.seed ^ 0xD00A5E5502ULL),
       location_(options.start),
       battery_(world.battery.initial),
       battery_since_(clock.now()) {
@@ -19,6 +22,26 @@ SimRobot::SimRobot(exec::Clock& clock, const map::TopoMap& map, SimWorld& world,
     throw std::logic_error("SimRobot: start or dock is not a node of the map");
   }
   if (!world.edges) throw std::logic_error("SimRobot: the world has no edges");
+  // The doors the sensor can see from each node: each door once, by one of its edges.
+  doors_near_.resize(map.node_count());
+  if (world.door_sensor.enabled) {
+    for (map::NodeIndex n = 0; n < map.node_count(); ++n) {
+      const map::Pose& at = map.node(n).pose;
+      std::set<std::string> seen;
+      for (map::EdgeIndex e = 0; e < map.edge_count(); ++e) {
+        const auto& door = map.edge(e).door;
+        if (!door || seen.contains(*door)) continue;
+        for (map::NodeIndex end : {map.from_index(e), map.to_index(e)}) {
+          const map::Pose& p = map.node(end).pose;
+          if (std::hypot(p.x - at.x, p.y - at.y) <= world.door_sensor.range_m) {
+            seen.insert(*door);
+            doors_near_[n].emplace_back(*door, e);
+            break;
+          }
+        }
+      }
+    }
+  }
 }
 
 SimRobot::~SimRobot() {
@@ -42,7 +65,7 @@ void SimRobot::unpost(std::uint64_t key) {
 }
 
 BatteryModel::Mode SimRobot::mode() const {
-  if (job_ && !job_->cancelled) return job_->is_edge ? BatteryModel::Mode::kMoving : BatteryModel::Mode::kActing;
+  if (job_ && job_->end == End::kNatural) return job_->is_edge ? BatteryModel::Mode::kMoving : BatteryModel::Mode::kActing;
   if (!job_ && location_ == options_.dock) return BatteryModel::Mode::kCharging;
   return BatteryModel::Mode::kIdle;
 }
@@ -69,14 +92,28 @@ void SimRobot::start(Job job) {
   job_->finish_post = post(job_->start + job_->duration, [this] { finish(); });
 }
 
-void SimRobot::traverse(map::EdgeIndex edge) {
-  if (busy()) throw std::logic_error("SimRobot::traverse while busy");
-  if (edge >= map_.edge_count() || map_.from_index(edge) != location_) {
-    throw std::logic_error("SimRobot::traverse: the edge does not leave the robot's location");
+void SimRobot::drive(const exec::Route& route) {
+  if (busy()) throw std::logic_error("SimRobot::drive while busy");
+  if (route.edges.empty() || route.committed < 1 || route.committed > route.edges.size())
+    throw std::logic_error("SimRobot::drive: a route needs 1 <= committed <= its edges");
+  map::NodeIndex at = location_;
+  for (map::EdgeIndex e : route.edges) {
+    if (e >= map_.edge_count() || map_.from_index(e) != at)
+      throw std::logic_error("SimRobot::drive: the route does not leave the robot's location edge after edge");
+    at = map_.to_index(e);
   }
+  route_.assign(route.edges.begin() + 1, route.edges.begin() + static_cast<std::ptrdiff_t>(route.committed));
+  start_edge(route.edges.front());
+}
+
+void SimRobot::start_edge(map::EdgeIndex edge) {
   settle_battery();
   Job job{.is_edge = true, .edge = edge, .start = clock_.now()};
-  if (battery_ > 0) {
+  if (fault_) {
+    job.success = false;
+    job.end = End::kFault;
+    job.message = fault_->message;
+  } else if (battery_ > 0) {
     const EdgeSample s = world_.edges->sample_edge(edge, job.start, rng_);
     job.success = s.success;
     job.duration = s.duration;
@@ -91,7 +128,10 @@ void SimRobot::run_action(const Action& action, Duration expected) {
   settle_battery();
   Job job{.is_edge = false, .action = action.name, .start = clock_.now()};
   ActionSample s{.success = false};
-  if (battery_ > 0) {
+  if (fault_) {
+    job.end = End::kFault;
+    job.message = fault_->message;
+  } else if (battery_ > 0) {
     s = world_.actions.sample(action, expected, rng_);
     if (!s.success) job.message = "simulated failure of '" + action.name + "'";
   } else {
@@ -110,11 +150,15 @@ void SimRobot::run_action(const Action& action, Duration expected) {
   start(std::move(job));
 }
 
-void SimRobot::cancel() {
-  if (!job_ || job_->cancelled) return;
+void SimRobot::cancel() { stop_job(End::kCancelled, "cancelled"); }
+
+void SimRobot::stop_job(End end, std::string message) {
+  route_.clear();
+  if (!job_ || job_->end != End::kNatural) return;
   settle_battery();
   unpost(job_->finish_post);
-  job_->cancelled = true;
+  job_->end = end;
+  job_->message = std::move(message);
   job_->success = false;
   job_->duration = clock_.now() - job_->start;
   if (job_->interruptible_post != 0) {
@@ -125,13 +169,41 @@ void SimRobot::cancel() {
   job_->finish_post = post(clock_.now(), [this] { finish(); });
 }
 
+void SimRobot::inject_fault(exec::RobotFault fault) {
+  fault_ = fault;
+  // The fault is reported first, then the result of what it cut short.
+  post(clock_.now(), [this, fault] {
+    if (listener_ != nullptr) listener_->on_fault(fault);
+  });
+  stop_job(End::kFault, fault.message);
+}
+
+void SimRobot::clear_fault() {
+  if (!fault_) return;
+  fault_.reset();
+  post(clock_.now(), [this] {
+    if (listener_ != nullptr) listener_->on_ready();
+  });
+}
+
 void SimRobot::finish() {
   settle_battery();
   const Job job = std::move(*job_);
   job_.reset();
-  if (job.is_edge && job.success && !job.cancelled) {
-    location_ = map_.to_index(job.edge);
-    distance_m_ += map::edge_length(map_, job.edge);
+  if (job.is_edge) {
+    if (job.success && job.end == End::kNatural) {
+      location_ = map_.to_index(job.edge);
+      distance_m_ += map::edge_length(map_, job.edge);
+    }
+    // The rest of the committed route goes on after a success; anything else ends the drive.
+    if (job.success && job.end == End::kNatural && !route_.empty()) {
+      const map::EdgeIndex next = route_.front();
+      route_.erase(route_.begin());
+      start_edge(next);
+    } else {
+      route_.clear();
+    }
+    sense_doors();
   }
   deliver(job);
 }
@@ -139,19 +211,39 @@ void SimRobot::finish() {
 void SimRobot::deliver(const Job& job) {
   if (listener_ == nullptr) return;
   if (job.is_edge) {
-    listener_->on_edge_finished(
-        {.edge = job.edge, .start = job.start, .duration = job.duration, .success = job.success, .cancelled = job.cancelled});
+    exec::EdgeAttempt a{.edge = job.edge, .start = job.start, .duration = job.duration};
+    switch (job.end) {
+      case End::kNatural: a.outcome = job.success ? exec::EdgeOutcome::kSucceeded : exec::EdgeOutcome::kFailed; break;
+      case End::kCancelled: a.outcome = exec::EdgeOutcome::kCancelled; break;
+      case End::kFault: a.outcome = exec::EdgeOutcome::kRobotFault; break;
+    }
+    if (job.end != End::kNatural) a.message = job.message;
+    listener_->on_edge_finished(a);
     return;
   }
   exec::ActionResult result{.name = job.action, .start = job.start, .duration = job.duration};
-  if (job.cancelled) {
+  if (job.end == End::kCancelled) {
     result.outcome = exec::ActionOutcome::kCancelled;
-    result.message = "cancelled";
+    result.message = job.message;
+  } else if (job.end == End::kFault) {
+    result.outcome = exec::ActionOutcome::kRobotFault;
+    result.message = job.message;
   } else if (!job.success) {
     result.outcome = exec::ActionOutcome::kFailed;
     result.message = job.message;
   }
   listener_->on_action_finished(result);
+}
+
+void SimRobot::sense_doors() {
+  if (listener_ == nullptr || !world_.door_sensor.enabled) return;
+  const Time now = clock_.now();
+  for (const auto& [door, edge] : doors_near_[location_]) {
+    if (sensor_rng_.bernoulli(world_.door_sensor.miss_rate)) continue;
+    const std::optional<bool> closed = world_.edges->closed_at(edge, now);
+    if (!closed) continue;  // a world that does not know its doors shows nothing
+    listener_->on_observation({.what = "door_open", .where = door, .when = now, .value = *closed ? 0.0 : 1.0});
+  }
 }
 
 void SimRobot::notify_interruptible(bool interruptible) {

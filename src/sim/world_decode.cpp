@@ -48,9 +48,17 @@ Result<BatteryModel> decode_battery(const Field& f) {
   return b;
 }
 
+Result<DoorSensor> decode_door_sensor(const Field& f) {
+  RONDO_RETURN_IF_ERROR(f.expect_keys({"range", "miss_rate"}));
+  DoorSensor d{.enabled = true};
+  RONDO_RETURN_IF_ERROR(detail::read_number(f, "range", 0, 1000, d.range_m));
+  RONDO_RETURN_IF_ERROR(detail::read_number(f, "miss_rate", 0, 1, d.miss_rate));
+  return d;
+}
+
 Result<std::unique_ptr<EdgeWorld>> decode_parametric(const Field& root, const map::TopoMap& map, const TimeZone& zone) {
   RONDO_RETURN_IF_ERROR(root.expect_keys({"kind", "speed", "failure_probability", "noise", "failed_duration",
-                                          "bursts", "effects", "actions", "battery"}));
+                                          "bursts", "effects", "actions", "battery", "door_sensor"}));
   ParametricSpec spec;
   RONDO_RETURN_IF_ERROR(detail::decode_edge_settings(root, true, spec));
   if (auto effects = root.optional("effects")) {
@@ -65,7 +73,8 @@ Result<std::unique_ptr<EdgeWorld>> decode_parametric(const Field& root, const ma
 
 Result<std::unique_ptr<EdgeWorld>> decode_replay(const Field& root, const std::filesystem::path& base,
                                                  const map::TopoMap& map, const TimeZone& zone) {
-  RONDO_RETURN_IF_ERROR(root.expect_keys({"kind", "logs", "log_timezone", "window", "prior", "actions", "battery"}));
+  RONDO_RETURN_IF_ERROR(root.expect_keys({"kind", "logs", "log_timezone", "window", "prior", "actions", "battery",
+                                          "door_sensor"}));
   ReplayOptions options;
   RONDO_ASSIGN_OR_RETURN(auto logs_field, root.required("logs"));
   RONDO_ASSIGN_OR_RETURN(auto logs, logs_field.as_string());
@@ -112,6 +121,9 @@ Result<SimWorld> decode_world(const Document& doc, const std::filesystem::path& 
   }
   if (auto battery = root.optional("battery")) {
     RONDO_ASSIGN_OR_RETURN(world.battery, decode_battery(*battery));
+  }
+  if (auto sensor = root.optional("door_sensor")) {
+    RONDO_ASSIGN_OR_RETURN(world.door_sensor, decode_door_sensor(*sensor));
   }
   return world;
 }

@@ -1,4 +1,4 @@
-// Private to rondo::store: the one INSERT into task_events, shared by the task table (state
+// Private to rondo::store: the one INSERT into the event log, shared by the task table (state
 // changes) and the event log API, always called inside the caller's open transaction.
 #pragma once
 
@@ -7,13 +7,12 @@
 #include <cstdint>
 #include <string_view>
 
-#include "rondo/core/time.h"
+#include "rondo/store/events.h"
 
 namespace rondo::store {
 
 // Appends one event row and returns its seq. Throws SQLite::Exception (caller's guarded() maps it).
-std::int64_t insert_event_row(SQLite::Database& db, Time at, std::string_view task_id, std::string_view event,
-                              std::string_view reason);
+std::int64_t insert_event_row(SQLite::Database& db, const Event& event);
 
 // Whether task `id` is stored. Throws SQLite::Exception.
 bool task_exists(SQLite::Database& db, std::string_view id);

@@ -58,8 +58,59 @@ CREATE TABLE observations (
 CREATE INDEX observations_by_what_place_time ON observations (what, place, time_ms);
 )sql";
 
+// Version 2 (the durable executor): the task event log becomes the event log of the whole
+// executive. Events carry an outcome code and a subject (task, robot, request, schedule), and only
+// task events name a task; old rows keep their sequence numbers, with subject 'task' and no code.
+// Tasks record who added them and how far they got (restart), the robot its last known state
+// (restore), and the store the identity of what it holds (a run's deployment, seed and length).
+constexpr std::string_view kSchemaV2 = R"sql(
+CREATE TABLE events (
+  seq      INTEGER PRIMARY KEY AUTOINCREMENT,
+  time_ms  INTEGER NOT NULL,
+  subject  TEXT    NOT NULL CHECK (subject IN ('task', 'robot', 'request', 'schedule')),
+  task_id  TEXT    REFERENCES tasks (id),
+  about    TEXT    NOT NULL DEFAULT '',
+  event    TEXT    NOT NULL,
+  code     TEXT    NOT NULL DEFAULT '',
+  reason   TEXT    NOT NULL DEFAULT '',
+  CHECK ((subject = 'task') = (task_id IS NOT NULL))
+) STRICT;
+INSERT INTO events (seq, time_ms, subject, task_id, event, reason)
+  SELECT seq, time_ms, 'task', task_id, event, reason FROM task_events ORDER BY seq;
+DROP TRIGGER task_events_no_update;
+DROP TRIGGER task_events_no_delete;
+DROP INDEX task_events_by_task;
+DROP TABLE task_events;
+CREATE INDEX events_by_task ON events (task_id, seq) WHERE task_id IS NOT NULL;
+CREATE TRIGGER events_no_update BEFORE UPDATE ON events
+BEGIN SELECT RAISE(ABORT, 'events is append-only'); END;
+CREATE TRIGGER events_no_delete BEFORE DELETE ON events
+BEGIN SELECT RAISE(ABORT, 'events is append-only'); END;
+
+ALTER TABLE tasks ADD COLUMN source TEXT NOT NULL DEFAULT '';
+ALTER TABLE tasks ADD COLUMN progress_json TEXT CHECK (progress_json IS NULL OR json_valid(progress_json));
+
+CREATE TABLE robot_state (
+  robot       TEXT    PRIMARY KEY NOT NULL,
+  node        TEXT    NOT NULL,
+  x           REAL,
+  y           REAL,
+  yaw         REAL,
+  battery     REAL    CHECK (battery IS NULL OR (battery >= 0 AND battery <= 1)),
+  on_board    TEXT    NOT NULL DEFAULT '[]' CHECK (json_valid(on_board)),
+  fault       TEXT,
+  updated_ms  INTEGER NOT NULL
+) STRICT;
+
+CREATE TABLE meta (
+  key    TEXT PRIMARY KEY NOT NULL,
+  value  TEXT NOT NULL
+) STRICT;
+)sql";
+
 constexpr Migration kMigrations[] = {
     {1, "tasks, task_events (append-only), traversals, observations", kSchemaV1},
+    {2, "events with subject and outcome code; task source and progress; robot_state; meta", kSchemaV2},
 };
 
 int read_user_version(SQLite::Database& db) {

@@ -11,7 +11,8 @@
 namespace rondo::store {
 namespace {
 
-constexpr const char* kSelectTask = "SELECT id, state, task_json, created_ms, updated_ms FROM tasks";
+constexpr const char* kSelectTask =
+    "SELECT id, state, task_json, created_ms, updated_ms, source, progress_json FROM tasks";
 
 Result<TaskRecord> task_from_row(const Store& store, const SQLite::Statement& row) {
   TaskRecord r;
@@ -24,6 +25,12 @@ Result<TaskRecord> task_from_row(const Store& store, const SQLite::Statement& ro
   }
   r.created = time_from_db(row.getColumn(3).getInt64());
   r.updated = time_from_db(row.getColumn(4).getInt64());
+  r.source = row.getColumn(5).getString();
+  if (!row.getColumn(6).isNull()) {
+    r.progress = Json::parse(row.getColumn(6).getString(), nullptr, /*allow_exceptions=*/false);
+    if (r.progress.is_discarded())
+      return Error::storage(fmt::format("{}: task '{}': the stored progress does not parse", store.file().string(), r.id));
+  }
   return r;
 }
 
@@ -39,11 +46,11 @@ Result<std::vector<TaskRecord>> read_tasks(const Store& store, SQLite::Statement
 
 }  // namespace
 
-Status add_task(Store& store, const TaskRecord& task, std::string_view reason) {
-  return add_tasks(store, std::span<const TaskRecord>(&task, 1), reason);
+Status add_task(Store& store, const TaskRecord& task, std::string_view reason, std::string_view code) {
+  return add_tasks(store, std::span<const TaskRecord>(&task, 1), reason, code);
 }
 
-Status add_tasks(Store& store, std::span<const TaskRecord> tasks, std::string_view reason) {
+Status add_tasks(Store& store, std::span<const TaskRecord> tasks, std::string_view reason, std::string_view code) {
   if (tasks.empty()) return {};
   for (const TaskRecord& t : tasks) {
     if (t.id.empty()) return Error::invalid(store.file().string() + ": a task needs a non-empty id");
@@ -54,8 +61,8 @@ Status add_tasks(Store& store, std::span<const TaskRecord> tasks, std::string_vi
     SQLite::Database& db = connection(store);
     SQLite::Transaction tx(db, SQLite::TransactionBehavior::IMMEDIATE);
     SQLite::Statement insert(db,
-                             "INSERT INTO tasks (id, state, task_json, created_ms, updated_ms) VALUES (?, ?, ?, ?, ?) "
-                             "ON CONFLICT (id) DO NOTHING");
+                             "INSERT INTO tasks (id, state, task_json, created_ms, updated_ms, source, progress_json) "
+                             "VALUES (?, ?, ?, ?, ?, ?, ?) ON CONFLICT (id) DO NOTHING");
     for (const TaskRecord& task : tasks) {
       insert.reset();
       insert.bind(1, task.id);
@@ -63,17 +70,27 @@ Status add_tasks(Store& store, std::span<const TaskRecord> tasks, std::string_vi
       insert.bind(3, task.task.dump());
       insert.bind(4, to_db(task.created));
       insert.bind(5, to_db(task.updated));
+      insert.bind(6, task.source);
+      if (task.progress.is_null())
+        insert.bind(7);
+      else
+        insert.bind(7, task.progress.dump());
       if (insert.exec() == 0) {  // the transaction rolls back: none of `tasks` is stored
         return Error::invalid(fmt::format("{}: task '{}' is already stored", store.file().string(), task.id));
       }
-      insert_event_row(db, task.created, task.id, task.state, reason);
+      insert_event_row(db, {.time = task.created,
+                            .task_id = task.id,
+                            .event = task.state,
+                            .code = std::string(code),
+                            .reason = std::string(reason)});
     }
     tx.commit();  // with synchronous=FULL the WAL is synced to disk here
     return {};
   });
 }
 
-Status set_task_state(Store& store, std::string_view id, std::string_view state, Time at, std::string_view reason) {
+Status set_task_state(Store& store, std::string_view id, std::string_view state, Time at, std::string_view reason,
+                      std::string_view code) {
   return guarded(store, fmt::format("changing the state of task '{}'", id), [&]() -> Status {
     SQLite::Database& db = connection(store);
     SQLite::Transaction tx(db, SQLite::TransactionBehavior::IMMEDIATE);
@@ -82,8 +99,25 @@ Status set_task_state(Store& store, std::string_view id, std::string_view state,
     update.bind(2, to_db(at));
     update.bind(3, std::string(id));
     if (update.exec() == 0) return Error::not_found(fmt::format("{}: no task '{}'", store.file().string(), id));
-    insert_event_row(db, at, id, state, reason);
+    insert_event_row(db, {.time = at,
+                          .task_id = std::string(id),
+                          .event = std::string(state),
+                          .code = std::string(code),
+                          .reason = std::string(reason)});
     tx.commit();
+    return {};
+  });
+}
+
+Status set_task_progress(Store& store, std::string_view id, const Json& progress) {
+  return guarded(store, fmt::format("recording the progress of task '{}'", id), [&]() -> Status {
+    SQLite::Statement update(connection(store), "UPDATE tasks SET progress_json = ? WHERE id = ?");
+    if (progress.is_null())
+      update.bind(1);
+    else
+      update.bind(1, progress.dump());
+    update.bind(2, std::string(id));
+    if (update.exec() == 0) return Error::not_found(fmt::format("{}: no task '{}'", store.file().string(), id));
     return {};
   });
 }

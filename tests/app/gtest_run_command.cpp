@@ -13,7 +13,7 @@
 #include "rondo/core/document.h"
 #include "rondo/core/task.h"
 #include "rondo/store/store.h"
-#include "rondo/store/task_events.h"
+#include "rondo/store/events.h"
 #include "rondo/store/task_table.h"
 
 namespace rondo {
@@ -65,7 +65,7 @@ TEST(RunCommand, NoTaskIsLost) {
   ASSERT_EQ(test::run_cli({"run", "--days", "7", "--out", out.string()}).exit_code, 0);
   auto store = store::Store::open(out / "rondo.sqlite", {.mode = store::OpenMode::kMustExist}).value();
   const auto tasks = store::list_tasks(store).value();
-  const auto events = store::read_task_events(store).value();
+  const auto events = store::read_events(store).value();
   std::map<std::string, int> finals;
   std::map<std::string, std::string> last_reason;
   for (const auto& e : events) {
@@ -90,7 +90,7 @@ TEST(RunCommand, NoTaskIsLost) {
   EXPECT_EQ(static_cast<int>(tasks.size()), report["tasks"]["added"].get<int>());
   EXPECT_EQ(pending, report["tasks"]["pending"].get<int>());
   int reported_final = report["tasks"]["completed"].get<int>();
-  for (const char* k : {"failed", "dropped", "cancelled", "preempted"})
+  for (const char* k : {"failed", "dropped", "cancelled"})
     for (const auto& [reason, n] : report["tasks"][k].items()) reported_final += n.get<int>();
   EXPECT_EQ(final_count, reported_final);
   std::filesystem::remove_all(out.parent_path());

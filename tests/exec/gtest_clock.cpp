@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace rondo::exec {
@@ -63,6 +65,108 @@ TEST(SimClock, RunUntilLeavesLaterEventsPending) {
   EXPECT_EQ(clock.pending(), 1u);
   clock.run_until(kStart + hours(2));
   EXPECT_EQ(runs, 1);
+}
+
+TEST(SimClock, PostedCallbacksFromOtherThreadsRunBeforeTheNextEventInPostingOrder) {
+  SimClock clock(kStart);
+  std::vector<int> ran;
+  clock.schedule_after(seconds(5), [&] { ran.push_back(-1); });
+  constexpr int kEach = 200;
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 2; ++t)
+    threads.emplace_back([&clock, &ran, t] {
+      for (int i = 0; i < kEach; ++i) clock.post([&ran, t, i] { ran.push_back(t * kEach + i); });
+    });
+  for (auto& th : threads) th.join();
+  clock.run_until(kStart + seconds(10));
+  ASSERT_EQ(ran.size(), 2u * kEach + 1);
+  EXPECT_EQ(ran.back(), -1);  // the timed event came after every posted callback
+  for (int t = 0; t < 2; ++t) {
+    int last = -1;
+    for (int v : ran)
+      if (v >= t * kEach && v < (t + 1) * kEach) {
+        EXPECT_GT(v, last);
+        last = v;
+      }
+  }
+}
+
+// A fake pair of clocks for SystemClock: the test moves them; nothing waits.
+struct FakeTime {
+  Time wall = kStart;
+  SystemClock::Steady::time_point steady{std::chrono::hours(1000)};
+  SystemClock::Sources sources() {
+    return {.wall = [this] { return wall; }, .steady = [this] { return steady; }};
+  }
+};
+
+TEST(SystemClock, TimersRunOnTheMonotonicClockSoAWallClockStepNeitherFiresNorDelaysThem) {
+  FakeTime t;
+  SystemClock clock(1.0, t.sources());
+  int fired = 0;
+  clock.schedule_after(seconds(10), [&] { ++fired; });
+  t.wall += hours(1);  // NTP steps the wall clock forward
+  EXPECT_EQ(clock.run_due(), 0u);
+  t.steady += std::chrono::seconds(9);
+  EXPECT_EQ(clock.run_due(), 0u);
+  t.steady += std::chrono::seconds(1);
+  EXPECT_EQ(clock.run_due(), 1u);
+  EXPECT_EQ(fired, 1);
+  EXPECT_EQ(clock.now(), kStart + hours(1));  // event times stay the wall clock's UTC
+
+  clock.schedule_after(seconds(10), [&] { ++fired; });
+  t.wall -= hours(2);  // and a step backwards does not hold it back
+  t.steady += std::chrono::seconds(10);
+  EXPECT_EQ(clock.run_due(), 1u);
+  EXPECT_EQ(fired, 2);
+}
+
+TEST(SystemClock, ASpeedFactorRunsTimeFasterForNowAndTimers) {
+  FakeTime t;
+  SystemClock clock(60.0, t.sources());
+  int fired = 0;
+  clock.schedule_after(minutes(1), [&] { ++fired; });
+  t.steady += std::chrono::milliseconds(999);
+  EXPECT_EQ(clock.run_due(), 0u);
+  t.steady += std::chrono::milliseconds(1);
+  EXPECT_EQ(clock.run_due(), 1u);
+  EXPECT_EQ(clock.now(), kStart + minutes(1));
+  EXPECT_THROW(SystemClock(0.0), std::invalid_argument);
+}
+
+TEST(SystemClock, PostFromTwoThreadsWakesTheLoopAndStopEndsIt) {
+  SystemClock clock;
+  constexpr int kEach = 500;
+  std::atomic<int> count{0};
+  std::vector<int> order[2];
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 2; ++t)
+    threads.emplace_back([&, t] {
+      for (int i = 0; i < kEach; ++i)
+        clock.post([&, t, i] {
+          order[t].push_back(i);  // runs on the clock's thread: no lock needed
+          if (++count == 2 * kEach) clock.stop();
+        });
+    });
+  // Nothing is timed: only the posts can wake the loop, and only the last one can end it. The
+  // limit is far away, so a lost wake-up shows as a test time-out, never as a pass.
+  clock.run_until(clock.now() + hours(1));
+  for (auto& th : threads) th.join();
+  EXPECT_EQ(count.load(), 2 * kEach);
+  for (const auto& seen : order) {
+    ASSERT_EQ(seen.size(), static_cast<std::size_t>(kEach));
+    for (int i = 0; i < kEach; ++i) EXPECT_EQ(seen[static_cast<std::size_t>(i)], i);
+  }
+  EXPECT_TRUE(clock.stopped());
+}
+
+TEST(SystemClock, RunUntilRunsTimersAsTheyFallDue) {
+  SystemClock clock(1000.0);  // a minute of clock time is 60 ms
+  std::vector<int> ran;
+  clock.schedule_after(seconds(30), [&] { ran.push_back(2); });
+  clock.schedule_after(seconds(10), [&] { ran.push_back(1); });
+  clock.run_until(clock.now() + minutes(1));
+  EXPECT_EQ(ran, (std::vector<int>{1, 2}));
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "rondo/store/task_table.h"
+#include "rondo/store/traversal_log.h"
 #include "scenario.h"
 
 namespace rondo::exec::testing {
@@ -44,15 +45,18 @@ TEST(ExecutorScenario, OnDemandPreemptsAnInterruptibleTaskAndTheRestIsReschedule
   Scenario s(kCalmWorld);
   ASSERT_NO_FATAL_FAILURE(on_demand_while_a_acts(s, /*a_interruptible=*/true));
 
-  EXPECT_EQ(s.final_state("A"), "preempted");
-  EXPECT_THAT(s.reason_of("A", "preempted"), HasSubstr("preempted by an on-demand task: OD"));
+  // The preempted task keeps its id, goes back to the queue with the reason, and is done later.
+  EXPECT_EQ(s.code_of("A", "queued"), "preempted on demand");
+  EXPECT_THAT(s.reason_of("A", "queued"), HasSubstr("preempted by an on-demand task: OD"));
   EXPECT_EQ(s.final_state("OD"), "succeeded");
-  // The preempted task comes back as a new task and is done later; so is the rest.
-  EXPECT_EQ(s.final_state("A~1"), "succeeded");
+  EXPECT_EQ(s.final_state("A"), "succeeded");
   EXPECT_EQ(s.final_state("B"), "succeeded");
+  EXPECT_EQ(s.executor().tasks().count("A~1"), 0u);
   const auto acting = s.order_of("acting");
+  ASSERT_EQ(std::count(acting.begin(), acting.end(), "A"), 2);
+  const auto second_a = std::find(std::find(acting.begin(), acting.end(), "A") + 1, acting.end(), "A");
   EXPECT_LT(position(acting, "A"), position(acting, "OD"));
-  EXPECT_LT(position(acting, "OD"), position(acting, "A~1"));
+  EXPECT_LT(position(acting, "OD"), second_a - acting.begin());
   EXPECT_LT(position(acting, "OD"), position(acting, "B"));
   // The rest was planned again around the on-demand task: B moved back.
   EXPECT_THAT(s.reason_of("B", "scheduled"), HasSubstr("after preempting A"));
@@ -69,7 +73,7 @@ TEST(ExecutorScenario, ANonInterruptibleTaskIsNotPreemptedTheOnDemandTaskRunsRig
   EXPECT_EQ(s.final_state("B"), "succeeded");
   const auto done = s.order_of("succeeded");
   EXPECT_EQ(done, (std::vector<std::string>{"A", "OD", "B"}));
-  EXPECT_TRUE(s.order_of("preempted").empty());
+  EXPECT_EQ(s.code_of("A", "queued"), "added");  // never back in the queue
 }
 
 TEST(ExecutorScenario, ANavigationOverrunIsPreemptedAndTheTaskFailsWithThatReason) {
@@ -175,9 +179,15 @@ TEST(ExecutorScenario, AnOversubscribedDayDropsTheLowestPrioritiesFirst) {
   ASSERT_TRUE(s.executor().add_tasks(tasks, "test"));
   s.run_until("11:00");
 
+  // Dropped for now first, offered again while their windows can be met, then dropped for good.
+  const auto for_now = s.order_of("dropped for now");
+  EXPECT_EQ(std::set<std::string>(for_now.begin(), for_now.end()), (std::set<std::string>{"P1", "P2"}));
   const auto dropped = s.order_of("dropped");
   EXPECT_EQ(std::set<std::string>(dropped.begin(), dropped.end()), (std::set<std::string>{"P1", "P2"}));
-  for (const char* id : {"P1", "P2"}) EXPECT_FALSE(s.reason_of(id, "dropped").empty()) << id;
+  for (const char* id : {"P1", "P2"}) {
+    EXPECT_FALSE(s.reason_of(id, "dropped").empty()) << id;
+    EXPECT_EQ(s.code_of(id, "dropped"), "dropped for higher priority") << id;
+  }
   for (const char* id : {"P3", "P4", "P5"}) EXPECT_EQ(s.final_state(id), "succeeded") << id;
 }
 
@@ -192,8 +202,8 @@ TEST(ExecutorScenario, HigherPriorityTasksThatDoNotFitPreemptAnInterruptibleRunn
     ASSERT_TRUE(s.executor().add_task(task("H", "Kitchen", s.at("08:10"), s.at("08:20"), minutes(5), 5), "test"));
     s.run_until("10:00");
     if (interruptible) {
-      EXPECT_EQ(s.final_state("A"), "preempted");
-      EXPECT_THAT(s.reason_of("A", "preempted"), HasSubstr("outranked by new tasks"));
+      EXPECT_EQ(s.code_of("A", "queued"), "outranked");
+      EXPECT_THAT(s.reason_of("A", "queued"), HasSubstr("outranked by new tasks"));
       EXPECT_EQ(s.final_state("H"), "succeeded");
     } else {  // MISSION.md §3: the higher-priority task is dropped after all
       EXPECT_EQ(s.final_state("A"), "succeeded");
@@ -201,6 +211,32 @@ TEST(ExecutorScenario, HigherPriorityTasksThatDoNotFitPreemptAnInterruptibleRunn
       EXPECT_THAT(s.reason_of("H", "dropped"), HasSubstr("the running task A cannot be interrupted"));
     }
   }
+}
+
+// A fault in the middle of an edge: dispatch pauses, the monitors stand still, the cut attempt is
+// an event and not learning data, and when the robot is ready the task goes on and completes.
+TEST(ExecutorScenario, ARobotFaultMidEdgePausesDispatchAndLearnsNoEdgeFailure) {
+  Scenario s(kCalmWorld, {.navigation_overrun = 2.0, .navigation_slack = seconds(10)});  // limit 90 s
+  ASSERT_TRUE(s.executor().add_task(task("a", "Office", s.at("08:00"), s.at("10:00"), minutes(2)), "test").ok());
+  s.executor().start();
+  s.run_until("08:00:10");  // half-way along Dock_Hall (20 s)
+  s.robot().inject_fault({.kind = RobotFault::Kind::kError, .message = "bumper pressed"});
+  s.run_until("08:30");  // far past the navigation monitor's limit: it stands still
+  EXPECT_TRUE(s.executor().paused());
+  EXPECT_EQ(s.final_state("a"), "navigating");
+  EXPECT_EQ(store::count_traversals(s.store()).value(), 0u);  // the cut attempt is not learning data
+  s.robot().clear_fault();
+  s.run_until("09:00");
+  EXPECT_FALSE(s.executor().paused());
+  EXPECT_EQ(s.final_state("a"), "succeeded");
+  std::vector<std::string> robot_events;
+  for (const auto& e : s.all_events())
+    if (e.subject == store::Subject::kRobot) robot_events.push_back(e.event + "/" + e.code);
+  EXPECT_EQ(robot_events, (std::vector<std::string>{"fault/robot fault", "ready/robot ready"}));
+  int cut = 0;
+  for (const auto& e : s.events_of("a")) cut += e.event == "edge" && e.code == "robot fault";
+  EXPECT_EQ(cut, 1);
+  EXPECT_EQ(store::count_traversals(s.store()).value(), 4u);  // there and back to the dock, once each
 }
 
 TEST(ExecutorScenario, TravelEstimatesInWeekThreeAreCloserToTheTruthThanInWeekOne) {
@@ -251,6 +287,95 @@ actions:
   EXPECT_LT(week3, week1);
   EXPECT_LT(week3, 0.8 * week1) << "week 1: " << week1 << ", week 3: " << week3;  // measured 0.33 vs 0.52
   EXPECT_GE(s.executor().stats().refits, 20);
+}
+
+
+// The calm world, with a "chat" action that cannot be interrupted for its first 10 minutes.
+const std::string kChatWorld =
+    std::string(kCalmWorld) + "  chat: {sigma: 0, failure_probability: 0, overrun_probability: 0, non_interruptible: 10m}\n";
+
+TEST(ExecutorCancel, AQueuedTaskEndsCancelledAndTheRestIsRescheduled) {
+  Scenario s(kCalmWorld);
+  s.executor().start();
+  ASSERT_TRUE(s.executor().add_tasks({task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(20)),
+                                      task("B", "Kitchen", s.at("08:00"), s.at("10:00"), minutes(20))},
+                                     "test"));
+  s.run_until("08:05");
+  const TaskId queued = s.final_state("A") == "queued" ? "A" : "B";
+  ASSERT_EQ(s.final_state(queued), "queued");
+  ASSERT_TRUE(s.executor().cancel_task(queued, "not needed today").ok());
+  EXPECT_EQ(s.final_state(queued), "cancelled");
+  EXPECT_EQ(s.code_of(queued, "cancelled"), "cancelled");
+  EXPECT_THAT(s.reason_of(queued, "cancelled"), HasSubstr("not needed today"));
+  s.run_until("10:00");
+  EXPECT_EQ(s.final_state(queued == "A" ? "B" : "A"), "succeeded");
+  EXPECT_EQ(s.final_state(queued), "cancelled");
+  // A finished task cannot be cancelled, an unknown one is not found.
+  EXPECT_EQ(s.executor().cancel_task(queued, "").error().code, ErrorCode::kConflict);
+  EXPECT_EQ(s.executor().cancel_task("nobody", "").error().code, ErrorCode::kNotFound);
+}
+
+TEST(ExecutorCancel, ARunningInterruptibleTaskIsStoppedThroughTheRobot) {
+  Scenario s(kCalmWorld);
+  s.executor().start();
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(20)), "test"));
+  s.run_until("08:00:10");  // on its way
+  ASSERT_EQ(s.final_state("A"), "navigating");
+  ASSERT_TRUE(s.executor().cancel_task("A", "changed my mind").ok());
+  s.run_until("08:01");
+  EXPECT_EQ(s.final_state("A"), "cancelled");
+  // The edge the cancel cut short is an event, not learning data.
+  EXPECT_EQ(s.code_of("A", "edge"), "cancelled");
+  s.run_until("09:00");
+  const std::vector<Traversal> log = store::find_traversals(s.store()).value();
+  for (const Traversal& t : log) EXPECT_TRUE(t.success) << t.edge_id;
+}
+
+TEST(ExecutorCancel, ATaskThatCannotBeInterruptedNowIsCancelledAtItsNextInterruptibleMoment) {
+  Scenario s(kChatWorld);
+  s.executor().start();
+  Task a = task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(20));
+  a.actions = {Action{.name = "chat", .args = {}}};
+  ASSERT_TRUE(s.executor().add_task(a, "test"));
+  s.run_until("08:02");  // arrived at 08:00:40, chatting: not interruptible until 08:10:40
+  ASSERT_EQ(s.final_state("A"), "acting");
+  ASSERT_TRUE(s.executor().cancel_task("A", "the visitor left").ok());
+  EXPECT_EQ(s.final_state("A"), "acting");
+  EXPECT_EQ(s.code_of("A", "cancel pending"), "cancel pending");
+  s.run_until("08:30");
+  EXPECT_EQ(s.final_state("A"), "cancelled");
+  EXPECT_EQ(event_time(s, "A", "cancelled"), s.at("08:10:40"));
+}
+
+// A task dropped when the day is full comes back when a cancellation frees its window, and is done.
+TEST(ExecutorCancel, ADroppedTaskComesBackWhenACancellationFreesItsWindow) {
+  Scenario s(kCalmWorld);
+  s.executor().start();
+  ASSERT_TRUE(s.executor().add_tasks({task("Big", "Office", s.at("09:00"), s.at("10:00"), minutes(50), 5),
+                                      task("Small", "Kitchen", s.at("09:00"), s.at("10:00"), minutes(30), 1)},
+                                     "test"));
+  s.run_until("08:30");
+  ASSERT_EQ(s.code_of("Small", "dropped for now"), "dropped for higher priority");
+  ASSERT_EQ(s.final_state("Small"), "queued");
+  ASSERT_TRUE(s.executor().cancel_task("Big", "meeting moved").ok());
+  s.run_until("11:00");
+  EXPECT_FALSE(s.reason_of("Small", "re-offered").empty());
+  EXPECT_EQ(s.final_state("Small"), "succeeded");
+  EXPECT_EQ(s.final_state("Big"), "cancelled");
+  EXPECT_TRUE(s.order_of("dropped").empty());
+}
+
+// A request the executor refuses is written to the event log, with what was wrong.
+TEST(ExecutorCancel, ARejectedRequestIsAnEvent) {
+  Scenario s(kCalmWorld);
+  s.executor().start();
+  EXPECT_FALSE(s.executor().add_task(task("X", "Cellar", s.at("09:00"), s.at("10:00"), minutes(5)), "api").ok());
+  const auto events = s.all_events();
+  ASSERT_FALSE(events.empty());
+  EXPECT_EQ(events.back().subject, store::Subject::kRequest);
+  EXPECT_EQ(events.back().about, "X");
+  EXPECT_EQ(events.back().code, "invalid request");
+  EXPECT_THAT(events.back().reason, HasSubstr("Cellar"));
 }
 
 }  // namespace

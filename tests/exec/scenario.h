@@ -29,7 +29,7 @@
 #include "rondo/sim/sim_robot.h"
 #include "rondo/sim/sim_world.h"
 #include "rondo/store/store.h"
-#include "rondo/store/task_events.h"
+#include "rondo/store/events.h"
 
 namespace rondo::exec::testing {
 
@@ -93,16 +93,17 @@ class Scenario {
   }
 
   Executor& executor() { return *executor_; }
+  sim::SimRobot& robot() { return *robot_; }
   SimClock& clock() { return clock_; }
   const map::TopoMap& map() const { return map_; }
   store::Store& store() { return store_; }
   Time at(const std::string& local_time) const { return zone_.parse_time("2026-11-23T" + local_time).value(); }
   void run_until(const std::string& local_time) { clock_.run_until(at(local_time)); }
 
-  std::vector<store::TaskEvent> events_of(const std::string& id) const {
-    return store::read_task_events_of(store_, id).value();
+  std::vector<store::Event> events_of(const std::string& id) const {
+    return store::read_events_of(store_, id).value();
   }
-  std::vector<store::TaskEvent> all_events() const { return store::read_task_events(store_).value(); }
+  std::vector<store::Event> all_events() const { return store::read_events(store_).value(); }
   std::string final_state(const std::string& id) const {
     auto it = executor_->tasks().find(id);
     return it == executor_->tasks().end() ? "unknown" : to_string(it->second.state);
@@ -113,6 +114,13 @@ class Scenario {
     for (const auto& e : events_of(id))
       if (e.event == state) reason = e.reason;
     return reason;
+  }
+  // The code of the task's last event named `event`; "" when there is none.
+  std::string code_of(const std::string& id, const std::string& event) const {
+    std::string code;
+    for (const auto& e : events_of(id))
+      if (e.event == event) code = e.code;
+    return code;
   }
   // The order in which tasks reached `state`, from the event log.
   std::vector<std::string> order_of(const std::string& state) const {

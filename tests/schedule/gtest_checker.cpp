@@ -80,7 +80,7 @@ TEST(Checker, AcceptsTheSolversScheduleAndRejectsEachBrokenRule) {
        "looks like 'green book'"},
       {"dropped without reason",
        [](Problem&, Schedule& s) {
-         s.dropped.push_back({s.entries.back().task, ""});
+         s.dropped.push_back({s.entries.back().task, "", DropCause::kDoesNotFit});
          s.objective -= s.entries.back().end - kT0;
          s.entries.pop_back();
        },

@@ -90,6 +90,18 @@ std::vector<Scenario> scenarios() {
     all.push_back(std::move(s));
   }
   {
+    // The same task offered again after an earlier drop may be dropped, but never preempts.
+    Scenario s{"a task offered again does not preempt an interruptible running task",
+               {base_problem(), {0}, RunningTask{"patrol", 2, true}, {0}},
+               TryScheduleOutcome::kSomeDropped,
+               {"urgent"},
+               {"cannot be reached from the robot's position at 10:20"},
+               ""};
+    s.request.problem.robot.time = kTen + minutes(20);
+    s.request.problem.tasks = {task("urgent", 1, 0, 10, 3, 5)};
+    all.push_back(std::move(s));
+  }
+  {
     Scenario s{"everything fits", {base_problem(), {1}}, TryScheduleOutcome::kAllScheduled, {}, {}, ""};
     s.request.problem.tasks = {task("old", 1, 0, 60, 5, 0), task("new", 2, 0, 60, 5, 0)};
     all.push_back(std::move(s));

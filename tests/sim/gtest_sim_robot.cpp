@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <utility>
@@ -24,7 +25,7 @@ class Recorder final : public exec::RobotListener {
   explicit Recorder(exec::Clock& clock) : clock_(clock) {}
   void on_edge_finished(const exec::EdgeAttempt& a) override {
     edges.push_back(a);
-    log("edge " + std::string(a.success ? "ok" : a.cancelled ? "cancelled" : "failed"));
+    log("edge " + std::string(a.succeeded() ? "ok" : exec::to_string(a.outcome)));
     if (then) std::exchange(then, nullptr)();
   }
   void on_action_finished(const exec::ActionResult& r) override {
@@ -34,6 +35,12 @@ class Recorder final : public exec::RobotListener {
   void on_interruptible_changed(bool interruptible) override {
     log(interruptible ? "interruptible" : "not interruptible");
   }
+  void on_observation(const exec::Observation& o) override {
+    observations.push_back(o);
+    log("saw " + o.where + (o.value > 0.5 ? " open" : " closed"));
+  }
+  void on_fault(const exec::RobotFault& f) override { log("fault " + f.message); }
+  void on_ready() override { log("ready"); }
   void log(const std::string& what) {
     events.push_back({clock_.now(), what});
     if (inside_call) ++calls_from_inside;
@@ -41,6 +48,7 @@ class Recorder final : public exec::RobotListener {
 
   std::vector<exec::EdgeAttempt> edges;
   std::vector<exec::ActionResult> actions;
+  std::vector<exec::Observation> observations;
   std::vector<std::pair<Time, std::string>> events;
   bool inside_call = false;
   int calls_from_inside = 0;
@@ -92,6 +100,113 @@ struct Fixture {
   }
 };
 
+TEST(SimRobot, ARouteDrivesItsCommittedEdgesAndStopsBeforeTheHorizon) {
+  Fixture f;
+  f.robot.drive({.edges = {edge(f.m, "Dock_Hall"), edge(f.m, "Hall_Office"), edge(f.m, "Office_Hall")},
+                 .committed = 2});
+  std::vector<bool> busy_in_callback;
+  f.rec.then = [&] {
+    busy_in_callback.push_back(f.robot.busy());
+    f.rec.then = [&] { busy_in_callback.push_back(f.robot.busy()); };
+  };
+  f.clock.run_until(kStart + hours(1));
+  ASSERT_EQ(f.rec.edges.size(), 2u);  // the horizon edge is not driven
+  EXPECT_EQ(f.rec.edges[0].edge, edge(f.m, "Dock_Hall"));
+  EXPECT_EQ(f.rec.edges[1].edge, edge(f.m, "Hall_Office"));
+  EXPECT_EQ(f.rec.edges[1].start, f.rec.edges[0].start + f.rec.edges[0].duration);
+  EXPECT_EQ(busy_in_callback, (std::vector<bool>{true, false}));  // busy until the last committed edge
+  EXPECT_EQ(f.robot.location(), node(f.m, "Office"));
+  EXPECT_FALSE(f.robot.busy());
+  EXPECT_THROW(f.robot.drive({.edges = {edge(f.m, "Office_Hall")}, .committed = 2}), std::logic_error);
+  EXPECT_THROW(f.robot.drive({.edges = {edge(f.m, "Office_Hall"), edge(f.m, "Dock_Hall")}, .committed = 1}),
+               std::logic_error);  // not consecutive
+}
+
+TEST(SimRobot, AFailedEdgeEndsTheDrive) {
+  Fixture f;
+  f.robot.drive({.edges = {edge(f.m, "Dock_Hall"), edge(f.m, "Hall_Office")}, .committed = 2});
+  f.clock.run_until(kStart + hours(1));
+  f.robot.drive({.edges = {edge(f.m, "Office_Hall"), edge(f.m, "Hall_Dock")}, .committed = 2});  // Office_Hall is closed
+  f.clock.run_until(kStart + hours(2));
+  ASSERT_EQ(f.rec.edges.size(), 3u);
+  EXPECT_EQ(f.rec.edges[2].outcome, exec::EdgeOutcome::kFailed);
+  EXPECT_EQ(f.robot.location(), node(f.m, "Office"));
+  EXPECT_FALSE(f.robot.busy());
+}
+
+TEST(SimRobot, TheDoorSensorSeesDoorsInRangeAsTheWorldHasThemAndMissesSome) {
+  Fixture f;
+  f.world.door_sensor = {.enabled = true, .range_m = 5.0, .miss_rate = 0.0};
+  SimRobot robot(f.clock, f.m, f.world, {.start = node(f.m, "Dock"), .dock = node(f.m, "Dock"), .seed = 3});
+  robot.set_listener(&f.rec);
+  robot.traverse(edge(f.m, "Dock_Hall"));  // Hall is an end of the door's edges: in range
+  f.clock.run_until(kStart + hours(1));
+  ASSERT_EQ(f.rec.observations.size(), 1u);
+  EXPECT_EQ(f.rec.observations[0].what, "door_open");
+  EXPECT_EQ(f.rec.observations[0].where, "kd");
+  EXPECT_EQ(f.rec.observations[0].value, 1.0);
+  EXPECT_EQ(f.rec.observations[0].when, f.rec.edges[0].start + f.rec.edges[0].duration);
+  // The observation comes before the edge's callback.
+  const auto saw = std::find_if(f.rec.events.begin(), f.rec.events.end(), [](const auto& e) { return e.second == "saw kd open"; });
+  const auto edge_done = std::find_if(f.rec.events.begin(), f.rec.events.end(), [](const auto& e) { return e.second == "edge ok"; });
+  EXPECT_LT(saw, edge_done);
+  robot.traverse(edge(f.m, "Hall_Office"));  // Office is 10 m from both ends of the door: out of range
+  f.clock.run_until(kStart + hours(2));
+  EXPECT_EQ(f.rec.observations.size(), 1u);
+
+  // A door the building has closed is seen closed.
+  ParametricSpec closed;
+  closed.effects.push_back({.name = "kitchen shut", .edges = {edge(f.m, "Hall_Kitchen"), edge(f.m, "Kitchen_Hall")},
+                            .closed = true});
+  SimWorld shut;
+  shut.edges = std::make_unique<ParametricWorld>(f.m, london(), closed);
+  shut.door_sensor = f.world.door_sensor;
+  Recorder rec(f.clock);
+  SimRobot other(f.clock, f.m, shut, {.start = node(f.m, "Dock"), .dock = node(f.m, "Dock"), .seed = 3});
+  other.set_listener(&rec);
+  other.traverse(edge(f.m, "Dock_Hall"));
+  f.clock.run_until(kStart + hours(3));
+  ASSERT_EQ(rec.observations.size(), 1u);
+  EXPECT_EQ(rec.observations[0].value, 0.0);
+
+  // A sensor that always misses sees nothing, and the other draws of the run are unchanged.
+  Fixture g;
+  g.world.door_sensor = {.enabled = true, .range_m = 5.0, .miss_rate = 1.0};
+  SimRobot blind(g.clock, g.m, g.world, {.start = node(g.m, "Dock"), .dock = node(g.m, "Dock"), .seed = 3});
+  blind.set_listener(&g.rec);
+  blind.traverse(edge(g.m, "Dock_Hall"));
+  g.clock.run_until(kStart + hours(1));
+  EXPECT_TRUE(g.rec.observations.empty());
+  ASSERT_EQ(g.rec.edges.size(), 1u);
+  EXPECT_EQ(g.rec.edges[0].duration, f.rec.edges[0].duration);
+}
+
+TEST(SimRobot, AFaultEndsTheRunningEdgeAsARobotFaultAndCommandsFailUntilReady) {
+  Fixture f;
+  f.traverse("Dock_Hall");
+  f.clock.run_until(kStart + seconds(5));
+  f.robot.inject_fault({.kind = exec::RobotFault::Kind::kConnectionLost, .message = "link down"});
+  f.clock.run_until(kStart + seconds(6));
+  ASSERT_EQ(f.rec.edges.size(), 1u);
+  EXPECT_EQ(f.rec.edges[0].outcome, exec::EdgeOutcome::kRobotFault);
+  EXPECT_EQ(f.rec.edges[0].duration, seconds(5));
+  EXPECT_EQ(f.robot.location(), node(f.m, "Dock"));
+  ASSERT_TRUE(f.robot.fault());
+  EXPECT_EQ(f.robot.fault()->message, "link down");
+  f.act("talk", minutes(1));
+  f.clock.run_until(kStart + seconds(7));
+  ASSERT_EQ(f.rec.actions.size(), 1u);
+  EXPECT_EQ(f.rec.actions[0].outcome, exec::ActionOutcome::kRobotFault);
+  f.robot.clear_fault();
+  f.clock.run_until(kStart + seconds(8));
+  EXPECT_FALSE(f.robot.fault());
+  EXPECT_EQ(f.rec.events.back().second, "ready");
+  EXPECT_EQ(f.rec.calls_from_inside, 0);
+  f.traverse("Dock_Hall");
+  f.clock.run_until(kStart + hours(1));
+  EXPECT_TRUE(f.rec.edges.back().succeeded());
+}
+
 TEST(SimRobot, AnEdgeIsAnsweredOnceLaterFromTheClock) {
   Fixture f;
   f.traverse("Dock_Hall");
@@ -102,7 +217,7 @@ TEST(SimRobot, AnEdgeIsAnsweredOnceLaterFromTheClock) {
   ASSERT_EQ(f.rec.edges.size(), 1u);
   EXPECT_EQ(f.rec.calls_from_inside, 0);
   const auto& a = f.rec.edges[0];
-  EXPECT_TRUE(a.success);
+  EXPECT_TRUE(a.succeeded());
   EXPECT_EQ(a.start, kStart);
   EXPECT_EQ(a.duration, seconds(52) + milliseconds(222));  // 10 m at 0.45 m/s + 30 s undocking
   EXPECT_EQ(f.rec.events[0].first, kStart + a.duration);
@@ -120,8 +235,8 @@ TEST(SimRobot, AFailedEdgeLeavesTheRobotWhereItStarted) {
   f.traverse("Office_Hall");  // closed
   f.clock.run_until(kStart + minutes(15));
   ASSERT_EQ(f.rec.edges.size(), 3u);
-  EXPECT_FALSE(f.rec.edges[2].success);
-  EXPECT_FALSE(f.rec.edges[2].cancelled);
+  EXPECT_FALSE(f.rec.edges[2].succeeded());
+  EXPECT_EQ(f.rec.edges[2].outcome, exec::EdgeOutcome::kFailed);
   EXPECT_EQ(f.rec.edges[2].duration, seconds(11) + milliseconds(111));  // half of 22.222 s
   EXPECT_EQ(f.robot.location(), node(f.m, "Office"));
   EXPECT_DOUBLE_EQ(f.robot.distance_m(), 20.0);  // the failed attempt counts nothing
@@ -138,8 +253,8 @@ TEST(SimRobot, CancelDeliversOneCancelledResultThroughTheClock) {
   EXPECT_TRUE(f.robot.busy());
   f.clock.run_until(kStart + hours(1));
   ASSERT_EQ(f.rec.edges.size(), 1u);  // the cancelled finish timer never fires
-  EXPECT_TRUE(f.rec.edges[0].cancelled);
-  EXPECT_FALSE(f.rec.edges[0].success);
+  EXPECT_EQ(f.rec.edges[0].outcome, exec::EdgeOutcome::kCancelled);
+  EXPECT_FALSE(f.rec.edges[0].succeeded());
   EXPECT_EQ(f.rec.edges[0].duration, seconds(5));
   EXPECT_EQ(f.rec.events[0].first, kStart + seconds(5));
   EXPECT_EQ(f.robot.location(), node(f.m, "Dock"));
@@ -218,7 +333,7 @@ TEST(SimRobot, AnEmptyBatteryFailsAtOnceUntilCharged) {
   robot.run_action(Action{"look", {}}, minutes(1));
   f.clock.run_until(kStart + minutes(2));
   ASSERT_EQ(f.rec.edges.size(), 1u);
-  EXPECT_FALSE(f.rec.edges[0].success);
+  EXPECT_FALSE(f.rec.edges[0].succeeded());
   EXPECT_EQ(f.rec.edges[0].duration, Duration{0});
   ASSERT_EQ(f.rec.actions.size(), 1u);
   EXPECT_EQ(f.rec.actions[0].outcome, exec::ActionOutcome::kFailed);
@@ -265,7 +380,7 @@ bool same(const std::vector<exec::EdgeAttempt>& a, const std::vector<exec::EdgeA
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (a[i].edge != b[i].edge || a[i].start != b[i].start || a[i].duration != b[i].duration ||
-        a[i].success != b[i].success) {
+        a[i].outcome != b[i].outcome) {
       return false;
     }
   }
@@ -309,7 +424,7 @@ RC_GTEST_PROP(SimRobot, KeepsTheRobotContractUnderRandomUse, ()) {
     for (; seen_edges < rec.edges.size(); ++seen_edges) {
       const auto& a = rec.edges[seen_edges];
       RC_ASSERT(m.from_index(a.edge) == expected_location);
-      if (a.success) expected_location = m.to_index(a.edge);
+      if (a.succeeded()) expected_location = m.to_index(a.edge);
     }
     RC_ASSERT(robot.location() == expected_location);
   }
@@ -317,7 +432,7 @@ RC_GTEST_PROP(SimRobot, KeepsTheRobotContractUnderRandomUse, ()) {
   RC_ASSERT(!robot.busy());
   RC_ASSERT(rec.edges.size() + rec.actions.size() == commands);
   RC_ASSERT(rec.calls_from_inside == 0);
-  for (const auto& a : rec.edges) RC_ASSERT(!(a.success && a.cancelled));
+  for (const auto& a : rec.edges) RC_ASSERT(a.outcome != exec::EdgeOutcome::kRobotFault);
 }
 
 }  // namespace

@@ -5,6 +5,9 @@
 #include <SQLiteCpp/Database.h>
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "rondo/store/store.h"
 #include "store/temp_db.h"
 
@@ -38,10 +41,45 @@ TEST(Migrations, FromEmptyToLatest) {
   ASSERT_TRUE(migrate(db, schema_migrations(), tmp.path()).ok());
   EXPECT_EQ(user_version(db), Store::latest_schema_version());
   EXPECT_EQ(db.execAndGet("PRAGMA application_id").getInt(), kApplicationId);
-  for (const char* table : {"tasks", "task_events", "traversals", "observations"}) {
+  for (const char* table : {"tasks", "events", "traversals", "observations", "robot_state", "meta"}) {
     EXPECT_TRUE(db.tableExists(table)) << table;
   }
-  EXPECT_EQ(db.execAndGet("SELECT \"table\" FROM pragma_foreign_key_list('task_events')").getString(), "tasks");
+  EXPECT_FALSE(db.tableExists("task_events"));
+  EXPECT_EQ(db.execAndGet("SELECT \"table\" FROM pragma_foreign_key_list('events')").getString(), "tasks");
+}
+
+// Version 1 -> 2: the task event log becomes the event log; every old event keeps its sequence
+// number, time, task, name and reason, as a task event without a code, and new events follow it.
+TEST(Migrations, Version1EventsBecomeTaskEventsOfTheEventLog) {
+  TempDb tmp;
+  {
+    auto db = raw_db(tmp);
+    ASSERT_TRUE(migrate(db, schema_migrations().first(1), tmp.path()).ok());
+    db.exec("INSERT INTO tasks VALUES ('t1', 'failed', '{}', 10, 30), ('t2', 'queued', '{}', 20, 20)");
+    db.exec("INSERT INTO task_events (time_ms, task_id, event, reason) VALUES (10, 't1', 'queued', 'added'), "
+            "(20, 't2', 'queued', 'added'), (30, 't1', 'failed', 'too late: ...')");
+  }
+  auto store = Store::open(tmp.path());
+  ASSERT_TRUE(store.ok()) << store.error().message;
+  SQLite::Database db(tmp.path(), SQLite::OPEN_READONLY);
+  SQLite::Statement q(db, "SELECT seq, time_ms, subject, task_id, event, code, reason FROM events ORDER BY seq");
+  std::vector<std::string> rows;
+  while (q.executeStep()) {
+    rows.push_back(q.getColumn(0).getString() + " " + q.getColumn(1).getString() + " " + q.getColumn(2).getString() +
+                   " " + q.getColumn(3).getString() + " " + q.getColumn(4).getString() + " [" +
+                   q.getColumn(5).getString() + "] " + q.getColumn(6).getString());
+  }
+  EXPECT_EQ(rows, (std::vector<std::string>{"1 10 task t1 queued [] added", "2 20 task t2 queued [] added",
+                                            "3 30 task t1 failed [] too late: ..."}));
+  EXPECT_EQ(db.execAndGet("SELECT source || '|' || COALESCE(progress_json, 'null') FROM tasks WHERE id = 't1'")
+                .getString(),
+            "|null");
+  // The sequence goes on after the migrated rows, and the log is still append-only.
+  SQLite::Database rw(tmp.path(), SQLite::OPEN_READWRITE);
+  rw.exec("INSERT INTO events (time_ms, subject, about, event) VALUES (40, 'robot', 'r', 'fault')");
+  EXPECT_EQ(rw.execAndGet("SELECT MAX(seq) FROM events").getInt(), 4);
+  EXPECT_THROW(rw.exec("DELETE FROM events"), SQLite::Exception);
+  EXPECT_THROW(rw.exec("INSERT INTO events (time_ms, subject, event) VALUES (1, 'task', 'x')"), SQLite::Exception);
 }
 
 // Every older version of the real schema opens and ends at the latest one.

@@ -36,7 +36,7 @@ TEST(StoreOpen, CreatesANewStoreInWalModeAtTheLatestVersion) {
   EXPECT_EQ(raw.execAndGet("PRAGMA journal_mode").getString(), "wal");
   EXPECT_EQ(raw.execAndGet("PRAGMA user_version").getInt(), Store::latest_schema_version());
   EXPECT_EQ(raw.execAndGet("PRAGMA application_id").getInt(), 0x726f6e64);
-  for (const char* table : {"tasks", "task_events", "traversals", "observations"}) {
+  for (const char* table : {"tasks", "events", "traversals", "observations", "robot_state", "meta"}) {
     EXPECT_TRUE(raw.tableExists(table)) << table;
   }
 }

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "rondo/store/task_events.h"
+#include "rondo/store/events.h"
 #include "store/child_process.h"
 #include "store/temp_db.h"
 
@@ -62,7 +62,7 @@ TEST_F(TaskTable, AnAcceptedTaskIsVisibleToAnotherConnectionAtOnce) {
 
 TEST_F(TaskTable, AddingWritesTheAcceptanceEvent) {
   ASSERT_TRUE(add_task(db(), sample("t1", 42), "from the web page").ok());
-  auto events = read_task_events_of(db(), "t1");
+  auto events = read_events_of(db(), "t1");
   ASSERT_TRUE(events.ok());
   ASSERT_EQ(events->size(), 1u);
   EXPECT_EQ((*events)[0].time, at(42));
@@ -79,7 +79,7 @@ TEST_F(TaskTable, RefusesADuplicateIdAndKeepsTheFirst) {
   EXPECT_EQ(s.error().code, ErrorCode::kInvalidInput);
   EXPECT_NE(s.error().message.find("'t1' is already stored"), std::string::npos) << s.error().message;
   EXPECT_EQ(get_task(db(), "t1")->state, "queued");
-  EXPECT_EQ(read_task_events_of(db(), "t1")->size(), 1u);  // no event for the refused one
+  EXPECT_EQ(read_events_of(db(), "t1")->size(), 1u);  // no event for the refused one
 }
 
 TEST_F(TaskTable, StoresABatchWhole) {
@@ -89,7 +89,7 @@ TEST_F(TaskTable, StoresABatchWhole) {
   ASSERT_TRUE(all.ok());
   EXPECT_EQ(*all, batch);
   for (const auto& t : batch) {
-    auto events = read_task_events_of(db(), t.id);
+    auto events = read_events_of(db(), t.id);
     ASSERT_EQ(events->size(), 1u);
     EXPECT_EQ((*events)[0].reason, "routine");
   }
@@ -105,8 +105,8 @@ TEST_F(TaskTable, StoresNoneOfABatchWithAStoredId) {
   auto all = list_tasks(db());
   ASSERT_EQ(all->size(), 1u);  // "a", before the refused one, was rolled back too
   EXPECT_EQ((*all)[0], sample("b"));
-  EXPECT_TRUE(read_task_events_of(db(), "a")->empty());
-  EXPECT_EQ(read_task_events_of(db(), "b")->size(), 1u);
+  EXPECT_TRUE(read_events_of(db(), "a")->empty());
+  EXPECT_EQ(read_events_of(db(), "b")->size(), 1u);
 }
 
 TEST_F(TaskTable, AnEmptyBatchStoresNothing) {
@@ -135,7 +135,7 @@ TEST_F(TaskTable, StateChangesUpdateTheTaskAndAppendEvents) {
   EXPECT_EQ(r->state, "failed");
   EXPECT_EQ(r->created, at(100));
   EXPECT_EQ(r->updated, at(180));
-  auto events = read_task_events_of(db(), "t1");
+  auto events = read_events_of(db(), "t1");
   ASSERT_TRUE(events.ok());
   ASSERT_EQ(events->size(), 3u);
   EXPECT_EQ((*events)[1].event, "navigating");
@@ -148,7 +148,7 @@ TEST_F(TaskTable, StateChangeOfAnUnknownTaskIsNotFoundAndLogsNothing) {
   Status s = set_task_state(db(), "ghost", "failed", at(1), "");
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.error().code, ErrorCode::kNotFound);
-  EXPECT_TRUE(read_task_events(db())->empty());
+  EXPECT_TRUE(read_events(db())->empty());
 }
 
 TEST_F(TaskTable, GetOfAnUnknownTaskIsNotFound) {
@@ -195,7 +195,7 @@ TEST(TaskTableDurability, AnAcceptedTaskSurvivesTheProcessDyingRightAfter) {
   auto r = get_task(*db, "survivor");
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_EQ(*r, sample("survivor"));
-  EXPECT_EQ(read_task_events_of(*db, "survivor")->size(), 1u);
+  EXPECT_EQ(read_events_of(*db, "survivor")->size(), 1u);
 }
 
 TEST(TaskTableDurability, SurvivesAnExitWithoutClosing) {

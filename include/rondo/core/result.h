@@ -20,6 +20,7 @@ namespace rondo {
 enum class ErrorCode {
   kInvalidInput,  // malformed or meaningless input: a file, a field, a request
   kNotFound,      // a named thing (file, node, task) does not exist
+  kConflict,      // the request contradicts the current state, e.g. cancelling a finished task
   kIo,            // the operating system refused a read or write
   kStorage,       // the database failed (locked, corrupt, full)
   kUnsupported,   // a valid request this build cannot do

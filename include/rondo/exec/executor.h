@@ -42,7 +42,9 @@
 #include "rondo/core/timezone.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/map_travel.h"
+#include "rondo/exec/outcome.h"
 #include "rondo/exec/robot.h"
+#include "rondo/exec/task_book.h"
 #include "rondo/learn/edge_models.h"
 #include "rondo/map/topo_map.h"
 #include "rondo/plan/learned_edge_models.h"
@@ -89,17 +91,6 @@ struct NavigationRecord {
   bool arrived = false;
 };
 
-// What the executor knows of one task.
-struct TaskRecord {
-  Task task;
-  TaskState state = TaskState::kQueued;
-  std::string reason;    // of the last transition
-  std::string source;    // who added it: "routine", "request", "api", "preempted <id>"
-  Time added{};
-  std::optional<Time> planned_start{}, planned_end{};  // from the latest schedule
-  std::optional<Time> started{}, ended{};              // left for it .. final state
-};
-
 class Executor final : public RobotListener {
  public:
   // Precondition: `dock` is a node of `map`; clock, robot, map and store outlive the executor.
@@ -114,35 +105,44 @@ class Executor final : public RobotListener {
   // id the store already holds), kStorage when the store cannot write; either way nothing is added.
   Status add_tasks(std::vector<Task> tasks, std::string_view source);
   Status add_task(Task task, std::string_view source) { return add_tasks({std::move(task)}, source); }
+  // Cancels a task: a queued (or waiting, or dropped-for-now) one ends `cancelled` at once; a
+  // running one is stopped through the robot's cancel() when it is interruptible now, else at its
+  // next interruptible moment (a `cancel pending` event says so). kNotFound for an unknown task,
+  // kConflict for one already in a final state.
+  Status cancel_task(const TaskId& id, const std::string& reason);
   // Routines become tasks every day at local midnight (and at start() for the current day).
   void add_routines(std::vector<Routine> routines);
   // Posts the first events: today's routine tasks, the nightly refit, and the first dispatch.
   void start();
 
-  const std::map<TaskId, TaskRecord>& tasks() const { return tasks_; }
-  const std::vector<TaskId>& task_order() const { return order_; }  // in the order added
+  const std::map<TaskId, TaskRecord>& tasks() const { return book_.records(); }
+  const std::vector<TaskId>& task_order() const { return book_.order(); }  // in the order added
+  const TaskBook& book() const { return book_; }
   const ExecutorStats& stats() const { return stats_; }
   const std::vector<NavigationRecord>& navigations() const { return navigations_; }
   // Store writes that failed (the run goes on; the caller reports them).
-  const std::vector<std::string>& write_errors() const { return write_errors_; }
+  const std::vector<std::string>& write_errors() const { return book_.write_errors(); }
   const plan::LearnedEdgeModels& models() const { return *models_; }
 
   // RobotListener
   void on_edge_finished(const EdgeAttempt& attempt) override;
   void on_action_finished(const ActionResult& result) override;
   void on_interruptible_changed(bool interruptible) override;
+  void on_observation(const Observation& observation) override;
+  void on_fault(const RobotFault& fault) override;
+  void on_ready() override;
+  bool paused() const { return fault_.has_value(); }
 
  private:
   enum class Phase { kIdle, kWaiting, kNavigating, kActing, kDocking };
-  enum class CancelIntent { kNone, kNavigationOverrun, kActionOverrun, kPreempt, kLeaveDockTrip };
+  enum class CancelIntent { kNone, kNavigationOverrun, kActionOverrun, kPreempt, kCancel, kLeaveDockTrip };
 
   // bookkeeping (executor.cpp)
   Status accept(const Task& task);
   // Validates, stores (all or nothing) and records tasks; returns the standard ones (on-demand ones
   // are queued).
   Result<std::vector<TaskId>> insert_tasks(std::vector<Task> tasks, std::string_view source);
-  void transition(const TaskId& id, TaskState state, const std::string& reason);
-  void note(const TaskId& id, const std::string& event, const std::string& reason);
+  void log_battery();
   bool interruptible_now() const;
   std::string fmt_time(Time t) const;
 
@@ -157,11 +157,12 @@ class Executor final : public RobotListener {
   void start_task(const TaskId& id);
   void begin_navigation(map::NodeIndex target, Duration expected);
   void step_navigation();
-  void abandon_navigation(const std::string& reason);
+  void abandon_navigation(Outcome outcome, const std::string& reason);
+  std::vector<map::EdgeIndex> expected_route(const plan::Policy& policy, map::NodeIndex from) const;
   void arrived();
   void start_actions();
   void run_next_action();
-  void finish_task(TaskState state, const std::string& reason);
+  void finish_task(TaskState state, Outcome outcome, const std::string& reason);
   // Starts the navigation or action monitor: it fires past factor x expected + slack.
   TimerId arm_monitor(CancelIntent why, const char* what, const char* of, Duration expected, double factor,
                       Duration slack);
@@ -169,7 +170,13 @@ class Executor final : public RobotListener {
   void handle_cancelled();
   void go_to_dock();
   void clear_timers();
-  void preempt_for(const std::string& reason, std::vector<TaskId> then_schedule);
+  void preempt_for(Outcome outcome, const std::string& reason, std::vector<TaskId> then_schedule);
+  void stop_current(CancelIntent intent, Outcome outcome, const std::string& reason);
+  void requeue_preempted(const TaskId& id, Outcome outcome, const std::string& reason);
+  // The deferred tasks that can still meet their windows (the others end dropped, for good).
+  std::vector<TaskId> reoffer_deferred();
+  void suspend_monitors();
+  void resume_monitors();
 
   // daily (executor_daily.cpp)
   void create_routine_tasks(std::chrono::year_month_day day);
@@ -189,12 +196,12 @@ class Executor final : public RobotListener {
   schedule::DefaultScheduler solver_;
   std::mt19937_64 rng_;
 
-  std::map<TaskId, TaskRecord> tasks_;
-  std::vector<TaskId> order_;
+  TaskBook book_;
   std::vector<Routine> routines_;
   std::vector<TaskId> schedule_;        // standard tasks to run, in planned order
   std::deque<TaskId> on_demand_;        // on-demand tasks waiting for the running one to end
-  std::map<TaskId, int> requeues_;      // how often a task came back after preemption
+  std::vector<TaskId> deferred_;        // dropped for now: offered again at every reschedule
+  std::optional<std::string> cancel_pending_;  // cancel the running task at its next interruptible moment
 
   Phase phase_ = Phase::kIdle;
   std::optional<TaskId> current_;       // the task being waited for, navigated to or acted on
@@ -207,13 +214,21 @@ class Executor final : public RobotListener {
   Time wait_start_{};
   bool robot_interruptible_ = true;
   CancelIntent cancel_intent_ = CancelIntent::kNone;
+  Outcome cancel_outcome_ = Outcome::kNone;
   std::string cancel_reason_;
   std::optional<std::pair<CancelIntent, std::string>> overrun_pending_;  // monitor fired while not interruptible
   std::vector<TaskId> after_cancel_schedule_;  // new tasks to schedule once the preempted task is out
   TimerId wait_timer_ = 0, nav_monitor_ = 0, action_monitor_ = 0;
+  struct MonitorDue {
+    Time at{};                     // when the armed monitor fires
+    std::string reason;            // what it says then
+    std::optional<Duration> left;  // set while suspended: the time it still had
+  };
+  MonitorDue nav_due_, action_due_;   // when each armed monitor fires, and what it says
+  std::optional<RobotFault> fault_;   // dispatch and monitors stand still while set
+  std::optional<Time> fault_since_;
   ExecutorStats stats_;
   std::vector<NavigationRecord> navigations_;
-  std::vector<std::string> write_errors_;
   bool started_ = false;
 };
 

@@ -36,9 +36,18 @@ struct ScheduledTask {
   Duration waiting{0};  // start - arrival
 };
 
+// Why a task was left out of a schedule.
+enum class DropCause {
+  kDoesNotFit,      // no room for it beside the tasks already accepted
+  kUnreachable,     // its window cannot be reached from where and when the robot is
+  kHigherPriority,  // it does not fit beside higher-priority tasks
+  kLowestPriority,  // the lowest priority of the new tasks that did not fit
+};
+
 struct DroppedTask {
   std::size_t task = 0;
   std::string reason{};  // for a person, e.g. "dropped for higher-priority tasks A, B"
+  DropCause cause = DropCause::kDoesNotFit;
 };
 
 struct Schedule {

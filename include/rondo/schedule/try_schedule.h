@@ -41,6 +41,9 @@ struct TryScheduleRequest {
   Problem problem;
   std::vector<std::size_t> new_tasks;  // indices into problem.tasks
   std::optional<RunningTask> running{};
+  // New tasks that may be dropped but never preempt the running task, whatever their priority
+  // (tasks offered again after an earlier drop).
+  std::vector<std::size_t> cannot_preempt{};
   DropPolicy policy = DropPolicy::kPaperThenRestore;
 };
 

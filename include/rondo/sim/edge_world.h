@@ -11,6 +11,8 @@
 // The sample depends only on the world's state, the arguments and the draws from `rng`.
 #pragma once
 
+#include <optional>
+
 #include "rondo/core/time.h"
 #include "rondo/map/topo_map.h"
 #include "rondo/sim/rng.h"
@@ -26,6 +28,9 @@ class EdgeWorld {
  public:
   virtual ~EdgeWorld() = default;
   virtual EdgeSample sample_edge(map::EdgeIndex edge, Time start, Rng& rng) = 0;
+  // Whether the building has the edge closed at `t` (a door shut, a corridor blocked), when the
+  // world knows: what a sensor sees. Draws nothing and changes nothing.
+  virtual std::optional<bool> closed_at(map::EdgeIndex /*edge*/, Time /*t*/) const { return std::nullopt; }
 };
 
 }  // namespace rondo::sim

@@ -94,6 +94,7 @@ class ParametricWorld final : public EdgeWorld {
   ParametricWorld(const map::TopoMap& map, TimeZone zone, ParametricSpec spec);
 
   EdgeSample sample_edge(map::EdgeIndex edge, Time start, Rng& rng) override;
+  std::optional<bool> closed_at(map::EdgeIndex edge, Time t) const override;
   // Advances the edge's burst state to `start` (drawing from rng) and returns what applies.
   EdgeConditions conditions(map::EdgeIndex edge, Time start, Rng& rng);
 
@@ -106,6 +107,7 @@ class ParametricWorld final : public EdgeWorld {
     Time last{};
   };
   bool advance_burst(map::EdgeIndex edge, Time t, Rng& rng);
+  bool active(const EdgeEffect& effect, Time t) const;
 
   TimeZone zone_;
   ParametricSpec spec_;

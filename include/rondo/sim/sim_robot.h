@@ -8,17 +8,27 @@
 //   robot.traverse(edge);          // on_edge_finished arrives later, from the clock
 //   clock.run_until(start + days(7));
 //
-// Contract (exec/robot.h, all kept): exactly one callback per traverse()/run_action(), always
-// posted on the clock, never from inside the call — also after cancel(), which delivers the
-// cancelled result at clock.now() and forgets the pending finish. busy() stays true until that
-// callback is delivered (it is false inside the callback, so the listener may start the next
-// thing). A failed or cancelled edge leaves the robot where it started. An action with a
-// non-interruptible span posts on_interruptible_changed(false) at its start and (true) when the
-// span ends, or before the cancelled result when cancelled during the span.
+// Contract (exec/robot.h, all kept): exactly one callback per committed edge and per
+// run_action(), always posted on the clock, never from inside the call — also after cancel(),
+// which delivers the cancelled result at clock.now() and forgets the pending finish. busy() stays
+// true until the last callback is delivered (it is false inside the callback, so the listener may
+// start the next thing). The robot drives a route's committed edges one after the other and
+// ignores its horizon. A failed or cancelled edge leaves the robot where it started and ends the
+// drive. An action with a non-interruptible span posts on_interruptible_changed(false) at its
+// start and (true) when the span ends, or before the cancelled result when cancelled during the
+// span.
+// Door sensor (SimWorld::door_sensor): after every edge attempt, before its callback, the robot
+// reports an observation "door_open" (1 open, 0 closed) of each door within range that it does
+// not miss, from a random stream of its own (so the run's other draws are the same with or without
+// it).
+// Faults, for tests and demonstrations: inject_fault() ends a running edge or action with the
+// outcome kRobotFault and reports the fault; clear_fault() reports the robot ready. While in fault,
+// drive() and run_action() end at once with kRobotFault.
 // Figures: distance_m() counts the length of successfully crossed edges only (a failed or
 // cancelled attempt ends where it began and counts 0 m). charging_time() is the time spent idle
-// at the dock. An empty battery fails every traverse() and run_action() at once (duration 0).
-// Misuse (traverse() while busy, an edge that does not leave location()) throws std::logic_error.
+// at the dock. An empty battery fails every edge and run_action() at once (duration 0).
+// Misuse (drive() while busy, a route that does not leave location() or is not consecutive)
+// throws std::logic_error.
 // The clock, map and world must outlive the robot; the destructor cancels its pending events.
 #pragma once
 
@@ -27,6 +37,8 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "rondo/exec/clock.h"
 #include "rondo/exec/robot.h"
@@ -50,19 +62,27 @@ class SimRobot final : public exec::Robot {
   SimRobot& operator=(const SimRobot&) = delete;
 
   void set_listener(exec::RobotListener* listener) override { listener_ = listener; }
+  Status activate() override { return {}; }  // a simulated robot is always there
+  void deactivate() override { cancel(); }
   map::NodeIndex location() const override { return location_; }
+  std::optional<map::Pose> position() const override { return map_.node(location_).pose; }
   bool busy() const override { return job_.has_value(); }
-  void traverse(map::EdgeIndex edge) override;
+  void drive(const exec::Route& route) override;
   void run_action(const Action& action, Duration expected) override;
   void cancel() override;
   double battery() const override;
   bool charging() const override;
+  std::optional<exec::RobotFault> fault() const override { return fault_; }
+
+  void inject_fault(exec::RobotFault fault);
+  void clear_fault();
 
   double distance_m() const { return distance_m_; }
   Duration charging_time() const;
 
  private:
-  // What the robot is doing: one edge attempt or one action, from traverse()/run_action() until
+  enum class End { kNatural, kCancelled, kFault };
+  // What the robot is doing: one edge attempt or one action, from drive()/run_action() until
   // its callback is delivered.
   struct Job {
     bool is_edge = true;
@@ -73,8 +93,8 @@ class SimRobot final : public exec::Robot {
     Duration duration{0};
     std::uint64_t finish_post = 0;
     std::uint64_t interruptible_post = 0;  // 0 when no end of a non-interruptible span is pending
-    bool cancelled = false;
-    std::string message{};  // why an action failed
+    End end = End::kNatural;
+    std::string message{};  // why it failed
   };
 
   // Schedules `callback` on the clock and remembers it until it runs, so that it can be cancelled
@@ -82,21 +102,28 @@ class SimRobot final : public exec::Robot {
   std::uint64_t post(Time at, std::function<void()> callback);
   void unpost(std::uint64_t key);
   void start(Job job);
+  void start_edge(map::EdgeIndex edge);
+  void stop_job(End end, std::string message);  // cancel() and inject_fault()
 
   BatteryModel::Mode mode() const;
   void settle_battery();  // accounts the time since the last change, before the mode changes
   void finish();          // the job's end: update state, then deliver the callback
   void deliver(const Job& job);
   void notify_interruptible(bool interruptible);
+  void sense_doors();
 
   exec::Clock& clock_;
   const map::TopoMap& map_;
   SimWorld& world_;
   SimRobotOptions options_;
   Rng rng_;
+  Rng sensor_rng_;
   exec::RobotListener* listener_ = nullptr;
   map::NodeIndex location_;
   std::optional<Job> job_;
+  std::vector<map::EdgeIndex> route_;  // committed edges still to drive after the current one
+  std::optional<exec::RobotFault> fault_;
+  std::vector<std::vector<std::pair<std::string, map::EdgeIndex>>> doors_near_;  // per node: door, one edge
   double battery_;
   Time battery_since_;
   Duration charging_time_{0};

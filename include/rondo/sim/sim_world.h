@@ -24,10 +24,21 @@
 
 namespace rondo::sim {
 
+// The robot's door sensor: after every edge attempt it looks at the doors within `range_m` of the
+// node it is at, and sees each open or closed as the world has it, except that it misses a door
+// with probability `miss_rate`. Off unless the world file has `door_sensor`.
+struct DoorSensor {
+  bool enabled = false;
+  double range_m = 3.0;
+  double miss_rate = 0.1;
+  bool operator==(const DoorSensor&) const = default;
+};
+
 struct SimWorld {
   std::unique_ptr<EdgeWorld> edges;
   ActionModel actions;
   BatteryModel battery;
+  DoorSensor door_sensor;
 };
 
 Result<SimWorld> load_world(const std::filesystem::path& file, const map::TopoMap& map, const TimeZone& zone);

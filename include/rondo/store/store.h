@@ -1,6 +1,6 @@
 // The rondo database: one SQLite file (WAL mode) holding tasks, the task event log, the traversal
 // log and observations. Opening a store sets the connection up and migrates the schema to the
-// version this build knows; the table functions (task_table.h, task_events.h, traversal_log.h,
+// version this build knows; the table functions (task_table.h, events.h, traversal_log.h,
 // observations.h) take the open Store.
 //
 //   Result<store::Store> db = store::Store::open("run/rondo.db");

@@ -1,6 +1,8 @@
 // The tasks the executive has accepted, each with its current state. A task is stored as the JSON
 // text its codec writes (rondo::Json), so the store does not change when Task gains fields; every
-// state change also appends to the task event log (task_events.h) in the same transaction.
+// state change also appends to the event log (events.h) in the same transaction. A task's
+// progress (how far a restartable task got: the actions done, what is on board) is a JSON value
+// that the executor owns.
 //
 //   TaskRecord r{.id = "t1", .task = task_json, .state = "queued", .created = now, .updated = now};
 //   if (Status s = add_task(db, r); !s) return s.error();   // durable once this returns
@@ -26,6 +28,8 @@ struct TaskRecord {
   std::string state;  // the life-cycle state, e.g. "queued", "navigating", "succeeded"
   Time created;       // when the task was accepted
   Time updated;       // the last state change
+  std::string source{};            // who added it: "routine", "request", "api", ...
+  Json progress = Json(nullptr);   // the executor's record of what is done; null before anything is
 
   bool operator==(const TaskRecord&) const = default;
 };
@@ -34,15 +38,20 @@ struct TaskRecord {
 // `reason`) in one transaction, committed (synchronous=FULL: on disk) before this returns, so a
 // crash right after never loses it. Errors: kInvalidInput (the id is already stored, or it is
 // empty), kStorage.
-Status add_task(Store& store, const TaskRecord& task, std::string_view reason = "accepted");
+Status add_task(Store& store, const TaskRecord& task, std::string_view reason = "accepted", std::string_view code = "");
 
 // Accepts several tasks at once, all or nothing: one transaction, one sync. If any id is empty,
 // already stored or repeated in `tasks`, nothing is stored. Errors as add_task's.
-Status add_tasks(Store& store, std::span<const TaskRecord> tasks, std::string_view reason = "accepted");
+Status add_tasks(Store& store, std::span<const TaskRecord> tasks, std::string_view reason = "accepted",
+                 std::string_view code = "");
 
-// Moves task `id` to `state` at time `at` and appends the event (at, id, state, reason), in one
-// transaction. Errors: kNotFound (no such task), kStorage.
-Status set_task_state(Store& store, std::string_view id, std::string_view state, Time at, std::string_view reason);
+// Moves task `id` to `state` at time `at` and appends the event (at, id, state, code, reason), in
+// one transaction. Errors: kNotFound (no such task), kStorage.
+Status set_task_state(Store& store, std::string_view id, std::string_view state, Time at, std::string_view reason,
+                      std::string_view code = "");
+
+// Replaces task `id`'s progress. Errors: kNotFound (no such task), kStorage.
+Status set_task_progress(Store& store, std::string_view id, const Json& progress);
 
 // Errors: kNotFound (no such task), kStorage (including stored JSON that no longer parses).
 Result<TaskRecord> get_task(const Store& store, std::string_view id);

@@ -1,0 +1,87 @@
+// The task book: every task the executor knows, and the one place that changes a task's state.
+// Each transition and each other event is written to the store (the task's row and the event log,
+// with its outcome code and reason) before the executor goes on; a failed write is kept for the
+// report and the run goes on (the store is the record, not the control). The book also counts the
+// events that are not final outcomes (preemptions, drops for now, re-offers, faults), for the
+// report.
+//
+//   TaskBook book(store, clock);
+//   Result<std::vector<TaskId>> ids = book.add(tasks, "api");        // stored all or nothing
+//   book.transition("t1", TaskState::kFailed, Outcome::kTooLate, "too late: ...");
+//   book.note("t1", "scheduled", Outcome::kScheduled, "planned start 09:10 (new tasks)");
+//   book.note_robot("fault", Outcome::kRobotFault, "lost connection");
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rondo/core/result.h"
+#include "rondo/core/task.h"
+#include "rondo/exec/clock.h"
+#include "rondo/exec/outcome.h"
+#include "rondo/store/events.h"
+#include "rondo/store/store.h"
+
+namespace rondo::exec {
+
+// What the executor knows of one task.
+struct TaskRecord {
+  Task task;
+  TaskState state = TaskState::kQueued;
+  Outcome outcome = Outcome::kAdded;  // the code of the last transition
+  std::string reason;                 // of the last transition
+  std::string source;                 // who added it: "routine", "request", "api", ...
+  Time added{};
+  std::optional<Time> planned_start{}, planned_end{};  // from the latest schedule
+  std::optional<Time> started{}, ended{};              // left for it .. final state
+  // Dropped by the last schedule but not given up: offered again at every reschedule while its
+  // window can still be met (the outcome and reason of that drop are kept for the final one).
+  std::optional<std::pair<Outcome, std::string>> dropped_for_now{};
+};
+
+class TaskBook {
+ public:
+  // Precondition: store and clock outlive the book.
+  TaskBook(store::Store& store, const Clock& clock) : store_(store), clock_(clock) {}
+
+  // Stores the tasks, all or nothing, then records them as queued. kInvalidInput for an empty or
+  // repeated id or one already in the book or the store; kStorage when the store cannot write.
+  Status add(std::vector<Task> tasks, std::string_view source);
+
+  bool contains(const TaskId& id) const { return records_.contains(id); }
+  const TaskRecord& at(const TaskId& id) const { return records_.at(id); }
+  TaskRecord& at(const TaskId& id) { return records_.at(id); }
+  const std::map<TaskId, TaskRecord>& records() const { return records_; }
+  const std::vector<TaskId>& order() const { return order_; }  // in the order added
+
+  // Moves the task to `state`, stores the change and its event.
+  void transition(const TaskId& id, TaskState state, Outcome outcome, const std::string& reason);
+  // An event of a task that is not a change of its state.
+  void note(const TaskId& id, const std::string& event, Outcome outcome, const std::string& reason);
+  // Events about the robot, a request (`about`: its id) or the schedule.
+  void note_robot(const std::string& event, Outcome outcome, const std::string& reason);
+  void note_request(const std::string& about, const std::string& event, Outcome outcome, const std::string& reason);
+
+  // How many events were written that are not final states, by event name and code (for the
+  // report): {"preempted": {kPreemptedOnDemand: 3}, "dropped for now": {...}, "fault": {...}}.
+  const std::map<std::string, std::map<Outcome, int>>& event_counts() const { return event_counts_; }
+  // Store writes that failed (the run goes on; the caller reports them).
+  const std::vector<std::string>& write_errors() const { return write_errors_; }
+  void write_error(std::string message) { write_errors_.push_back(std::move(message)); }
+  store::Store& store() { return store_; }
+
+ private:
+  void append(store::Event event);
+
+  store::Store& store_;
+  const Clock& clock_;
+  std::map<TaskId, TaskRecord> records_;
+  std::vector<TaskId> order_;
+  std::map<std::string, std::map<Outcome, int>> event_counts_;
+  std::vector<std::string> write_errors_;
+};
+
+}  // namespace rondo::exec

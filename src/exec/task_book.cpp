@@ -1,0 +1,88 @@
+#include "rondo/exec/task_book.h"
+
+#include <fmt/format.h>
+
+#include <set>
+#include <utility>
+
+#include "rondo/core/task_codec.h"
+#include "rondo/store/task_table.h"
+
+namespace rondo::exec {
+
+Status TaskBook::add(std::vector<Task> tasks, std::string_view source) {
+  std::set<TaskId> ids;
+  for (const Task& t : tasks) {
+    if (t.id.empty()) return Error::invalid("a task needs an id");
+    if (records_.contains(t.id)) return Error::invalid(fmt::format("task {}: the id is already taken", t.id));
+    if (!ids.insert(t.id).second) return Error::invalid(fmt::format("task {}: the id appears twice", t.id));
+  }
+  // All or nothing: a batch the store refuses (or cannot write) leaves no task behind, in the store
+  // or in memory, so the caller can send it again.
+  const Time now = clock_.now();
+  const std::string reason = fmt::format("added by {}", source);
+  std::vector<store::TaskRecord> rows;
+  rows.reserve(tasks.size());
+  for (const Task& t : tasks) {
+    rows.push_back({.id = t.id,
+                    .task = encode(t),
+                    .state = to_string(TaskState::kQueued),
+                    .created = now,
+                    .updated = now,
+                    .source = std::string(source)});
+  }
+  RONDO_RETURN_IF_ERROR(store::add_tasks(store_, rows, reason, to_string(Outcome::kAdded)));
+  for (Task& t : tasks) {
+    const TaskId id = t.id;
+    records_.emplace(id, TaskRecord{.task = std::move(t), .state = TaskState::kQueued, .outcome = Outcome::kAdded,
+                                    .reason = reason, .source = std::string(source), .added = now});
+    order_.push_back(id);
+  }
+  return {};
+}
+
+void TaskBook::transition(const TaskId& id, TaskState state, Outcome outcome, const std::string& reason) {
+  TaskRecord& r = records_.at(id);
+  r.state = state;
+  r.outcome = outcome;
+  r.reason = reason;
+  if (is_final(state)) {
+    r.ended = clock_.now();
+    r.dropped_for_now.reset();
+  } else {
+    ++event_counts_[to_string(state)][outcome];
+  }
+  // The store is the record of what happened: a failed write is reported, the run goes on.
+  if (auto ok = store::set_task_state(store_, id, to_string(state), clock_.now(), reason, to_string(outcome)); !ok)
+    write_errors_.push_back(ok.error().message);
+}
+
+void TaskBook::note(const TaskId& id, const std::string& event, Outcome outcome, const std::string& reason) {
+  append({.time = clock_.now(), .task_id = id, .event = event, .code = std::string(to_string(outcome)), .reason = reason});
+}
+
+void TaskBook::note_robot(const std::string& event, Outcome outcome, const std::string& reason) {
+  append({.time = clock_.now(),
+          .subject = store::Subject::kRobot,
+          .about = "robot",
+          .event = event,
+          .code = std::string(to_string(outcome)),
+          .reason = reason});
+}
+
+void TaskBook::note_request(const std::string& about, const std::string& event, Outcome outcome,
+                            const std::string& reason) {
+  append({.time = clock_.now(),
+          .subject = store::Subject::kRequest,
+          .about = about,
+          .event = event,
+          .code = std::string(to_string(outcome)),
+          .reason = reason});
+}
+
+void TaskBook::append(store::Event event) {
+  if (auto code = parse_outcome(event.code)) ++event_counts_[event.event][*code];
+  if (auto ok = store::append_event(store_, event); !ok) write_errors_.push_back(ok.error().message);
+}
+
+}  // namespace rondo::exec
