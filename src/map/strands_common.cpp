@@ -55,6 +55,11 @@ void complete_strands_edges(std::vector<Edge>& edges) {
   }
 }
 
+Result<std::string> name_value(const Field& f) {
+  if (f.json().is_number_integer() || f.json().is_number_unsigned()) return f.json().dump();
+  return f.as_string();
+}
+
 std::string name_from_source(const std::string& source) {
   return replace_invalid_utf8(std::filesystem::path(source).stem().string());
 }

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "rondo/core/document.h"
+#include "rondo/core/result.h"
 #include "rondo/map/topo_map.h"
 
 namespace rondo::map {
@@ -17,6 +19,10 @@ double yaw_from_quaternion(double x, double y, double z, double w);
 // is taken by another edge; and gives door edges (action_kind kDoor) without a door their
 // door_id_between(from, to).
 void complete_strands_edges(std::vector<Edge>& edges);
+
+// A node name or edge id: text, or an integer (an unquoted YAML name such as 12 reads as a number;
+// STRANDS and tmap2 names are text, so it is taken as its digits).
+Result<std::string> name_value(const Field& f);
 
 // The map name of a .tmap file: the stem of its path ("maps/g4s_y2.tmap" gives "g4s_y2").
 std::string name_from_source(const std::string& source);

@@ -9,12 +9,6 @@
 namespace rondo::map {
 namespace {
 
-// STRANDS names are text, but an unquoted YAML name such as 12 reads as a number: accept integers.
-Result<std::string> as_name(const Field& f) {
-  if (f.json().is_number_integer() || f.json().is_number_unsigned()) return f.json().dump();
-  return f.as_string();
-}
-
 Result<double> number_or(const Field& parent, std::string_view key, double fallback) {
   auto f = parent.optional(key);
   if (!f) return fallback;
@@ -75,13 +69,13 @@ Result<Edge> decode_edge(const Field& f, const std::string& from) {
   Edge edge;
   edge.from = from;
   RONDO_ASSIGN_OR_RETURN(const Field target, f.required("node"));
-  RONDO_ASSIGN_OR_RETURN(edge.to, as_name(target));
+  RONDO_ASSIGN_OR_RETURN(edge.to, name_value(target));
   edge.action = std::string(kDefaultAction);
   if (auto action = f.optional("action")) {
     RONDO_ASSIGN_OR_RETURN(edge.action, action->as_string());
   }
   if (auto id = f.optional("edge_id")) {
-    RONDO_ASSIGN_OR_RETURN(edge.id, as_name(*id));
+    RONDO_ASSIGN_OR_RETURN(edge.id, name_value(*id));
     if (edge.id.empty()) return id->error("an edge id must not be empty");
   }
   if (auto speed = f.optional("top_vel")) {
@@ -106,8 +100,8 @@ Result<std::vector<Point2>> decode_verts(const Field& node) {
 
 // The node's name: node.name, or for older exports the entry's meta.node.
 Result<std::string> decode_name(const Field& entry, const Field& node) {
-  if (auto f = node.optional("name")) return as_name(*f);
-  if (auto meta = entry.optional("meta"); meta && meta->optional("node")) return as_name(*meta->optional("node"));
+  if (auto f = node.optional("name")) return name_value(*f);
+  if (auto meta = entry.optional("meta"); meta && meta->optional("node")) return name_value(*meta->optional("node"));
   return node.error("missing field 'name'");
 }
 
