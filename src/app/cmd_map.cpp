@@ -22,11 +22,11 @@ void print_warnings(CommandContext& ctx, const std::vector<std::string>& warning
   for (const std::string& w : warnings) ctx.err << "rondo: warning: " << w << '\n';
 }
 
-void print_table(CommandContext& ctx, const std::string& file, map::MapFormat format, const map::MapSummary& s) {
+void print_table(CommandContext& ctx, const std::string& file, const map::LoadedMap& loaded, const map::MapSummary& s) {
   auto row = [&](std::string_view label, const std::string& value) {
     ctx.out << fmt::format("{:<11}{}\n", label, value);
   };
-  row("map", fmt::format("{} ({}, {})", s.name.empty() ? "(no name)" : s.name, to_string(format), file));
+  row("map", fmt::format("{} ({}, {})", s.name.empty() ? "(no name)" : s.name, to_string(loaded.format), file));
   row("nodes", fmt::format("{} ({} with an influence polygon)", s.nodes, s.nodes_with_influence));
   std::string edges =
       fmt::format("{} ({} with a top speed), {:.1f} m in total", s.edges, s.edges_with_top_speed, s.total_edge_length);
@@ -55,9 +55,11 @@ void print_table(CommandContext& ctx, const std::string& file, map::MapFormat fo
     row(first ? "doors" : "", fmt::format("{} ({})", door.id, fmt::join(door.edges, ", ")));
     first = false;
   }
-  if (s.warnings.empty()) row("warnings", "none");
+  std::vector<std::string> warnings = loaded.import_warnings;
+  warnings.insert(warnings.end(), s.warnings.begin(), s.warnings.end());
+  if (warnings.empty()) row("warnings", "none");
   first = true;
-  for (const auto& w : s.warnings) {
+  for (const auto& w : warnings) {
     row(first ? "warnings" : "", w);
     first = false;
   }
@@ -78,7 +80,6 @@ void add_info(CLI::App& group, CommandContext& ctx) {
       fail(ctx, loaded.error());
       return;
     }
-    print_warnings(ctx, loaded->import_warnings);
     const map::MapSummary summary = map::summarize(loaded->map);
     if (opts->json) {
       Json j = Json::object();
@@ -89,7 +90,7 @@ void add_info(CLI::App& group, CommandContext& ctx) {
       j["import_warnings"] = loaded->import_warnings;
       ctx.out << dump_json(j);
     } else {
-      print_table(ctx, opts->file, loaded->format, summary);
+      print_table(ctx, opts->file, *loaded, summary);
     }
   });
 }

@@ -64,6 +64,15 @@ TEST(Tmap2Cli, CheckPrintsTheRestrictionsItDoesNotApply) {
       << r.err;
 }
 
+TEST(Tmap2Cli, InfoTableListsTheRestrictionsAmongTheWarnings) {
+  const CliRun r = run_cli({"map", "info", fixture("lcas_certh_vogui_2sides_policies.tmap2").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("warnings   restrictions_planning 'allowedside_a' on 10 nodes"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n           restrictions_planning '~allowedside_a' on 10 nodes"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("row_change/move_base  4"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err, "");
+}
+
 TEST(Tmap2Cli, ConvertWritesAMapThatReadsBackTheSame) {
   TempDir dir;
   const auto out = dir.path() / "converted.yaml";
