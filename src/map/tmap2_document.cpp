@@ -158,11 +158,16 @@ std::string tmap2_path(const MapProblem& p, const DecodedEdge* edge) {
 bool is_tmap2_document(const Document& doc) {
   const Field root = doc.root();
   if (!root.is_object() || root.has("rondo_map")) return false;
+  const Json& json = root.json();
+  if (auto it = json.find("nodes"); it != json.end() && it->is_array() && !it->empty() && it->front().is_object()) {
+    // The first entry decides: {meta, node} is tmap2; a rondo node has its name and pose itself.
+    const Json& first = it->front();
+    return first.contains("node") || (first.contains("meta") && !first.contains("name") && !first.contains("pose"));
+  }
   for (const char* key : {"meta", "metric_map", "pointset", "transformation"}) {
     if (root.has(key)) return true;
   }
-  const Json& nodes = root.json().contains("nodes") ? root.json()["nodes"] : Json();
-  return nodes.is_array() && !nodes.empty() && nodes.front().is_object() && nodes.front().contains("node");
+  return false;
 }
 
 Result<Tmap2Import> tmap2_map_from_document(const Document& doc) {

@@ -308,6 +308,18 @@ TEST(Tmap2, DetectionNeverTakesRondoOrStrandsDocuments) {
   auto doc = Document::parse(kBase, DocumentFormat::kYaml, "t.tmap2");
   ASSERT_TRUE(doc.ok());
   EXPECT_TRUE(is_tmap2_document(*doc));
+  // A rondo map with a stray tmap2 key stays rondo's, and hears about the key.
+  TempDir dir;
+  std::ofstream(dir.path() / "stray.yaml") << "meta: {}\nnodes:\n  - {name: A, pose: {x: 0, y: 0}}\n";
+  auto stray = load_map_file(dir.path() / "stray.yaml");
+  ASSERT_FALSE(stray.ok());
+  EXPECT_NE(stray.error().message.find(":1: meta: unknown field 'meta'"), std::string::npos) << stray.error().message;
+  // An empty or missing node list leaves only the top-level keys to judge by.
+  for (const char* text : {"meta: {}\nnodes: []\n", "pointset: p\n", "transformation: {}\nnodes: 3\n"}) {
+    auto d = Document::parse(text, DocumentFormat::kYaml, "t.yaml");
+    ASSERT_TRUE(d.ok());
+    EXPECT_TRUE(is_tmap2_document(*d)) << text;
+  }
   auto not_tmap2 = parse_tmap2("- node: {name: A, pose: {position: {x: 0, y: 0}}}\n", "list.tmap2");
   ASSERT_FALSE(not_tmap2.ok());
   EXPECT_EQ(not_tmap2.error().message,

@@ -41,10 +41,12 @@ struct Tmap2Import {
   std::vector<std::string> warnings{};
 };
 
-// Whether a parsed document has the tmap2 form: a mapping without `rondo_map` that has one of the
-// tmap2 top-level keys (`meta`, `metric_map`, `pointset`, `transformation`), or whose `nodes` list
-// starts with an entry that has a `node` key. Neither is valid in rondo's own format, so the two
-// can never be confused, and a tmap2 file with a broken node is still reported as tmap2.
+// Whether a parsed document has the tmap2 form: a mapping without `rondo_map` whose `nodes` list
+// starts with a `{meta, node}` entry (one with `node`, or with `meta` but neither `name` nor
+// `pose`); or, when `nodes` has no such first entry to judge by, a mapping with one of the tmap2
+// top-level keys (`meta`, `metric_map`, `pointset`, `transformation`). Rondo's own nodes carry
+// `name` and `pose` themselves, so a rondo map with a stray top-level `meta` is still rondo's (and
+// is told about the unknown field), and a tmap2 file with a broken node is still reported as tmap2.
 bool is_tmap2_document(const Document& doc);
 
 Result<Tmap2Import> tmap2_map_from_document(const Document& doc);
