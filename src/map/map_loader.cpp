@@ -49,7 +49,9 @@ Result<LoadedMap> load_map_file(const std::filesystem::path& file) {
   }
   auto doc = Document::parse(*text, is_json ? DocumentFormat::kJson : DocumentFormat::kYaml, file.string());
   if (!doc) return doc.error();
-  if (is_tmap2_document(*doc)) {
+  // A .tmap2 file that is no other form either is judged as the tmap2 it claims to be.
+  const bool claims_tmap2 = ext == ".tmap2" && !doc->root().is_array() && !is_rondo_map_document(*doc);
+  if (claims_tmap2 || is_tmap2_document(*doc)) {
     auto in = tmap2_map_from_document(*doc);
     if (!in) return in.error();
     return LoadedMap{std::move(in->map), MapFormat::kTmap2, std::move(in->warnings)};

@@ -297,6 +297,13 @@ TEST(Tmap2, DetectedByContentWhateverTheFileName) {
   write_file(dir.path() / "strands.tmap2", *read_text_file(fixture("small_strands.yaml")));
   EXPECT_EQ(load_map_file(dir.path() / "rondo.tmap2")->format, MapFormat::kRondo);
   EXPECT_EQ(load_map_file(dir.path() / "strands.tmap2")->format, MapFormat::kStrandsYaml);
+  // A .tmap2 file that is none of them is told what a tmap2 map needs.
+  write_file(dir.path() / "scalar.tmap2", "42\n");
+  write_file(dir.path() / "empty_mapping.tmap2", "name: site\n");
+  EXPECT_NE(load_map_file(dir.path() / "scalar.tmap2").error().message.find(":1: expected a tmap2 map"),
+            std::string::npos);
+  EXPECT_NE(load_map_file(dir.path() / "empty_mapping.tmap2").error().message.find(":1: missing field 'nodes'"),
+            std::string::npos);
 }
 
 TEST(Tmap2, DetectionNeverTakesRondoOrStrandsDocuments) {
