@@ -1,7 +1,6 @@
 // The tmap2 form of LCAS topological_navigation: one mapping with `nodes: [{meta, node}]`.
 #include <fmt/format.h>
 
-#include <array>
 #include <optional>
 
 #include "map_locate.h"
@@ -13,36 +12,6 @@
 namespace rondo::map {
 namespace {
 
-Result<double> number_or(const Field& parent, std::string_view key, double fallback) {
-  auto f = parent.optional(key);
-  if (!f) return fallback;
-  return f->as_number();
-}
-
-Result<double> required_number(const Field& parent, std::string_view key) {
-  RONDO_ASSIGN_OR_RETURN(const Field f, parent.required(key));
-  return f.as_number();
-}
-
-// pose: {position: {x, y, z}, orientation: {x, y, z, w}}; z is the floor's height and not kept.
-Result<Pose> decode_pose(const Field& node) {
-  RONDO_ASSIGN_OR_RETURN(const Field pose, node.required("pose"));
-  RONDO_ASSIGN_OR_RETURN(const Field position, pose.required("position"));
-  Pose out;
-  RONDO_ASSIGN_OR_RETURN(out.x, required_number(position, "x"));
-  RONDO_ASSIGN_OR_RETURN(out.y, required_number(position, "y"));
-  if (auto orientation = pose.optional("orientation")) {
-    if (!orientation->is_object()) return orientation->error("expected a quaternion mapping with x, y, z, w");
-    std::array<double, 4> q{};  // a missing component counts as 0
-    constexpr std::array<const char*, 4> kKeys = {"x", "y", "z", "w"};
-    for (std::size_t i = 0; i < q.size(); ++i) {
-      RONDO_ASSIGN_OR_RETURN(q[i], number_or(*orientation, kKeys[i], 0.0));
-    }
-    out.yaw = yaw_from_quaternion(q[0], q[1], q[2], q[3]);
-  }
-  return out;
-}
-
 Status decode_tolerances(const Field& node, Node& out) {
   auto properties = node.optional("properties");
   if (!properties) return {};
@@ -51,21 +20,6 @@ Status decode_tolerances(const Field& node, Node& out) {
   RONDO_ASSIGN_OR_RETURN(out.yaw_goal_tolerance,
                          number_or(*properties, "yaw_goal_tolerance", kDefaultYawGoalTolerance));
   return {};
-}
-
-Result<std::vector<Point2>> decode_verts(const Field& node) {
-  std::vector<Point2> out;
-  auto verts = node.optional("verts");
-  if (!verts) return out;
-  RONDO_ASSIGN_OR_RETURN(const std::vector<Field> items, verts->items());
-  out.reserve(items.size());
-  for (const Field& v : items) {
-    Point2 p;
-    RONDO_ASSIGN_OR_RETURN(p.x, required_number(v, "x"));
-    RONDO_ASSIGN_OR_RETURN(p.y, required_number(v, "y"));
-    out.push_back(p);
-  }
-  return out;
 }
 
 // The entry's meta without the bookkeeping keys every entry repeats, plus the node's facts that
@@ -189,7 +143,7 @@ Result<Tmap2Import> tmap2_map_from_document(const Document& doc) {
     Node node;
     RONDO_ASSIGN_OR_RETURN(const Field name_field, node_field.required("name"));
     RONDO_ASSIGN_OR_RETURN(node.name, name_value(name_field));
-    RONDO_ASSIGN_OR_RETURN(node.pose, decode_pose(node_field));
+    RONDO_ASSIGN_OR_RETURN(node.pose, decode_ros_pose(node_field));
     RONDO_RETURN_IF_ERROR(decode_tolerances(node_field, node));
     RONDO_ASSIGN_OR_RETURN(node.influence, decode_verts(node_field));
     RONDO_ASSIGN_OR_RETURN(node.meta, decode_meta(entry, node_field));

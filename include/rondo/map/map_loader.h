@@ -6,9 +6,11 @@
 //   Status s = save_map(*map, "office.yaml");
 //
 // `.tmap` is STRANDS text. The other forms are told apart by content, not by name: a `.yaml`,
-// `.yml`, `.tmap2` or `.json` file is an LCAS tmap2 map when is_tmap2_document() says so (`nodes` of
-// `{meta, node}` entries, or tmap2's top-level keys), else rondo's format when the top level is a mapping with `rondo_map` or `nodes`, else
-// STRANDS YAML (or JSON, for `.json`). Any other extension is an error naming the supported ones.
+// `.yml`, `.tmap2` or `.json` file is an LCAS tmap2 map when is_tmap2_document() says so (`nodes`
+// of `{meta, node}` entries, or tmap2's top-level keys), else rondo's format when the top level is
+// a mapping with `rondo_map` or `nodes`, else STRANDS YAML (or JSON, for `.json`). A `.tmap2` file
+// that is none of these is judged as tmap2, so that its error says what tmap2 needs. Any other
+// extension is an error naming the supported ones.
 #pragma once
 
 #include <filesystem>
