@@ -22,11 +22,11 @@ void print_warnings(CommandContext& ctx, const std::vector<std::string>& warning
   for (const std::string& w : warnings) ctx.err << "rondo: warning: " << w << '\n';
 }
 
-void print_table(CommandContext& ctx, const std::string& file, map::MapFormat format, const map::MapSummary& s) {
+void print_table(CommandContext& ctx, const std::string& file, const map::LoadedMap& loaded, const map::MapSummary& s) {
   auto row = [&](std::string_view label, const std::string& value) {
     ctx.out << fmt::format("{:<11}{}\n", label, value);
   };
-  row("map", fmt::format("{} ({}, {})", s.name.empty() ? "(no name)" : s.name, to_string(format), file));
+  row("map", fmt::format("{} ({}, {})", s.name.empty() ? "(no name)" : s.name, to_string(loaded.format), file));
   row("nodes", fmt::format("{} ({} with an influence polygon)", s.nodes, s.nodes_with_influence));
   std::string edges =
       fmt::format("{} ({} with a top speed), {:.1f} m in total", s.edges, s.edges_with_top_speed, s.total_edge_length);
@@ -55,9 +55,11 @@ void print_table(CommandContext& ctx, const std::string& file, map::MapFormat fo
     row(first ? "doors" : "", fmt::format("{} ({})", door.id, fmt::join(door.edges, ", ")));
     first = false;
   }
-  if (s.warnings.empty()) row("warnings", "none");
+  std::vector<std::string> warnings = loaded.import_warnings;
+  warnings.insert(warnings.end(), s.warnings.begin(), s.warnings.end());
+  if (warnings.empty()) row("warnings", "none");
   first = true;
-  for (const auto& w : s.warnings) {
+  for (const auto& w : warnings) {
     row(first ? "warnings" : "", w);
     first = false;
   }
@@ -70,7 +72,7 @@ void add_info(CLI::App& group, CommandContext& ctx) {
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = group.add_subcommand("info", "Summarise a map: sizes, actions, doors, extent, connectivity");
-  cmd->add_option("file", opts->file, "Map file: rondo .yaml, STRANDS .tmap, .yaml or .json")->required();
+  cmd->add_option("file", opts->file, "Map file: rondo .yaml, LCAS .tmap2, STRANDS .tmap, .yaml or .json")->required();
   cmd->add_flag("--json", opts->json, "Print JSON instead of a table");
   cmd->callback([&ctx, opts] {
     auto loaded = map::load_map_file(opts->file);
@@ -85,9 +87,10 @@ void add_info(CLI::App& group, CommandContext& ctx) {
       j["format"] = to_string(loaded->format);
       const Json fields = map::to_json(summary);
       for (auto it = fields.begin(); it != fields.end(); ++it) j[it.key()] = it.value();
+      j["import_warnings"] = loaded->import_warnings;
       ctx.out << dump_json(j);
     } else {
-      print_table(ctx, opts->file, loaded->format, summary);
+      print_table(ctx, opts->file, *loaded, summary);
     }
   });
 }
@@ -96,14 +99,15 @@ void add_check(CLI::App& group, CommandContext& ctx) {
   auto file = std::make_shared<std::string>();
   CLI::App* cmd = group.add_subcommand(
       "check", "Validate a map; prints warnings (such as unreachable nodes). Exit 0 if valid, 2 if not");
-  cmd->add_option("file", *file, "Map file: rondo .yaml, STRANDS .tmap, .yaml or .json")->required();
+  cmd->add_option("file", *file, "Map file: rondo .yaml, LCAS .tmap2, STRANDS .tmap, .yaml or .json")->required();
   cmd->callback([&ctx, file] {
     auto loaded = map::load_map_file(*file);
     if (!loaded) {
       fail(ctx, loaded.error());
       return;
     }
-    const auto warnings = map::map_warnings(loaded->map);
+    auto warnings = loaded->import_warnings;
+    for (std::string& w : map::map_warnings(loaded->map)) warnings.push_back(std::move(w));
     print_warnings(ctx, warnings);
     ctx.out << fmt::format("{}: valid {} map, {} nodes, {} edges, {} warning{}\n", *file, to_string(loaded->format),
                            loaded->map.node_count(), loaded->map.edge_count(), warnings.size(),
@@ -118,7 +122,7 @@ void add_convert(CLI::App& group, CommandContext& ctx) {
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = group.add_subcommand("convert", "Convert a map to rondo's YAML format (docs/map-format.md)");
-  cmd->add_option("file", opts->file, "Map file: rondo .yaml, STRANDS .tmap, .yaml or .json")->required();
+  cmd->add_option("file", opts->file, "Map file: rondo .yaml, LCAS .tmap2, STRANDS .tmap, .yaml or .json")->required();
   cmd->add_option("-o,--output", opts->output, "Where to write the rondo .yaml ('-' for standard output)")->required();
   cmd->callback([&ctx, opts] {
     auto loaded = map::load_map_file(opts->file);
@@ -126,6 +130,7 @@ void add_convert(CLI::App& group, CommandContext& ctx) {
       fail(ctx, loaded.error());
       return;
     }
+    print_warnings(ctx, loaded->import_warnings);
     print_warnings(ctx, map::map_warnings(loaded->map));
     const std::string text = map::write_map_yaml(loaded->map);
     // The written file must read back as the same map; anything else is a bug in the writer.
@@ -152,7 +157,7 @@ void add_convert(CLI::App& group, CommandContext& ctx) {
 
 void add_map_commands(CLI::App& root, CommandContext& ctx) {
   CLI::App* group = root.add_subcommand(
-      "map", "Topological maps: inspect, check and convert (rondo YAML; STRANDS .tmap, YAML and JSON)");
+      "map", "Topological maps: inspect, check and convert (rondo YAML; LCAS tmap2; STRANDS .tmap, YAML and JSON)");
   group->require_subcommand(1);
   add_info(*group, ctx);
   add_check(*group, ctx);

@@ -9,6 +9,7 @@
 #include "rondo/core/document.h"
 #include "rondo/map/map_yaml.h"
 #include "rondo/map/strands_import.h"
+#include "rondo/map/tmap2_import.h"
 
 namespace rondo::map {
 
@@ -22,6 +23,8 @@ const char* to_string(MapFormat format) {
       return "strands-yaml";
     case MapFormat::kStrandsJson:
       return "strands-json";
+    case MapFormat::kTmap2:
+      return "tmap2";
   }
   return "unknown";
 }
@@ -30,10 +33,11 @@ Result<LoadedMap> load_map_file(const std::filesystem::path& file) {
   const std::string ext = file.extension().string();
   const bool is_tmap = ext == ".tmap";
   const bool is_json = ext == ".json";
-  const bool is_yaml = ext == ".yaml" || ext == ".yml";
+  const bool is_yaml = ext == ".yaml" || ext == ".yml" || ext == ".tmap2";
   if (!is_tmap && !is_json && !is_yaml) {
     return Error::invalid(fmt::format(
-        "{}: unknown map file type '{}': expected .yaml or .yml (rondo or STRANDS YAML), .tmap or .json (STRANDS)",
+        "{}: unknown map file type '{}': expected .yaml, .yml or .tmap2 (rondo, LCAS tmap2 or STRANDS YAML), "
+        ".tmap or .json (STRANDS)",
         file.string(), ext));
   }
   auto text = read_text_file(file);
@@ -45,6 +49,13 @@ Result<LoadedMap> load_map_file(const std::filesystem::path& file) {
   }
   auto doc = Document::parse(*text, is_json ? DocumentFormat::kJson : DocumentFormat::kYaml, file.string());
   if (!doc) return doc.error();
+  // A .tmap2 file that is no other form either is judged as the tmap2 it claims to be.
+  const bool claims_tmap2 = ext == ".tmap2" && !doc->root().is_array() && !is_rondo_map_document(*doc);
+  if (claims_tmap2 || is_tmap2_document(*doc)) {
+    auto in = tmap2_map_from_document(*doc);
+    if (!in) return in.error();
+    return LoadedMap{std::move(in->map), MapFormat::kTmap2, std::move(in->warnings)};
+  }
   if (is_rondo_map_document(*doc)) {
     auto map = map_from_document(*doc);
     if (!map) return map.error();

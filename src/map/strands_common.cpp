@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <unordered_map>
@@ -53,6 +54,55 @@ void complete_strands_edges(std::vector<Edge>& edges) {
     }
     if (!e.door && action_kind(e.action) == ActionKind::kDoor) e.door = door_id_between(e.from, e.to);
   }
+}
+
+Result<std::string> name_value(const Field& f) {
+  if (f.json().is_number_integer() || f.json().is_number_unsigned()) return f.json().dump();
+  return f.as_string();
+}
+
+Result<double> number_or(const Field& parent, std::string_view key, double fallback) {
+  auto f = parent.optional(key);
+  if (!f) return fallback;
+  return f->as_number();
+}
+
+Result<double> required_number(const Field& parent, std::string_view key) {
+  RONDO_ASSIGN_OR_RETURN(const Field f, parent.required(key));
+  return f.as_number();
+}
+
+Result<Pose> decode_ros_pose(const Field& node) {
+  RONDO_ASSIGN_OR_RETURN(const Field pose, node.required("pose"));
+  RONDO_ASSIGN_OR_RETURN(const Field position, pose.required("position"));
+  Pose out;
+  RONDO_ASSIGN_OR_RETURN(out.x, required_number(position, "x"));
+  RONDO_ASSIGN_OR_RETURN(out.y, required_number(position, "y"));
+  if (auto orientation = pose.optional("orientation")) {
+    if (!orientation->is_object()) return orientation->error("expected a quaternion mapping with x, y, z, w");
+    std::array<double, 4> q{};  // a missing component counts as 0
+    constexpr std::array<const char*, 4> kKeys = {"x", "y", "z", "w"};
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      RONDO_ASSIGN_OR_RETURN(q[i], number_or(*orientation, kKeys[i], 0.0));
+    }
+    out.yaw = yaw_from_quaternion(q[0], q[1], q[2], q[3]);
+  }
+  return out;
+}
+
+Result<std::vector<Point2>> decode_verts(const Field& node) {
+  std::vector<Point2> out;
+  auto verts = node.optional("verts");
+  if (!verts) return out;
+  RONDO_ASSIGN_OR_RETURN(const std::vector<Field> items, verts->items());
+  out.reserve(items.size());
+  for (const Field& v : items) {
+    Point2 p;
+    RONDO_ASSIGN_OR_RETURN(p.x, required_number(v, "x"));
+    RONDO_ASSIGN_OR_RETURN(p.y, required_number(v, "y"));
+    out.push_back(p);
+  }
+  return out;
 }
 
 std::string name_from_source(const std::string& source) {

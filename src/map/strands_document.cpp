@@ -9,47 +9,12 @@
 namespace rondo::map {
 namespace {
 
-// STRANDS names are text, but an unquoted YAML name such as 12 reads as a number: accept integers.
-Result<std::string> as_name(const Field& f) {
-  if (f.json().is_number_integer() || f.json().is_number_unsigned()) return f.json().dump();
-  return f.as_string();
-}
-
-Result<double> number_or(const Field& parent, std::string_view key, double fallback) {
-  auto f = parent.optional(key);
-  if (!f) return fallback;
-  return f->as_number();
-}
-
 // Where an entry's node object is: entry.node, or the entry itself when it is a bare node.
 Result<Field> node_of(const Field& entry) {
   if (!entry.is_object()) return entry.error("expected a map entry: a mapping with 'meta' and 'node'");
   if (auto node = entry.optional("node"); node && node->is_object()) return *node;
   if (entry.has("name") && entry.has("pose")) return entry;
   return entry.error("expected a map entry with a 'node' mapping (or a node with 'name' and 'pose')");
-}
-
-Result<double> required_number(const Field& parent, std::string_view key) {
-  RONDO_ASSIGN_OR_RETURN(const Field f, parent.required(key));
-  return f.as_number();
-}
-
-Result<Pose> decode_pose(const Field& node) {
-  RONDO_ASSIGN_OR_RETURN(const Field pose, node.required("pose"));
-  RONDO_ASSIGN_OR_RETURN(const Field position, pose.required("position"));
-  Pose out;
-  RONDO_ASSIGN_OR_RETURN(out.x, required_number(position, "x"));
-  RONDO_ASSIGN_OR_RETURN(out.y, required_number(position, "y"));
-  if (auto orientation = pose.optional("orientation")) {
-    if (!orientation->is_object()) return orientation->error("expected a quaternion mapping with x, y, z, w");
-    double q[4] = {0, 0, 0, 0};  // a missing component counts as 0
-    const char* keys[4] = {"x", "y", "z", "w"};
-    for (std::size_t i = 0; i < 4; ++i) {
-      RONDO_ASSIGN_OR_RETURN(q[i], number_or(*orientation, keys[i], 0.0));
-    }
-    out.yaw = yaw_from_quaternion(q[0], q[1], q[2], q[3]);
-  }
-  return out;
 }
 
 // The entry's meta block without the bookkeeping keys every entry repeats.
@@ -75,13 +40,13 @@ Result<Edge> decode_edge(const Field& f, const std::string& from) {
   Edge edge;
   edge.from = from;
   RONDO_ASSIGN_OR_RETURN(const Field target, f.required("node"));
-  RONDO_ASSIGN_OR_RETURN(edge.to, as_name(target));
+  RONDO_ASSIGN_OR_RETURN(edge.to, name_value(target));
   edge.action = std::string(kDefaultAction);
   if (auto action = f.optional("action")) {
     RONDO_ASSIGN_OR_RETURN(edge.action, action->as_string());
   }
   if (auto id = f.optional("edge_id")) {
-    RONDO_ASSIGN_OR_RETURN(edge.id, as_name(*id));
+    RONDO_ASSIGN_OR_RETURN(edge.id, name_value(*id));
     if (edge.id.empty()) return id->error("an edge id must not be empty");
   }
   if (auto speed = f.optional("top_vel")) {
@@ -90,24 +55,10 @@ Result<Edge> decode_edge(const Field& f, const std::string& from) {
   return edge;
 }
 
-Result<std::vector<Point2>> decode_verts(const Field& node) {
-  std::vector<Point2> out;
-  auto verts = node.optional("verts");
-  if (!verts) return out;
-  RONDO_ASSIGN_OR_RETURN(const std::vector<Field> items, verts->items());
-  for (const Field& v : items) {
-    Point2 p;
-    RONDO_ASSIGN_OR_RETURN(p.x, required_number(v, "x"));
-    RONDO_ASSIGN_OR_RETURN(p.y, required_number(v, "y"));
-    out.push_back(p);
-  }
-  return out;
-}
-
 // The node's name: node.name, or for older exports the entry's meta.node.
 Result<std::string> decode_name(const Field& entry, const Field& node) {
-  if (auto f = node.optional("name")) return as_name(*f);
-  if (auto meta = entry.optional("meta"); meta && meta->optional("node")) return as_name(*meta->optional("node"));
+  if (auto f = node.optional("name")) return name_value(*f);
+  if (auto meta = entry.optional("meta"); meta && meta->optional("node")) return name_value(*meta->optional("node"));
   return node.error("missing field 'name'");
 }
 
@@ -156,7 +107,7 @@ Result<TopoMap> strands_map_from_document(const Document& doc) {
         name = pointset->json().get<std::string>();
       }
     }
-    RONDO_ASSIGN_OR_RETURN(node.pose, decode_pose(node_field));
+    RONDO_ASSIGN_OR_RETURN(node.pose, decode_ros_pose(node_field));
     RONDO_ASSIGN_OR_RETURN(node.xy_goal_tolerance, number_or(node_field, "xy_goal_tolerance", kDefaultXyGoalTolerance));
     RONDO_ASSIGN_OR_RETURN(node.yaw_goal_tolerance,
                            number_or(node_field, "yaw_goal_tolerance", kDefaultYawGoalTolerance));

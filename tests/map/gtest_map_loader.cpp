@@ -16,28 +16,7 @@ namespace {
 
 using testing::fixture;
 using testing::real_map;
-
-// A fresh folder under the system temp folder, removed at the end of the test.
-class TempDir {
- public:
-  TempDir() : path_(std::filesystem::temp_directory_path() / ("rondo_map_test_" + unique())) {
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  static std::string unique() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    return std::string(info->test_suite_name()) + "_" + info->name() + "_" + std::to_string(::getpid());
-  }
-  std::filesystem::path path_;
-};
+using testing::TempDir;
 
 struct RealMap {
   std::string file;
@@ -151,10 +130,11 @@ TEST(LoadMap, ErrorsNameTheFile) {
   const std::vector<Case> cases = {
       {"no/such/map.yaml", ErrorCode::kNotFound, "no/such/map.yaml: no such file"},
       {"map.txt", ErrorCode::kInvalidInput,
-       "map.txt: unknown map file type '.txt': expected .yaml or .yml (rondo or STRANDS YAML), .tmap or .json "
-       "(STRANDS)"},
+       "map.txt: unknown map file type '.txt': expected .yaml, .yml or .tmap2 (rondo, LCAS tmap2 or STRANDS YAML), "
+       ".tmap or .json (STRANDS)"},
       {"map", ErrorCode::kInvalidInput,
-       "map: unknown map file type '': expected .yaml or .yml (rondo or STRANDS YAML), .tmap or .json (STRANDS)"},
+       "map: unknown map file type '': expected .yaml, .yml or .tmap2 (rondo, LCAS tmap2 or STRANDS YAML), .tmap or "
+       ".json (STRANDS)"},
   };
   for (const Case& c : cases) {
     auto map = load_map(c.file);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <string>
@@ -20,6 +21,28 @@ inline std::filesystem::path fixture(const std::string& name) {
 inline std::filesystem::path real_map(const std::string& name) {
   return std::filesystem::path(RONDO_SOURCE_DIR) / ".." / "shared" / "data" / "maps" / name;
 }
+
+// A fresh folder under the system temp folder, removed at the end of the test.
+class TempDir {
+ public:
+  TempDir() : path_(std::filesystem::temp_directory_path() / ("rondo_map_test_" + unique())) {
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  static std::string unique() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    return std::string(info->test_suite_name()) + "_" + info->name() + "_" + std::to_string(::getpid());
+  }
+  std::filesystem::path path_;
+};
 
 inline Node node_at(std::string name, double x, double y, double yaw = 0) {
   Node n;
