@@ -161,7 +161,7 @@ void add(const AddOptions& o, CommandContext& ctx) {
 }  // namespace
 
 void add_task_commands(CLI::App& root, CommandContext& ctx) {
-  auto* task = root.add_subcommand("task", "Check task and routine files");
+  auto* task = root.add_subcommand("task", "Check task and routine files; read commands in words");
   task->require_subcommand(1);
   auto options = std::make_shared<TaskOptions>();
 

@@ -18,7 +18,7 @@ const char* to_string(Cancellation::What what) {
 bool matches(const Cancellation& c, const Task& task) {
   switch (c.what) {
     case Cancellation::What::kDelivery:
-      return task.delivery && normalise_phrase(task.delivery->object) == c.object;
+      return task.delivery && normalise_object(task.delivery->object) == c.object;
     case Cancellation::What::kActivity: {
       const bool does = std::any_of(task.actions.begin(), task.actions.end(),
                                     [&](const Action& a) { return a.name == c.activity; });

@@ -52,15 +52,7 @@ std::vector<std::string> verb_words() {
 }
 
 // An object as people describe it, lower case without a leading article: "red letter".
-std::string object_of(const Tokens& t, std::size_t b, std::size_t e) {
-  while (b < e && is_article(t[b].word)) ++b;
-  std::string out;
-  for (std::size_t i = b; i < e; ++i) {
-    if (!out.empty()) out.push_back(' ');
-    out += t[i].word;
-  }
-  return out;
-}
+std::string object_of(const Tokens& t, std::size_t b, std::size_t e) { return normalise_object(text_of(t, b, e)); }
 
 struct TwoPlaces {
   Place from;

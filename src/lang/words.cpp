@@ -73,6 +73,14 @@ std::string normalise_phrase(std::string_view text) {
   return out.empty() ? join(words, false) : out;
 }
 
+std::string normalise_object(std::string_view text) {
+  auto words = words_of(fold(text));
+  std::size_t b = 0;
+  while (b < words.size() && (words[b] == "the" || words[b] == "a" || words[b] == "an")) ++b;
+  words.erase(words.begin(), words.begin() + static_cast<std::ptrdiff_t>(b));
+  return join(words, false);
+}
+
 std::string slug(std::string_view text) {
   std::string out;
   bool dash = false;

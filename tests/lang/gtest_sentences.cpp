@@ -269,6 +269,11 @@ TEST(Sentences, CancellationMatchesTheTasksItNames) {
   EXPECT_TRUE(matches(*cancel_check->cancel, check->tasks[0]));
   EXPECT_FALSE(matches(*cancel_check->cancel, letter->tasks[0]));
   EXPECT_EQ(encode(*cancel->cancel).dump(), R"({"cancel":{"what":"delivery","object":"red letter"}})");
+  auto chair = parse_command("bring the office chair from A-110 to A-114", ctx);
+  auto cancel_chair = parse_command("cancel the office chair delivery", ctx);
+  ASSERT_TRUE(chair.ok() && cancel_chair.ok());
+  EXPECT_TRUE(matches(*cancel_chair->cancel, chair->tasks[1]));
+  EXPECT_FALSE(matches(*cancel->cancel, chair->tasks[1]));
 }
 
 TEST(Sentences, TooLongIsAnErrorNotAWait) {

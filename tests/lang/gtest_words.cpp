@@ -21,6 +21,12 @@ TEST(Words, NormaliseDropsCaseArticlesAndRoomWords) {
   EXPECT_EQ(normalise_phrase("\t\n"), "");
 }
 
+TEST(Words, ObjectsKeepEveryWordButALeadingArticle) {
+  EXPECT_EQ(normalise_object("The Office Chair"), "office chair");
+  EXPECT_EQ(normalise_object("a Red  Letter."), "red letter");
+  EXPECT_EQ(normalise_object("the"), "");
+}
+
 TEST(Words, SlugIsLowerCaseDashed) {
   EXPECT_EQ(slug("Exit-West"), "exit-west");
   EXPECT_EQ(slug("red letter"), "red-letter");

@@ -22,6 +22,11 @@ namespace rondo::lang {
 // A name made only of filler words (a node called "Office") keeps them, lower-cased.
 std::string normalise_phrase(std::string_view text);
 
+// An object as people describe it: folded like normalise_phrase() but only leading articles are
+// left out ("The Office Chair" -> "office chair"). Deliveries and their cancellations compare
+// objects in this form.
+std::string normalise_object(std::string_view text);
+
 // Lower-case letters and digits, every other run of characters one '-', none at the ends:
 // "Exit-West" -> "exit-west", "red letter" -> "red-letter". Empty text gives "x".
 std::string slug(std::string_view text);
