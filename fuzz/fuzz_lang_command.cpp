@@ -39,7 +39,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                         *rondo::parse_time("2026-03-29T00:30:00Z")};  // the spring change
   auto command = rondo::lang::parse_command(text, ctx);
   if (!command) {
-    if (command.error().code != rondo::ErrorCode::kInvalidInput && command.error().code != rondo::ErrorCode::kNotFound) {
+    if (command.error().code != rondo::ErrorCode::kInvalidInput &&
+        command.error().code != rondo::ErrorCode::kNotFound) {
       std::abort();  // bad words are bad input, never an internal error
     }
     return 0;

@@ -38,8 +38,8 @@ void print_tasks(const std::vector<Task>& tasks, const TimeZone& zone, std::ostr
   for (const auto& t : tasks) {
     out << fmt::format("{:<36} {:<26} {:<26} {:>8} {:>4}  {}\n", t.id,
                        t.window ? zone.format_local(t.window->release) : "now",
-                       t.window ? zone.format_local(t.window->deadline) : "-", format_duration(t.duration),
-                       t.priority, t.start_node.empty() ? "-" : t.start_node);
+                       t.window ? zone.format_local(t.window->deadline) : "-", format_duration(t.duration), t.priority,
+                       t.start_node.empty() ? "-" : t.start_node);
   }
 }
 

@@ -9,7 +9,9 @@ namespace {
 
 constexpr Duration kAtSlack = minutes(30);  // "at 09:00" means a window [09:00, 09:30]
 
-std::string local_minute(const TimeZone& zone, Time t) { return zone.format_local(t).substr(0, 16); }
+std::string local_minute(const TimeZone& zone, Time t) {
+  return zone.format_local(t).substr(0, 16);
+}
 
 std::string date_text(std::chrono::year_month_day d) {
   return fmt::format("{:04}-{:02}-{:02}", static_cast<int>(d.year()), static_cast<unsigned>(d.month()),
@@ -29,8 +31,8 @@ Result<std::pair<Duration, Duration>> daily_window(const Timing& t) {
   const Duration from = t.after.value_or(Duration{0});
   const Duration to = t.before.value_or(hours(24));
   if (to <= from) {
-    return Error::invalid(fmt::format("'after {}' and 'before {}' leave no time", format_time_of_day(from),
-                                      format_time_of_day(to)));
+    return Error::invalid(
+        fmt::format("'after {}' and 'before {}' leave no time", format_time_of_day(from), format_time_of_day(to)));
   }
   return std::pair<Duration, Duration>{from, to};
 }
@@ -57,7 +59,9 @@ Result<std::chrono::year_month_day> day_of(const Timing& t, const CommandContext
 
 }  // namespace
 
-std::string id_tag(const CommandContext& ctx) { return local_minute(ctx.zone, ctx.now); }
+std::string id_tag(const CommandContext& ctx) {
+  return local_minute(ctx.zone, ctx.now);
+}
 
 Status apply_one_off(const Timing& t, const CommandContext& ctx, Task& task) {
   if (t.now) {
@@ -73,9 +77,10 @@ Status apply_one_off(const Timing& t, const CommandContext& ctx, Task& task) {
   const Time opens = ctx.zone.at(day, span.first);
   const Time closes = ctx.zone.at(day, span.second);
   if (closes <= ctx.now) {
-    return Error::invalid(fmt::format("the time asked for ends at {}, which is past (it is {}); say 'tomorrow' or "
-                                      "'on DAY' for a later day",
-                                      local_minute(ctx.zone, closes), local_minute(ctx.zone, ctx.now)));
+    return Error::invalid(
+        fmt::format("the time asked for ends at {}, which is past (it is {}); say 'tomorrow' or "
+                    "'on DAY' for a later day",
+                    local_minute(ctx.zone, closes), local_minute(ctx.zone, ctx.now)));
   }
   const Time release = std::max(opens, ctx.now);
   if (closes - release < task.duration) {

@@ -13,10 +13,10 @@ namespace rondo::lang::detail {
 
 // What one task of the command does, before its timing is applied.
 struct Job {
-  std::string verb;        // "check", "patrol", "visit": the action name and the id's head
-  std::string activity;    // for people: "check office A-123"
-  std::string node;        // where
-  Duration duration{0};    // the verb's default; "for ..." overrides it
+  std::string verb;      // "check", "patrol", "visit": the action name and the id's head
+  std::string activity;  // for people: "check office A-123"
+  std::string node;      // where
+  Duration duration{0};  // the verb's default; "for ..." overrides it
 };
 
 // The local date and minute of `now`, "2026-11-23T10:00": the tail of the ids a command makes.

@@ -20,9 +20,9 @@ namespace rondo::lang {
 namespace {
 
 using detail::Job;
+using detail::text_of;
 using detail::Timing;
 using detail::Tokens;
-using detail::text_of;
 
 constexpr int kUrgent = 10;
 constexpr int kImportant = 5;
@@ -43,7 +43,9 @@ constexpr std::array<VisitVerb, 7> kVisits = {{{"check", "check", minutes(2), fa
                                                {"cancel", "", Duration{0}, false}}};
 constexpr std::array<std::string_view, 5> kDeliveryVerbs = {"deliver", "bring", "take", "carry", "put"};
 
-bool is_article(std::string_view w) { return w == "the" || w == "a" || w == "an"; }
+bool is_article(std::string_view w) {
+  return w == "the" || w == "a" || w == "an";
+}
 
 std::vector<std::string> verb_words() {
   std::vector<std::string> out(kDeliveryVerbs.begin(), kDeliveryVerbs.end());
@@ -52,7 +54,9 @@ std::vector<std::string> verb_words() {
 }
 
 // An object as people describe it, lower case without a leading article: "red letter".
-std::string object_of(const Tokens& t, std::size_t b, std::size_t e) { return normalise_object(text_of(t, b, e)); }
+std::string object_of(const Tokens& t, std::size_t b, std::size_t e) {
+  return normalise_object(text_of(t, b, e));
+}
 
 struct TwoPlaces {
   Place from;
@@ -194,8 +198,8 @@ class Parser {
     // Both halves share the window: the object is picked up and dropped inside it.
     RONDO_RETURN_IF_ERROR(detail::apply_one_off(timing_, ctx_, drop));
     if (pickup.window && drop.window && drop.window->width() < pickup.duration + drop.duration) {
-      return Error::invalid(fmt::format("the window is too short for a pickup and a drop of {} each",
-                                        format_duration(each)));
+      return Error::invalid(
+          fmt::format("the window is too short for a pickup and a drop of {} each", format_duration(each)));
     }
     Command c;
     c.tasks = {std::move(pickup), std::move(drop)};
@@ -260,7 +264,8 @@ class Parser {
       for (const auto& v : kVisits) {
         if (v.word == t_[b].word && !v.action.empty()) {
           RONDO_ASSIGN_OR_RETURN(auto where, place(b + 2, e));
-          return Command{{}, {}, Cancellation{Cancellation::What::kActivity, {}, std::string(v.action), where.nodes, {}}};
+          return Command{
+              {}, {}, Cancellation{Cancellation::What::kActivity, {}, std::string(v.action), where.nodes, {}}};
         }
       }
     }
@@ -269,7 +274,8 @@ class Parser {
 
   // Every value handed out passes core's checks, as a task file's would.
   static Result<Command> check(Command c) {
-    if (auto ok = validate(c.tasks, "tasks"); !ok) return Error::internal("the command made bad tasks: " + ok.error().message);
+    if (auto ok = validate(c.tasks, "tasks"); !ok)
+      return Error::internal("the command made bad tasks: " + ok.error().message);
     std::vector<std::string> names;
     for (const auto& r : c.routines) {
       if (std::find(names.begin(), names.end(), r.name) != names.end()) {
@@ -293,7 +299,8 @@ class Parser {
 Result<Command> parse_command(std::string_view sentence, const CommandContext& ctx) {
   if (ctx.places == nullptr) return Error::internal("parse_command: no places given");
   if (sentence.size() > kMaxSentence) {
-    return Error::invalid(fmt::format("the command is {} bytes long; the most read is {}", sentence.size(), kMaxSentence));
+    return Error::invalid(
+        fmt::format("the command is {} bytes long; the most read is {}", sentence.size(), kMaxSentence));
   }
   auto tokens = detail::tokenize(sentence);
   if (tokens.empty()) return Error::invalid("the command is empty");

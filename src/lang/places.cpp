@@ -101,11 +101,10 @@ class PlacesDecoder {
           const std::string key = normalise_phrase(thing);
           auto [it, fresh] = room.things.emplace(key, Places::Entry{thing_names.front().first, {thing_node}});
           if (!fresh && it->second.nodes != std::vector<std::string>{thing_node}) {
-            return where.error(fmt::format("'{}' already names {} in room {}", thing, it->second.nodes.front(),
-                                           room.display));
+            return where.error(
+                fmt::format("'{}' already names {} in room {}", thing, it->second.nodes.front(), room.display));
           }
-          out_.suggestions_.emplace_back(key + " in " + normalise_phrase(room.display),
-                                         thing + " in " + room.display);
+          out_.suggestions_.emplace_back(key + " in " + normalise_phrase(room.display), thing + " in " + room.display);
         }
       }
     }
@@ -134,7 +133,8 @@ class PlacesDecoder {
     std::vector<std::string> nodes;
     for (const auto& item : items) {
       RONDO_ASSIGN_OR_RETURN(auto n, node(item));
-      if (std::find(nodes.begin(), nodes.end(), n) != nodes.end()) return item.error(fmt::format("node '{}' is listed twice", n));
+      if (std::find(nodes.begin(), nodes.end(), n) != nodes.end())
+        return item.error(fmt::format("node '{}' is listed twice", n));
       nodes.push_back(std::move(n));
     }
     return add(names, nodes);
@@ -148,7 +148,8 @@ class PlacesDecoder {
     RONDO_ASSIGN_OR_RETURN(auto phrase, place_field.as_string());
     auto where = out_.resolve(phrase);
     if (!where) return place_field.error(where.error().message);
-    if (where->nodes.size() != 1) return place_field.error(fmt::format("'{}' is {} places; a person has one", phrase, where->nodes.size()));
+    if (where->nodes.size() != 1)
+      return place_field.error(fmt::format("'{}' is {} places; a person has one", phrase, where->nodes.size()));
     for (const auto& [name, field] : names) {
       const std::string key = normalise_phrase(name);
       for (const char* form : {"", "'s", "'s desk", "'s place"}) {
@@ -199,12 +200,14 @@ Status Places::add_name(const std::string& key, Entry entry, const Field* where)
     return {};
   }
   if (it->second.nodes == entry.nodes) return {};
-  const std::string message = fmt::format("'{}' already names {} ({})", entry.display,
-                                          fmt::join(it->second.nodes, ", "), it->second.display);
+  const std::string message =
+      fmt::format("'{}' already names {} ({})", entry.display, fmt::join(it->second.nodes, ", "), it->second.display);
   return where ? where->error(message) : Error::invalid(message);
 }
 
-bool Places::is_room(std::string_view phrase) const { return rooms_.count(normalise_phrase(phrase)) > 0; }
+bool Places::is_room(std::string_view phrase) const {
+  return rooms_.count(normalise_phrase(phrase)) > 0;
+}
 
 std::vector<std::string> Places::names() const {
   std::vector<std::string> out;
@@ -234,8 +237,8 @@ Result<Place> Places::resolve(std::string_view phrase, bool suggest) const {
   if (key.empty()) return Error::invalid("a place is missing (nothing where a place should be)");
   if (auto it = names_.find(key); it != names_.end()) {
     if (it->second.ambiguous) {
-      return Error::invalid(fmt::format("'{}' could be any of the nodes {}; use a places-file alias", phrase,
-                                        it->second.display));
+      return Error::invalid(
+          fmt::format("'{}' could be any of the nodes {}; use a places-file alias", phrase, it->second.display));
     }
     return Place{it->second.display, it->second.nodes};
   }
@@ -253,8 +256,9 @@ Result<Place> Places::resolve(std::string_view phrase, bool suggest) const {
     for (const auto& [k, e] : room->second.things) {
       if (std::find(has.begin(), has.end(), e.display) == has.end()) has.push_back(e.display);
     }
-    room_error = Error::not_found(fmt::format("room {} has no place called '{}' ({})", room->second.display, thing,
-                                              has.empty() ? "it has no named places" : "it has: " + fmt::format("{}", fmt::join(has, ", "))));
+    room_error = Error::not_found(
+        fmt::format("room {} has no place called '{}' ({})", room->second.display, thing,
+                    has.empty() ? "it has no named places" : "it has: " + fmt::format("{}", fmt::join(has, ", "))));
     break;
   }
   if (room_error) return *room_error;
@@ -262,15 +266,18 @@ Result<Place> Places::resolve(std::string_view phrase, bool suggest) const {
   std::vector<std::pair<const Room*, const Entry*>> found;
   for (const auto& [room_key, room] : rooms_) {
     if (auto t = room.things.find(key); t != room.things.end()) {
-      const bool seen = std::any_of(found.begin(), found.end(), [&](const auto& f) { return f.second->nodes == t->second.nodes; });
+      const bool seen =
+          std::any_of(found.begin(), found.end(), [&](const auto& f) { return f.second->nodes == t->second.nodes; });
       if (!seen) found.emplace_back(&room, &t->second);
     }
   }
-  if (found.size() == 1) return Place{found[0].second->display + " in " + found[0].first->display, found[0].second->nodes};
+  if (found.size() == 1)
+    return Place{found[0].second->display + " in " + found[0].first->display, found[0].second->nodes};
   if (found.size() > 1) {
     std::vector<std::string> which;
     for (const auto& [room, entry] : found) which.push_back("'" + entry->display + " in " + room->display + "'");
-    return Error::invalid(fmt::format("'{}' is in more than one room; say which: {}", phrase, fmt::join(which, " or ")));
+    return Error::invalid(
+        fmt::format("'{}' is in more than one room; say which: {}", phrase, fmt::join(which, " or ")));
   }
   return unknown(phrase, key, suggest);
 }

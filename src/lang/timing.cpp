@@ -69,9 +69,9 @@ class TimingParser {
     const std::string_view w = word(i_ + 1);
     const auto t = clock_time(w);
     if (!t) {
-      return error(w.empty() ? fmt::format("'{}' needs a time of day such as 15:00", keyword)
-                             : fmt::format("'{}' needs a time of day such as 15:00, not '{}'", keyword,
-                                           t_[i_ + 1].text));
+      return error(w.empty()
+                       ? fmt::format("'{}' needs a time of day such as 15:00", keyword)
+                       : fmt::format("'{}' needs a time of day such as 15:00, not '{}'", keyword, t_[i_ + 1].text));
     }
     i_ += 2;
     return *t;
@@ -172,8 +172,8 @@ class TimingParser {
       }
       RONDO_ASSIGN_OR_RETURN(auto b, time_after(link));
       if (b <= a) {
-        return error(fmt::format("'{} {} {} {}': the second time must be later", keyword, format_time_of_day(a),
-                                 link, format_time_of_day(b)));
+        return error(fmt::format("'{} {} {} {}': the second time must be later", keyword, format_time_of_day(a), link,
+                                 format_time_of_day(b)));
       }
       return once(out_.between, std::pair{a, b}, keyword);
     }
@@ -204,10 +204,11 @@ class TimingParser {
       i_ += 3;
       return once(out_.priority, sign * *v, "with priority");
     }
-    return error(fmt::format("I do not understand '{}' here: after the place come only time words (now, "
-                             "today, tomorrow, on DAY, before/after/at TIME, between TIME and TIME, every ..., "
-                             "for LENGTH, with priority N)",
-                             t_[i_].text));
+    return error(
+        fmt::format("I do not understand '{}' here: after the place come only time words (now, "
+                    "today, tomorrow, on DAY, before/after/at TIME, between TIME and TIME, every ..., "
+                    "for LENGTH, with priority N)",
+                    t_[i_].text));
   }
 
   const Tokens& t_;
@@ -218,8 +219,8 @@ class TimingParser {
 }  // namespace
 
 bool Timing::any() const {
-  return now || day_offset || on_weekday || on_date || before || after || at || between || every || days ||
-         duration || priority;
+  return now || day_offset || on_weekday || on_date || before || after || at || between || every || days || duration ||
+         priority;
 }
 
 bool starts_timing(const Tokens& tokens, std::size_t i) {
@@ -236,6 +237,8 @@ bool starts_timing(const Tokens& tokens, std::size_t i) {
   return false;
 }
 
-Result<Timing> parse_timing(const Tokens& tokens, std::size_t from) { return TimingParser(tokens, from).run(); }
+Result<Timing> parse_timing(const Tokens& tokens, std::size_t from) {
+  return TimingParser(tokens, from).run();
+}
 
 }  // namespace rondo::lang::detail

@@ -16,17 +16,17 @@ namespace rondo::lang::detail {
 
 struct Timing {
   bool now = false;
-  std::optional<int> day_offset;                      // today 0, tomorrow 1
-  std::optional<std::chrono::weekday> on_weekday;     // "on friday"
-  std::optional<std::chrono::year_month_day> on_date; // "on 2026-11-24"
-  std::optional<Duration> before;                     // local times of day
+  std::optional<int> day_offset;                       // today 0, tomorrow 1
+  std::optional<std::chrono::weekday> on_weekday;      // "on friday"
+  std::optional<std::chrono::year_month_day> on_date;  // "on 2026-11-24"
+  std::optional<Duration> before;                      // local times of day
   std::optional<Duration> after;
   std::optional<Duration> at;
   std::optional<std::pair<Duration, Duration>> between;
-  std::optional<Duration> every;                      // "every 2 hours"
+  std::optional<Duration> every;                          // "every 2 hours"
   std::optional<std::vector<std::chrono::weekday>> days;  // "every weekday", "daily", "on weekdays"
-  std::optional<Duration> duration;                   // "for 10 minutes"
-  std::optional<int> priority;                        // "with priority 4"
+  std::optional<Duration> duration;                       // "for 10 minutes"
+  std::optional<int> priority;                            // "with priority 4"
 
   bool recurring() const { return every.has_value() || days.has_value(); }
   bool any() const;

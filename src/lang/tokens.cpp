@@ -8,11 +8,13 @@
 namespace rondo::lang::detail {
 namespace {
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+}
 
 bool is_edge_punctuation(char c) {
-  return c == ',' || c == '.' || c == ';' || c == ':' || c == '!' || c == '?' || c == '"' || c == '(' ||
-         c == ')' || c == '[' || c == ']';
+  return c == ',' || c == '.' || c == ';' || c == ':' || c == '!' || c == '?' || c == '"' || c == '(' || c == ')' ||
+         c == '[' || c == ']';
 }
 
 std::optional<int> digits(std::string_view s) {
@@ -89,7 +91,7 @@ std::optional<Duration> clock_time(std::string_view word) {
 }
 
 std::optional<std::chrono::weekday> weekday_named(std::string_view word) {
-  static constexpr std::array<std::string_view, 7> kNames = {"sunday", "monday", "tuesday", "wednesday",
+  static constexpr std::array<std::string_view, 7> kNames = {"sunday",   "monday", "tuesday", "wednesday",
                                                              "thursday", "friday", "saturday"};
   std::string_view w = word;
   if (w.size() > 3 && w.ends_with('s')) w.remove_suffix(1);
@@ -100,8 +102,8 @@ std::optional<std::chrono::weekday> weekday_named(std::string_view word) {
 }
 
 std::optional<int> count_of(std::string_view word) {
-  static constexpr std::array<std::string_view, 13> kNames = {"zero", "one", "two", "three", "four", "five", "six",
-                                                              "seven", "eight", "nine", "ten", "eleven", "twelve"};
+  static constexpr std::array<std::string_view, 13> kNames = {
+      "zero", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "eleven", "twelve"};
   for (int n = 0; n < static_cast<int>(kNames.size()); ++n) {
     if (word == kNames[static_cast<std::size_t>(n)]) return n;
   }

@@ -14,8 +14,8 @@ bool is_filler(std::string_view word) {
 }
 
 bool is_edge_punctuation(char c) {
-  return c == ',' || c == '.' || c == ';' || c == ':' || c == '!' || c == '?' || c == '"' || c == '(' ||
-         c == ')' || c == '[' || c == ']';
+  return c == ',' || c == '.' || c == ';' || c == ':' || c == '!' || c == '?' || c == '"' || c == '(' || c == ')' ||
+         c == '[' || c == ']';
 }
 
 // Lower case, U+2018/U+2019 as ', and every whitespace byte as a space.
@@ -24,7 +24,8 @@ std::string fold(std::string_view text) {
   out.reserve(text.size());
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
-    if (c == '\xE2' && i + 2 < text.size() && text[i + 1] == '\x80' && (text[i + 2] == '\x98' || text[i + 2] == '\x99')) {
+    if (c == '\xE2' && i + 2 < text.size() && text[i + 1] == '\x80' &&
+        (text[i + 2] == '\x98' || text[i + 2] == '\x99')) {
       out.push_back('\'');
       i += 2;
     } else if (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v') {
@@ -116,8 +117,7 @@ std::size_t edit_distance(std::string_view a, std::string_view b, std::size_t ca
   return std::min(row[b.size()], cap);
 }
 
-std::vector<std::string> nearest(std::string_view word, const std::vector<std::string>& candidates,
-                                 std::size_t count) {
+std::vector<std::string> nearest(std::string_view word, const std::vector<std::string>& candidates, std::size_t count) {
   const auto parts_of = [](std::string_view s) {
     std::vector<std::string_view> parts;
     std::size_t b = 0;

@@ -13,14 +13,14 @@
 namespace rondo {
 namespace {
 
-using ::testing::HasSubstr;
 using test::run_cli;
+using ::testing::HasSubstr;
 
 std::vector<std::string> add(std::vector<std::string> words) {
   std::vector<std::string> args = {"task", "add"};
   args.insert(args.end(), words.begin(), words.end());
-  for (const char* a : {"--map", "examples/office/map.yaml", "--places", "examples/office/places.yaml", "--at",
-                        "2026-11-23T10:00"}) {
+  for (const char* a :
+       {"--map", "examples/office/map.yaml", "--places", "examples/office/places.yaml", "--at", "2026-11-23T10:00"}) {
     args.emplace_back(a);
   }
   return args;
@@ -78,8 +78,8 @@ TEST(TaskAdd, WordsItCannotReadAreExitCode2NamingThem) {
   auto zone = run_cli({"task", "add", "check A-123", "--map", "examples/office/map.yaml", "--at", "2026-11-23T10:00Z"});
   EXPECT_EQ(zone.exit_code, 2);
   EXPECT_THAT(zone.err, HasSubstr("no time zone: give --time-zone ZONE, or time_zone in the places file"));
-  auto bad_places = run_cli({"task", "add", "check A-123", "--map", "examples/office/map.yaml", "--places",
-                             "examples/office/world.yaml"});
+  auto bad_places = run_cli(
+      {"task", "add", "check A-123", "--map", "examples/office/map.yaml", "--places", "examples/office/world.yaml"});
   EXPECT_EQ(bad_places.exit_code, 2);
   EXPECT_THAT(bad_places.err, HasSubstr("world.yaml:"));
   auto no_map = run_cli({"task", "add", "check A-123", "--map", "no/such/map.yaml", "--time-zone", "UTC"});
@@ -87,8 +87,9 @@ TEST(TaskAdd, WordsItCannotReadAreExitCode2NamingThem) {
 }
 
 TEST(TaskAdd, TimeZoneOptionOverridesThePlacesFile) {
-  auto r = run_cli({"task", "add", "check A-123 before 15:00", "--map", "examples/office/map.yaml", "--places",
-                    "examples/office/places.yaml", "--time-zone", "Europe/Paris", "--at", "2026-11-23 10:00", "--json"});
+  auto r =
+      run_cli({"task", "add", "check A-123 before 15:00", "--map", "examples/office/map.yaml", "--places",
+               "examples/office/places.yaml", "--time-zone", "Europe/Paris", "--at", "2026-11-23 10:00", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Json j = Json::parse(r.out);
   EXPECT_EQ(j["timezone"], "Europe/Paris");

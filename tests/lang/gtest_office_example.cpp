@@ -59,9 +59,9 @@ TEST(OfficeExample, RoutinesAreWhatTheirSentencesMean) {
   CommandContext ctx = test::office_context();
   ctx.now = *parse_time("2026-11-23T08:00:00Z");
   std::vector<Routine> made;
-  for (const char* sentence : {"check the emergency exits every 2 hours between 08:00 and 18:00 on weekdays",
-                               "patrol the hallway every weekday at 09:00",
-                               "check the kitchen every weekday between 13:30 and 14:00"}) {
+  for (const char* sentence :
+       {"check the emergency exits every 2 hours between 08:00 and 18:00 on weekdays",
+        "patrol the hallway every weekday at 09:00", "check the kitchen every weekday between 13:30 and 14:00"}) {
     auto c = parse_command(sentence, ctx);
     ASSERT_TRUE(c.ok()) << sentence << ": " << c.error().message;
     made.insert(made.end(), c->routines.begin(), c->routines.end());

@@ -7,7 +7,9 @@
 namespace rondo::lang {
 namespace {
 
-const map::TopoMap& office_map() { return test::office().map; }
+const map::TopoMap& office_map() {
+  return test::office().map;
+}
 
 Result<Places> places_from(const std::string& yaml) {
   auto doc = Document::parse(yaml, DocumentFormat::kYaml, "places.yaml");
@@ -65,10 +67,12 @@ TEST(Places, NamesThatNormaliseAlikeMustMeanTheSameNodes) {
                "places.yaml:3: places[1].name: 'The Dock' already names ChargingPoint (dock)");
   expect_error("places:\n  - {name: a-120, node: A-123}\n", "'a-120' already names A-120 (A-120)");
   // The same meaning twice is not a conflict.
-  EXPECT_TRUE(places_from("places:\n  - {name: dock, node: ChargingPoint}\n  - {name: the dock, node: ChargingPoint}\n").ok());
-  expect_error("rooms:\n  - name: A-120\n    node: A-120\n    places:\n      - {name: desk, node: A-120-Desk}\n"
-               "      - {name: Desk, node: A-123-Desk}\n",
-               "rooms[0].places[1].name: 'Desk' already names A-120-Desk in room A-120");
+  EXPECT_TRUE(
+      places_from("places:\n  - {name: dock, node: ChargingPoint}\n  - {name: the dock, node: ChargingPoint}\n").ok());
+  expect_error(
+      "rooms:\n  - name: A-120\n    node: A-120\n    places:\n      - {name: desk, node: A-120-Desk}\n"
+      "      - {name: Desk, node: A-123-Desk}\n",
+      "rooms[0].places[1].name: 'Desk' already names A-120-Desk in room A-120");
 }
 
 TEST(Places, MalformedFilesAreRejectedWithTheField) {

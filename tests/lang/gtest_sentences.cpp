@@ -41,8 +41,8 @@ std::string day_names(const std::vector<std::chrono::weekday>& days) {
 
 // "routine <name> <hh:mm>-<hh:mm>[ every <d>] <days> <duration> p<priority> @<node> <actions>".
 std::string describe(const Routine& r) {
-  std::string out = fmt::format("routine {} {}-{}", r.name, format_time_of_day(r.window_start),
-                                format_time_of_day(r.window_end));
+  std::string out =
+      fmt::format("routine {} {}-{}", r.name, format_time_of_day(r.window_start), format_time_of_day(r.window_end));
   if (r.every) out += " every " + format_duration(*r.every);
   out += fmt::format(" {} {} p{} @{}", day_names(r.days), format_duration(r.task.duration), r.task.priority,
                      r.task.start_node);
@@ -71,7 +71,9 @@ struct Case {
   bool accepted;
 };
 
-void PrintTo(const Case& c, std::ostream* os) { *os << '"' << c.sentence << '"'; }
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << '"' << c.sentence << '"';
+}
 
 constexpr const char* kT = "@2026-11-23T10:00";
 

@@ -49,7 +49,8 @@ std::string small_word(const std::vector<int>& codes) {
   return s.substr(0, 7);
 }
 
-RC_GTEST_PROP(Words, EditDistanceMatchesTheRecursiveDefinition, (const std::vector<int>& x, const std::vector<int>& y)) {
+RC_GTEST_PROP(Words, EditDistanceMatchesTheRecursiveDefinition,
+              (const std::vector<int>& x, const std::vector<int>& y)) {
   const std::string a = small_word(x);
   const std::string b = small_word(y);
   RC_ASSERT(edit_distance(a, b) == reference_distance(a, b));

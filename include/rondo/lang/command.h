@@ -52,7 +52,7 @@ struct Command {
 };
 
 struct CommandContext {
-  const Places* places = nullptr;  // required
+  const Places* places = nullptr;   // required
   TimeZone zone = TimeZone::utc();  // local times ("before 15:00", "today") are read in it
   Time now{};                       // what "now" and "today" mean
 };

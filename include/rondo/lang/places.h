@@ -66,9 +66,9 @@ class Places {
   Error unknown(std::string_view phrase, const std::string& key, bool suggest) const;
 
   std::optional<TimeZone> zone_;
-  std::map<std::string, Entry> names_;  // normalised name -> entry
-  std::map<std::string, Room> rooms_;   // normalised room name (and aliases) -> room
-  std::size_t longest_room_ = 0;        // the longest key of rooms_
+  std::map<std::string, Entry> names_;                            // normalised name -> entry
+  std::map<std::string, Room> rooms_;                             // normalised room name (and aliases) -> room
+  std::size_t longest_room_ = 0;                                  // the longest key of rooms_
   std::vector<std::pair<std::string, std::string>> suggestions_;  // (normalised, display)
 
   friend class PlacesDecoder;

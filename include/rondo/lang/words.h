@@ -37,7 +37,6 @@ std::size_t edit_distance(std::string_view a, std::string_view b, std::size_t ca
 // The `count` candidates closest to `word`: those sharing more of its words (split at spaces and
 // '-': "desk in a-123" shares three with "a-123-desk") first, then by edit distance, then the one
 // sharing a longer prefix with `word`, then the candidates' order.
-std::vector<std::string> nearest(std::string_view word, const std::vector<std::string>& candidates,
-                                 std::size_t count);
+std::vector<std::string> nearest(std::string_view word, const std::vector<std::string>& candidates, std::size_t count);
 
 }  // namespace rondo::lang
