@@ -11,6 +11,7 @@
 #include <fmt/ranges.h>
 
 #include "build.h"
+#include "rondo/core/utf8.h"
 #include "rondo/lang/command.h"
 #include "rondo/lang/words.h"
 #include "timing.h"
@@ -301,6 +302,16 @@ Result<Command> parse_command(std::string_view sentence, const CommandContext& c
   if (sentence.size() > kMaxSentence) {
     return Error::invalid(
         fmt::format("the command is {} bytes long; the most read is {}", sentence.size(), kMaxSentence));
+  }
+  // Every word may end up in a task file (an object, an id), which must be UTF-8 and plain text.
+  if (auto at = first_invalid_utf8(sentence)) {
+    return Error::invalid(fmt::format("the command is not UTF-8 text (byte {})", *at));
+  }
+  for (std::size_t i = 0; i < sentence.size(); ++i) {
+    const auto c = static_cast<unsigned char>(sentence[i]);
+    if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7F) {
+      return Error::invalid(fmt::format("the command holds a control character (byte {})", i));
+    }
   }
   auto tokens = detail::tokenize(sentence);
   if (tokens.empty()) return Error::invalid("the command is empty");

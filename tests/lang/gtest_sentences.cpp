@@ -187,6 +187,8 @@ const Case kAccepted[] = {
 const Case kRejected[] = {
     {"", "the command is empty", false},
     {"   ,.  ", "the command is empty", false},
+    {"deliver the re\xB6\x8A letter from A-111 to A-120", "the command is not UTF-8 text (byte 14)", false},
+    {"check A-123\x01", "the command holds a control character (byte 11)", false},
     {"fetch the red letter from A-111 to A-120", "I do not understand 'fetch'", false},
     {"deliver the red letter from A-111 to A-121", "no place called 'A-121'; nearest known places: A-120", false},
     {"put the red letter on the sofa in room A-111 on the desk in room A-120",
