@@ -2,6 +2,7 @@
 // tasks, routines or cancellation it must mean, each rejected one with the words its error must
 // contain. Context: examples/office, Monday 2026-11-23 10:00 in London (GMT: local = UTC).
 #include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -278,6 +279,40 @@ TEST(Sentences, CancellationMatchesTheTasksItNames) {
   ASSERT_TRUE(chair.ok() && cancel_chair.ok());
   EXPECT_TRUE(matches(*cancel_chair->cancel, chair->tasks[1]));
   EXPECT_FALSE(matches(*cancel->cancel, chair->tasks[1]));
+}
+
+// Any two different single places the office knows, named in any of their names, make a delivery
+// between exactly their nodes; and the case of the letters never changes what a sentence means.
+RC_GTEST_PROP(Sentences, DeliveriesGoBetweenExactlyThePlacesNamed, ()) {
+  const Places& places = test::office().places;
+  std::vector<std::string> singles;
+  for (const auto& name : places.names()) {
+    if (auto p = places.resolve(name); p && p->nodes.size() == 1) singles.push_back(name);
+  }
+  RC_PRE(singles.size() > 1);
+  const auto from = *rc::gen::elementOf(singles);
+  const auto to = *rc::gen::elementOf(singles);
+  const auto from_node = places.resolve(from)->nodes.front();
+  const auto to_node = places.resolve(to)->nodes.front();
+  const std::string sentence = "deliver the red letter from " + from + " to " + to;
+  auto c = parse_command(sentence, test::office_context());
+  if (from_node == to_node) {
+    RC_ASSERT(!c.ok());
+    RC_ASSERT(c.error().message.find("are the same place") != std::string::npos);
+    return;
+  }
+  RC_ASSERT(c.ok());
+  RC_ASSERT(c->tasks.size() == 2u);
+  RC_ASSERT(c->tasks[0].start_node == from_node);
+  RC_ASSERT(c->tasks[1].start_node == to_node);
+  std::string shouted = sentence;
+  const auto flips = *rc::gen::container<std::vector<bool>>(shouted.size(), rc::gen::arbitrary<bool>());
+  for (std::size_t i = 0; i < shouted.size(); ++i) {
+    if (flips[i]) shouted[i] = static_cast<char>(std::toupper(static_cast<unsigned char>(shouted[i])));
+  }
+  auto again = parse_command(shouted, test::office_context());
+  RC_ASSERT(again.ok());
+  RC_ASSERT(describe(*again) == describe(*c));
 }
 
 TEST(Sentences, TooLongIsAnErrorNotAWait) {
