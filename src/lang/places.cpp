@@ -275,6 +275,7 @@ Result<Place> Places::resolve(std::string_view phrase, bool suggest) const {
     return Place{found[0].second->display + " in " + found[0].first->display, found[0].second->nodes};
   if (found.size() > 1) {
     std::vector<std::string> which;
+    which.reserve(found.size());
     for (const auto& [room, entry] : found) which.push_back("'" + entry->display + " in " + room->display + "'");
     return Error::invalid(
         fmt::format("'{}' is in more than one room; say which: {}", phrase, fmt::join(which, " or ")));
