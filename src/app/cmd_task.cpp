@@ -1,11 +1,15 @@
-// `rondo task ...`: check task and routine files, and show the tasks routines make.
+// `rondo task ...`: check task and routine files, show the tasks routines make, and read a
+// command in words into tasks (docs/commands.md).
 #include <chrono>
 #include <map>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "commands.h"
 #include "rondo/core/task_codec.h"
+#include "rondo/lang/command.h"
+#include "rondo/map/map_loader.h"
 #include "time_parsing_cli.h"
 
 namespace rondo::app {
@@ -17,6 +21,27 @@ struct TaskOptions {
   std::string from;
   int days = 7;
 };
+
+struct AddOptions {
+  std::vector<std::string> words;  // the sentence, as one argument or as several
+  std::string map;
+  std::string places;
+  std::string at;         // "now" for the sentence; default: the system clock
+  std::string time_zone;  // default: the places file's time_zone
+  bool dry_run = false;
+  bool json = false;
+};
+
+void print_tasks(const std::vector<Task>& tasks, const TimeZone& zone, std::ostream& out) {
+  out << fmt::format("{:<36} {:<26} {:<26} {:>8} {:>4}  {}\n", "id", "release", "deadline", "duration", "prio",
+                     "start");
+  for (const auto& t : tasks) {
+    out << fmt::format("{:<36} {:<26} {:<26} {:>8} {:>4}  {}\n", t.id,
+                       t.window ? zone.format_local(t.window->release) : "now",
+                       t.window ? zone.format_local(t.window->deadline) : "-", format_duration(t.duration), t.priority,
+                       t.start_node.empty() ? "-" : t.start_node);
+  }
+}
 
 void check(const TaskOptions& o, CommandContext& ctx) {
   auto file = load_task_file(o.file);
@@ -61,21 +86,82 @@ void expand(const TaskOptions& o, CommandContext& ctx) {
     ctx.out << encode(out).dump(2) << '\n';
     return;
   }
-  const TimeZone zone = file->zone.value_or(TimeZone::utc());
-  ctx.out << fmt::format("{:<36} {:<26} {:<26} {:>8} {:>4}  {}\n", "id", "release", "deadline", "duration", "prio",
-                         "start");
-  for (const auto& t : tasks) {
-    ctx.out << fmt::format("{:<36} {:<26} {:<26} {:>8} {:>4}  {}\n", t.id,
-                           t.window ? zone.format_local(t.window->release) : "now",
-                           t.window ? zone.format_local(t.window->deadline) : "-", format_duration(t.duration),
-                           t.priority, t.start_node.empty() ? "-" : t.start_node);
+  print_tasks(tasks, file->zone.value_or(TimeZone::utc()), ctx.out);
+}
+
+// The zone of the sentence's local times: --time-zone, else the places file's; one is needed.
+Result<TimeZone> zone_for(const AddOptions& o, const lang::Places& places) {
+  if (!o.time_zone.empty()) {
+    auto zone = TimeZone::named(o.time_zone);
+    if (!zone) return Error::invalid("--time-zone: " + zone.error().message);
+    return *zone;
+  }
+  if (places.zone()) return *places.zone();
+  return Error::invalid("no time zone: give --time-zone ZONE, or time_zone in the places file");
+}
+
+Result<lang::Command> read_sentence(const AddOptions& o, TimeZone& zone) {
+  RONDO_ASSIGN_OR_RETURN(auto map, map::load_map(o.map));
+  lang::Places places = lang::Places::from_map(map);
+  if (!o.places.empty()) {
+    RONDO_ASSIGN_OR_RETURN(places, lang::Places::load(o.places, map));
+  }
+  RONDO_ASSIGN_OR_RETURN(zone, zone_for(o, places));
+  lang::CommandContext ctx{&places, zone, {}};
+  if (o.at.empty()) {
+    ctx.now = std::chrono::floor<std::chrono::minutes>(std::chrono::system_clock::now());
+  } else {
+    auto at = zone.parse_time(o.at);
+    if (!at) return Error::invalid("--at: " + at.error().message);
+    ctx.now = *at;
+  }
+  std::string sentence;
+  for (const auto& w : o.words) sentence += (sentence.empty() ? "" : " ") + w;
+  auto command = lang::parse_command(sentence, ctx);
+  if (!command) return command.error().with_context("'" + sentence + "'");
+  return command;
+}
+
+// Prints what the sentence means. Nothing is stored yet: `--data DIR` (queue the command in a
+// deployment's store, issue 16 point 6) plugs in here, after parsing and before printing, and
+// --dry-run will then skip it.
+void add(const AddOptions& o, CommandContext& ctx) {
+  TimeZone zone = TimeZone::utc();
+  auto command = read_sentence(o, zone);
+  if (!command) {
+    fail(ctx, command.error());
+    return;
+  }
+  if (command->cancel) {
+    const auto& c = *command->cancel;
+    if (o.json) {
+      ctx.out << lang::encode(c).dump(2) << '\n';
+    } else if (c.what == lang::Cancellation::What::kDelivery) {
+      ctx.out << fmt::format("cancel the delivery of '{}'\n", c.object);
+    } else if (c.what == lang::Cancellation::What::kActivity) {
+      ctx.out << fmt::format("cancel '{}' tasks at {}\n", c.activity, fmt::join(c.nodes, ", "));
+    } else {
+      ctx.out << fmt::format("cancel task '{}'\n", c.id);
+    }
+    return;
+  }
+  if (o.json) {
+    ctx.out << encode(TaskFile{zone, command->tasks, command->routines}).dump(2) << '\n';
+    return;
+  }
+  if (!command->tasks.empty()) print_tasks(command->tasks, zone, ctx.out);
+  for (const auto& r : command->routines) {
+    ctx.out << fmt::format("routine {}: {} at {}, {}-{}{}{}\n", r.name, r.task.activity, r.task.start_node,
+                           format_time_of_day(r.window_start), format_time_of_day(r.window_end),
+                           r.every ? ", every " + format_duration(*r.every) : std::string(),
+                           r.days.empty() ? ", daily" : fmt::format(", {} day(s) a week", r.days.size()));
   }
 }
 
 }  // namespace
 
 void add_task_commands(CLI::App& root, CommandContext& ctx) {
-  auto* task = root.add_subcommand("task", "Check task and routine files");
+  auto* task = root.add_subcommand("task", "Check task and routine files; read commands in words");
   task->require_subcommand(1);
   auto options = std::make_shared<TaskOptions>();
 
@@ -90,6 +176,18 @@ void add_task_commands(CLI::App& root, CommandContext& ctx) {
   expand_cmd->add_option("--days", options->days, "number of days")->check(CLI::Range(1, 3660));
   expand_cmd->add_flag("--json", options->json, "print the tasks as a task file in JSON");
   expand_cmd->callback([options, &ctx] { expand(*options, ctx); });
+
+  auto add_options = std::make_shared<AddOptions>();
+  auto* add_cmd = task->add_subcommand("add", "Print the task(s) a command in words means (docs/commands.md)");
+  add_cmd->add_option("SENTENCE", add_options->words, "the command, e.g. \"check office A-123 before 15:00\"")
+      ->required();
+  add_cmd->add_option("--map", add_options->map, "the map whose node names places resolve to")->required();
+  add_cmd->add_option("--places", add_options->places, "places file: rooms, aliases, people, groups");
+  add_cmd->add_option("--at", add_options->at, "what 'now' is: a time, local in the zone if it has no offset");
+  add_cmd->add_option("--time-zone", add_options->time_zone, "IANA zone of local times (default: the places file's)");
+  add_cmd->add_flag("--dry-run", add_options->dry_run, "only print (nothing is ever stored yet)");
+  add_cmd->add_flag("--json", add_options->json, "print a task file in JSON (or the cancellation)");
+  add_cmd->callback([add_options, &ctx] { add(*add_options, ctx); });
 }
 
 }  // namespace rondo::app
