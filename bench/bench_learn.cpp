@@ -3,6 +3,7 @@
 //
 //   build/bench/bench_learn [WITHAM_DIR]                 # timings
 //   build/bench/bench_learn [WITHAM_DIR] --export DIR    # also write the derived binary series
+//   build/bench/bench_learn --weekly-calibration         # the weekly term's evidence on synthetic series
 //
 // The exported series (`unix_time state` lines, split at 2014-09-02T16:24:00Z) feed
 // `rondo eval binary --train DIR/X.train --test DIR/X.test`; see docs/learning.md.
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -22,6 +24,7 @@
 #include "rondo/learn/derived_series.h"
 #include "rondo/learn/edge_models.h"
 #include "rondo/learn/fremen.h"
+#include "learn/series.h"
 
 namespace {
 
@@ -69,6 +72,80 @@ void export_series(const std::vector<Traversal>& log, const std::filesystem::pat
   write_split("kitchen", arrivals_in_slot(log, "Kitchen", from, to, hours(1)));
 }
 
+// How often the time-of-week term is chosen on series with no weekly structure (false positives,
+// by threshold) and with a Wednesday-afternoon closure (power), for series of 2 to 8 weeks. What
+// EpisodeOptions::weekly_evidence was set from; no data set is involved.
+void weekly_calibration() {
+  std::mt19937_64 rng(19);
+  auto uniform = [&] { return std::uniform_real_distribution<double>(0.0, 1.0)(rng); };
+  const double thresholds[] = {2.0, 2.5, 3.0};
+  fmt::print("{:<44} {:>6} {:>8} {:>8} {:>8} {:>8}\n", "series (no weekly structure)", "runs", "z>=2", "z>=2.5", "z>=3",
+             "max z");
+  for (int days : {14, 21, 28, 56}) {
+    for (int step : {600, 1800, 3600}) {
+      const int runs = 200;
+      std::array<int, 3> hits{};
+      double max_z = -1e9;
+      for (int r = 0; r < runs; ++r) {
+        // A random daily profile: a base rate and a sinusoid of random amplitude and phase.
+        const double base = 0.1 + 0.8 * uniform(), amp = 0.5 * std::min(base, 1 - base) * uniform();
+        const double phase = 6.283185307 * uniform();
+        auto p = [&](std::int64_t tow, std::int64_t) {
+          return base + amp * std::sin(6.283185307 * static_cast<double>(tow % 86400) / 86400.0 + phase);
+        };
+        const auto series = testing::bernoulli_series(days, step, p, uniform);
+        const double z = fit_episode_binary(series)->model().weekly().evidence;
+        max_z = std::max(max_z, z);
+        for (std::size_t k = 0; k < 3; ++k) hits[k] += z >= thresholds[k] ? 1 : 0;
+      }
+      fmt::print("{:<44} {:>6} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.2f}\n",
+                 fmt::format("{} days, a sample every {} min", days, step / 60), runs, hits[0] / double(runs),
+                 hits[1] / double(runs), hits[2] / double(runs), max_z);
+    }
+  }
+  // Persistent states: a two-state Markov chain (mean stay 2 h open, 1 h closed), sampled every 10
+  // minutes, on top of a daily profile: autocorrelated samples, the hardest case for the test.
+  for (int days : {14, 28, 56}) {
+    const int runs = 200;
+    std::array<int, 3> hits{};
+    double max_z = -1e9;
+    for (int r = 0; r < runs; ++r) {
+      bool open = true;
+      auto p = [&](std::int64_t tow, std::int64_t) {
+        const double night = (tow % 86400) < 7 * 3600 ? 0.5 : 1.0;
+        open = open ? uniform() >= 10.0 / 120.0 * night : uniform() < 10.0 / 60.0;
+        return open ? 1.0 : 0.0;
+      };
+      const double z = fit_episode_binary(testing::bernoulli_series(days, 600, p, uniform))->model().weekly().evidence;
+      max_z = std::max(max_z, z);
+      for (std::size_t k = 0; k < 3; ++k) hits[k] += z >= thresholds[k] ? 1 : 0;
+    }
+    fmt::print("{:<44} {:>6} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.2f}\n",
+               fmt::format("{} days, Markov states, every 10 min", days), runs, hits[0] / double(runs),
+               hits[1] / double(runs), hits[2] / double(runs), max_z);
+  }
+  fmt::print("\n{:<44} {:>6} {:>8} {:>8} {:>8} {:>8}\n", "series (Wednesday 13-17 closed, else p)", "runs", "z>=2",
+             "z>=2.5", "z>=3", "min z");
+  for (int days : {14, 21, 28}) {
+    for (int step : {1800, 3600}) {
+      for (double open : {0.95, 0.7}) {
+        const int runs = 100;
+        std::array<int, 3> hits{};
+        double min_z = 1e9;
+        for (int r = 0; r < runs; ++r) {
+          auto p = [&](std::int64_t tow, std::int64_t) { return testing::wednesday_closure(tow, open); };
+          const double z = fit_episode_binary(testing::bernoulli_series(days, step, p, uniform))->model().weekly().evidence;
+          min_z = std::min(min_z, z);
+          for (std::size_t k = 0; k < 3; ++k) hits[k] += z >= thresholds[k] ? 1 : 0;
+        }
+        fmt::print("{:<44} {:>6} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.2f}\n",
+                   fmt::format("{} days, every {} min, p = {}", days, step / 60, open), runs, hits[0] / double(runs),
+                   hits[1] / double(runs), hits[2] / double(runs), min_z);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -76,6 +153,10 @@ int main(int argc, char** argv) {
   std::string export_dir;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
+    if (arg == "--weekly-calibration") {
+      weekly_calibration();
+      return 0;
+    }
     if (arg == "--export" && i + 1 < argc) {
       export_dir = argv[++i];
     } else {
