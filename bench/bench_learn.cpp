@@ -4,6 +4,8 @@
 //   build/bench/bench_learn [WITHAM_DIR]                 # timings
 //   build/bench/bench_learn [WITHAM_DIR] --export DIR    # also write the derived binary series
 //   build/bench/bench_learn --weekly-calibration         # the weekly term's evidence on synthetic series
+//   build/bench/bench_learn [WITHAM_DIR] --weekly-choices UNTIL   # each edge's choice, fitted before UNTIL
+//   build/bench/bench_learn --export-g4s DIR             # binary series from the simulated G4S building
 //
 // The exported series (`unix_time state` lines, split at 2014-09-02T16:24:00Z) feed
 // `rondo eval binary --train DIR/X.train --test DIR/X.test`; see docs/learning.md.
@@ -25,6 +27,8 @@
 #include "rondo/learn/edge_models.h"
 #include "rondo/learn/fremen.h"
 #include "learn/series.h"
+#include "rondo/map/map_loader.h"
+#include "rondo/sim/sim_world.h"
 
 namespace {
 
@@ -146,18 +150,110 @@ void weekly_calibration() {
   }
 }
 
+// Each edge's weekly choice when fitted on the attempts before `until`.
+void weekly_choices(const std::vector<Traversal>& log, Time until) {
+  std::vector<Traversal> before;
+  std::set<std::string> ids;
+  for (const auto& t : log) {
+    if (t.start < until) before.push_back(t);
+    ids.insert(t.edge_id);
+  }
+  std::vector<EdgeSpec> edges;
+  for (const auto& id : ids) edges.push_back({id, 0.0});
+  EdgeModelsOptions options;
+  options.episode.zone = *TimeZone::named("Europe/London");
+  auto models = *EdgeModels::fit(edges, before, options);
+  fmt::print("{:<28} {:>8} {:>7} {:>8} {:>10} {:>10} {:>6}\n", "edge", "attempts", "scored", "z", "day_brier",
+             "week_brier", "weekly");
+  for (std::size_t e = 0; e < models->size(); ++e) {
+    const EpisodeEdgeModel* m = models->model(e);
+    if (!m) continue;
+    const WeeklyChoice& c = m->weekly();
+    fmt::print("{:<28} {:>8} {:>7} {:>8.2f} {:>10.4f} {:>10.4f} {:>6}", models->spec(e).id, models->attempts(e),
+               c.scored, c.evidence, c.day_brier, c.week_brier, c.weekly ? "yes" : "no");
+    if (c.evidence >= 1) {
+      // The paired Brier difference (week − day) summed per week of the edge's training data.
+      std::vector<SlotAttempt> firsts;
+      EpisodeStats replay;
+      for (const auto& t : before) {
+        if (t.edge_id != models->spec(e).id) continue;
+        const Attempt a{t.start, t.start + t.duration, to_seconds(t.duration), t.success};
+        firsts.push_back(m->priors()->slot_attempt(a.start, a.success));
+        firsts.back().first = !replay.in_retry(a.start, *m->priors());
+        replay.add(a, *m->priors());
+      }
+      double previous = 0;
+      fmt::print("  per week:");
+      for (std::size_t i = 0, week_end = 0; i < firsts.size(); i = week_end) {
+        week_end = i;
+        while (week_end < firsts.size() && firsts[week_end].day < firsts[i].day + 7) ++week_end;
+        const auto prefix = choose_weekly(std::span(firsts).first(week_end), m->priors()->first_success,
+                                          m->priors()->options);
+        const double sum = (prefix.week_brier - prefix.day_brier) * static_cast<double>(week_end);
+        fmt::print(" {:+.3f}", sum - previous);
+        previous = sum;
+      }
+    }
+    fmt::print("\n");
+  }
+}
+
+// Binary series sampled from the simulated G4S building (examples/g4s/world.yaml, seed 19), four
+// weeks of training from Monday 2026-11-23 and two of test: a sensor's view of the dock's door
+// (`g4s_door`: can WayPoint1_WayPoint2 be crossed, every 10 minutes; closed out of office hours
+// and at weekends, with the world's random failures and bursts) and of the corridor closed on
+// Wednesday afternoons (`g4s_corridor`: WayPoint24_WayPoint28 tried every 30 minutes). Each
+// series has its own world and random stream.
+int export_g4s(const std::filesystem::path& dir) {
+  const auto zone = *TimeZone::named("Europe/London");
+  auto map = map::load_map("examples/g4s/map.yaml");
+  if (!map) {
+    std::cerr << "bench_learn: " << map.error().message << " (run from the project root)\n";
+    return 2;
+  }
+  std::filesystem::create_directories(dir);
+  const Time start = zone.at(std::chrono::year_month_day{std::chrono::year{2026}, std::chrono::November, std::chrono::day{23}},
+                             Duration{0});
+  const Time split = start + hours(24 * 28), end = split + hours(24 * 14);
+  for (auto [name, edge_id, step] : {std::tuple{"g4s_door", "WayPoint1_WayPoint2", minutes(10)},
+                                     std::tuple{"g4s_corridor", "WayPoint24_WayPoint28", minutes(30)}}) {
+    auto world = sim::load_world("examples/g4s/world.yaml", *map, zone);
+    if (!world) {
+      std::cerr << "bench_learn: " << world.error().message << '\n';
+      return 2;
+    }
+    const auto edge = map->find_edge(edge_id);
+    if (!edge) {
+      std::cerr << "bench_learn: no edge " << edge_id << '\n';
+      return 2;
+    }
+    sim::Rng rng(19);
+    std::vector<BinarySample> train, test;
+    for (Time t = start; t < end; t += step) {
+      (t < split ? train : test).push_back({t, world->edges->sample_edge(*edge, t, rng).success});
+    }
+    write_series(dir / (std::string(name) + ".train"), train);
+    write_series(dir / (std::string(name) + ".test"), test);
+    fmt::print("exported {}: {} training and {} test samples\n", name, train.size(), test.size());
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string dir = "../shared/data/witham_wharf";
-  std::string export_dir;
+  std::string export_dir, choices_until;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--weekly-calibration") {
       weekly_calibration();
       return 0;
     }
-    if (arg == "--export" && i + 1 < argc) {
+    if (arg == "--export-g4s" && i + 1 < argc) return export_g4s(argv[i + 1]);
+    if (arg == "--weekly-choices" && i + 1 < argc) {
+      choices_until = argv[++i];
+    } else if (arg == "--export" && i + 1 < argc) {
       export_dir = argv[++i];
     } else {
       dir = arg;
@@ -169,6 +265,15 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (!export_dir.empty()) export_series(*log, export_dir);
+  if (!choices_until.empty()) {
+    auto until = parse_time(choices_until);
+    if (!until) {
+      std::cerr << "bench_learn: --weekly-choices: " << until.error().message << '\n';
+      return 2;
+    }
+    weekly_choices(*log, *until);
+    return 0;
+  }
 
   std::set<std::string> ids;
   for (const auto& t : *log) ids.insert(t.edge_id);

@@ -66,7 +66,7 @@ int EpisodePriors::day_slot(Time t) const {
   return static_cast<int>(time_of_day_ms(t, options.zone) * kDaySlots / kDayMs);
 }
 
-FirstAttempt EpisodePriors::first_attempt(Time t, bool success) const {
+SlotAttempt EpisodePriors::slot_attempt(Time t, bool success) const {
   // One zone lookup for the day, the day of the week and the time of day.
   const Time local = t + options.zone.utc_offset(t);
   const auto day = std::chrono::floor<std::chrono::days>(local);
@@ -77,7 +77,7 @@ FirstAttempt EpisodePriors::first_attempt(Time t, bool success) const {
 }
 
 int EpisodePriors::week_slot(Time t) const {
-  return first_attempt(t, false).week_slot;
+  return slot_attempt(t, false).week_slot;
 }
 
 int EpisodePriors::duration_bin(Time t) const {
@@ -209,9 +209,10 @@ struct PooledSums {
 };
 
 // The statistics of every edge under `priors` (only its options are read), and their pooled sums.
-// `firsts` gets each edge's first attempts, in order (what chooses the structure of its q(t)).
+// `firsts` gets each edge's attempts where they fall in the week, in order (what chooses the
+// structure of its q(t)).
 std::vector<EpisodeStats> collect(const std::vector<std::vector<Attempt>>& edges, const EpisodePriors& priors,
-                                  PooledSums& pooled, std::vector<std::vector<FirstAttempt>>& firsts) {
+                                  PooledSums& pooled, std::vector<std::vector<SlotAttempt>>& firsts) {
   std::vector<EpisodeStats> out;
   out.reserve(edges.size());
   firsts.assign(edges.size(), {});
@@ -227,8 +228,10 @@ std::vector<EpisodeStats> collect(const std::vector<std::vector<Attempt>>& edges
         pooled.sy += a.seconds;
         pooled.sxx += stats.last_seconds * stats.last_seconds;
         pooled.sxy += stats.last_seconds * a.seconds;
-      } else if (priors.options.weekly == WeeklyTerm::kAuto) {
-        firsts[e].push_back(priors.first_attempt(a.start, a.success));
+      }
+      if (priors.options.weekly == WeeklyTerm::kAuto) {
+        firsts[e].push_back(priors.slot_attempt(a.start, a.success));
+        firsts[e].back().first = !stats.in_retry(a.start, priors);
       }
       stats.add(a, priors);
     }
@@ -322,7 +325,7 @@ EpisodeFit fit_episode_models(const std::vector<std::vector<Attempt>>& edges, co
   EpisodePriors shape;
   shape.options = options;
   PooledSums sums;
-  std::vector<std::vector<FirstAttempt>> firsts;
+  std::vector<std::vector<SlotAttempt>> firsts;
   auto stats = collect(edges, shape, sums, firsts);
   EpisodeFit fit;
   auto priors = pooled_priors(options, sums);
@@ -334,7 +337,9 @@ EpisodeFit fit_episode_models(const std::vector<std::vector<Attempt>>& edges, co
     tables.offline = std::move(offline[e]);
     WeeklyChoice weekly;
     if (options.weekly == WeeklyTerm::kOn) weekly.weekly = true;
-    if (options.weekly == WeeklyTerm::kAuto) weekly = choose_weekly(firsts[e], priors->first_success, options);
+    if (options.weekly == WeeklyTerm::kAuto) {
+      weekly = choose_weekly(firsts[e], priors->first_success, options);
+    }
     fit.edges.push_back(
         std::make_shared<const EpisodeEdgeModel>(priors, std::move(stats[e]), std::move(tables), weekly));
   }

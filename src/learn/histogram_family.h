@@ -12,9 +12,11 @@
 //
 // The first-attempt estimate of each of those histograms at one slot: the day bin shrunk towards
 // the edge's rate and, with `weekly`, the same bin on the same day of the week shrunk towards the
-// day bin (q_week is q_day otherwise).
+// day bin (q_week is q_day otherwise): q_week = q_day + nw / (nw + weekly_prior) · (week bin's rate −
+// day bin's rate), clamped to [0, 1], nw the week bin's count.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "rondo/learn/episode_model.h"
@@ -60,7 +62,12 @@ void for_each_bin_estimate(int week_slot, const SlotCounts& c, double edge_rate,
       sw += c.week_successes[i];
       nw += c.week_attempts[i];
     }
-    f(q_day, (sw + o.weekly_prior * q_day) / (nw + o.weekly_prior));
+    // The week bin's deviation from the day bin, both as observed, shrunk towards none: the term
+    // then carries weekly structure only (a correction towards the week bin's own rate would also
+    // undo some of the day bin's shrinkage, which looks like an improvement on any series).
+    if (nw <= 0) return f(q_day, q_day);
+    const double correction = nw / (nw + o.weekly_prior) * (sw / nw - s / n);
+    f(q_day, std::clamp(q_day + correction, 0.0, 1.0));
   });
 }
 

@@ -20,8 +20,9 @@
 //
 // Time of day is local time in `EpisodeOptions::zone` (IANA, daylight saving included).
 //
-// The week: q(t) may also carry a time-of-week term, each time-of-day bin split by day of the week
-// and shrunk towards the day's bin (`weekly_prior` pseudo-observations). Whether an edge (or a
+// The week: q(t) may also carry a time-of-week term: each time-of-day bin's estimate is corrected
+// by how the same bin on the same day of the week differs from it, that difference shrunk towards
+// none (`weekly_prior` pseudo-observations). Whether an edge (or a
 // binary series) gets it is chosen per edge from its own training data (WeeklyChoice): both
 // structures predict every first attempt from the attempts before it (prequential, so every score
 // is on data the counts have not seen), and the weekly term is kept only when its Brier score is
@@ -78,12 +79,12 @@ struct EpisodeOptions {
   // The time-of-week term of q(t) and how it is chosen (see the top of this file).
   WeeklyTerm weekly = WeeklyTerm::kAuto;
   // kAuto keeps the term when z = −Σd / sqrt(Σd²) >= this, d the paired differences of the
-  // prequential Brier scores (week − day) of the first attempts. Calibrated on series without any
+  // prequential Brier scores (week − day) of the first attempts, and Σd < 0 in two weeks or more. Calibrated on series without any
   // weekly structure (docs/learning.md), not on a data set.
   double weekly_evidence = 2;
   // Prior strengths, in pseudo-observations.
   double bin_prior = 10;          // a time-of-day bin towards the edge's first-attempt rate
-  double weekly_prior = 10;       // a time-of-week bin towards its time-of-day bin
+  double weekly_prior = 10;       // a time-of-week bin's deviation from its time-of-day bin towards 0
   double edge_prior = 2;          // an edge's first-attempt rate towards the pooled rate
   double length_prior = 5;        // an edge's log retry length towards the pooled one
   double state_prior = 10;        // an edge's state table towards the pooled state table
@@ -102,15 +103,14 @@ inline constexpr int kWeekSlots = 7 * kDaySlots;
 // Each histogram is averaged over this many shifts of its bin edges (by a quarter bin).
 inline constexpr int kHistogramShifts = 4;
 
-// One first attempt of an episode, for choosing the structure of q(t): the attempts
-// of a day are predicted from the days before it only (day-ahead, as the nightly fit is used:
-// otherwise a state that persists for hours would make the finer bins look prescient).
-// Deterministic.
-struct FirstAttempt {
+// One attempt where it falls in the local week, for choosing the structure of q(t).
+struct SlotAttempt {
   std::int64_t day = 0;  // local days since 1970-01-01
   int week_slot = 0;
   bool success = false;
+  bool first = true;  // starts an episode (only first attempts are counted in q's bins)
 };
+
 // What is pooled over all edges of a fit. Immutable once fitted.
 struct EpisodePriors {
   EpisodeOptions options;
@@ -124,7 +124,7 @@ struct EpisodePriors {
 
   int day_slot(Time t) const;      // 0..kDaySlots-1, local time in options.zone
   int week_slot(Time t) const;     // 0..kWeekSlots-1 from local Monday 00:00; day_slot = week_slot % kDaySlots
-  FirstAttempt first_attempt(Time t, bool success) const;  // with the local day number
+  SlotAttempt slot_attempt(Time t, bool success) const;  // with the local day number
   int duration_bin(Time t) const;  // 0..options.duration_bins-1, local time in options.zone
   Json to_json() const;
   static Result<EpisodePriors> from_json(const Json& j);
@@ -164,15 +164,20 @@ struct WeeklyChoice {
   bool weekly = false;
   double evidence = 0;  // z (see EpisodeOptions::weekly_evidence)
   int scored = 0;       // first attempts the two structures predicted differently
+  int weeks_won = 0;    // weeks (7-day blocks from the first attempt) in which the term lowered the score
   double day_brier = 0, week_brier = 0;  // means over all first attempts
   Json to_json() const;
   static Result<WeeklyChoice> from_json(const Json& j);
 };
 
-// Chooses the structure of q(t) from one edge's first attempts (FirstAttempt, in time order);
+// Chooses the structure of q(t) from one edge's attempts (in time order; only first attempts are
+// used: retries of one failure are one observation of q, not hundreds). Each first attempt of a
+// day is predicted from those of the days before it only (day-ahead, as the nightly fit is used:
+// otherwise a state that persists for hours would make the finer bins look prescient). The weekly
+// term is kept when z >= options.weekly_evidence and it lowered the Brier score in at least two
+// different weeks (a weekly pattern recurs; one odd day remembered a week later does not).
 // `pooled_rate` is what an edge's rate is shrunk towards. Deterministic.
-WeeklyChoice choose_weekly(std::span<const FirstAttempt> first_attempts, double pooled_rate,
-                           const EpisodeOptions& options);
+WeeklyChoice choose_weekly(std::span<const SlotAttempt> attempts, double pooled_rate, const EpisodeOptions& options);
 
 // One edge's fitted model: shared priors, the edge's statistics and duration tables. Immutable.
 class EpisodeEdgeModel {
