@@ -4,7 +4,7 @@
 //   build/bench/bench_learn [WITHAM_DIR]                 # timings
 //   build/bench/bench_learn [WITHAM_DIR] --export DIR    # also write the derived binary series
 //   build/bench/bench_learn --weekly-calibration         # the weekly term's evidence on synthetic series
-//   build/bench/bench_learn [WITHAM_DIR] --weekly-choices UNTIL   # each edge's choice, fitted before UNTIL
+//   build/bench/bench_learn [WITHAM_DIR] --weekly-choices UNTIL [--zone Z]  # each edge's choice, fitted before UNTIL
 //   build/bench/bench_learn --export-g4s DIR             # binary series from the simulated G4S building
 //
 // The exported series (`unix_time state` lines, split at 2014-09-02T16:24:00Z) feed
@@ -21,12 +21,12 @@
 
 #include <fmt/format.h>
 
+#include "learn/series.h"
 #include "rondo/core/timezone.h"
 #include "rondo/core/traversal.h"
 #include "rondo/learn/derived_series.h"
 #include "rondo/learn/edge_models.h"
 #include "rondo/learn/fremen.h"
-#include "learn/series.h"
 #include "rondo/map/map_loader.h"
 #include "rondo/sim/sim_world.h"
 
@@ -138,7 +138,8 @@ void weekly_calibration() {
         double min_z = 1e9;
         for (int r = 0; r < runs; ++r) {
           auto p = [&](std::int64_t tow, std::int64_t) { return testing::wednesday_closure(tow, open); };
-          const double z = fit_episode_binary(testing::bernoulli_series(days, step, p, uniform))->model().weekly().evidence;
+          const double z =
+              fit_episode_binary(testing::bernoulli_series(days, step, p, uniform))->model().weekly().evidence;
           min_z = std::min(min_z, z);
           for (std::size_t k = 0; k < 3; ++k) hits[k] += z >= thresholds[k] ? 1 : 0;
         }
@@ -151,7 +152,7 @@ void weekly_calibration() {
 }
 
 // Each edge's weekly choice when fitted on the attempts before `until`.
-void weekly_choices(const std::vector<Traversal>& log, Time until) {
+void weekly_choices(const std::vector<Traversal>& log, Time until, const TimeZone& zone) {
   std::vector<Traversal> before;
   std::set<std::string> ids;
   for (const auto& t : log) {
@@ -161,7 +162,7 @@ void weekly_choices(const std::vector<Traversal>& log, Time until) {
   std::vector<EdgeSpec> edges;
   for (const auto& id : ids) edges.push_back({id, 0.0});
   EdgeModelsOptions options;
-  options.episode.zone = *TimeZone::named("Europe/London");
+  options.episode.zone = zone;
   auto models = *EdgeModels::fit(edges, before, options);
   fmt::print("{:<28} {:>8} {:>7} {:>8} {:>10} {:>10} {:>6}\n", "edge", "attempts", "scored", "z", "day_brier",
              "week_brier", "weekly");
@@ -187,8 +188,8 @@ void weekly_choices(const std::vector<Traversal>& log, Time until) {
       for (std::size_t i = 0, week_end = 0; i < firsts.size(); i = week_end) {
         week_end = i;
         while (week_end < firsts.size() && firsts[week_end].day < firsts[i].day + 7) ++week_end;
-        const auto prefix = choose_weekly(std::span(firsts).first(week_end), m->priors()->first_success,
-                                          m->priors()->options);
+        const auto prefix =
+            choose_weekly(std::span(firsts).first(week_end), m->priors()->first_success, m->priors()->options);
         const double sum = (prefix.week_brier - prefix.day_brier) * static_cast<double>(week_end);
         fmt::print(" {:+.3f}", sum - previous);
         previous = sum;
@@ -212,8 +213,8 @@ int export_g4s(const std::filesystem::path& dir) {
     return 2;
   }
   std::filesystem::create_directories(dir);
-  const Time start = zone.at(std::chrono::year_month_day{std::chrono::year{2026}, std::chrono::November, std::chrono::day{23}},
-                             Duration{0});
+  const Time start = zone.at(
+      std::chrono::year_month_day{std::chrono::year{2026}, std::chrono::November, std::chrono::day{23}}, Duration{0});
   const Time split = start + hours(24 * 28), end = split + hours(24 * 14);
   for (auto [name, edge_id, step] : {std::tuple{"g4s_door", "WayPoint1_WayPoint2", minutes(10)},
                                      std::tuple{"g4s_corridor", "WayPoint24_WayPoint28", minutes(30)}}) {
@@ -243,7 +244,7 @@ int export_g4s(const std::filesystem::path& dir) {
 
 int main(int argc, char** argv) {
   std::string dir = "../shared/data/witham_wharf";
-  std::string export_dir, choices_until;
+  std::string export_dir, choices_until, zone_name = "Europe/London";  // Witham Wharf, Lincoln (UK)
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--weekly-calibration") {
@@ -251,7 +252,9 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (arg == "--export-g4s" && i + 1 < argc) return export_g4s(argv[i + 1]);
-    if (arg == "--weekly-choices" && i + 1 < argc) {
+    if (arg == "--zone" && i + 1 < argc) {
+      zone_name = argv[++i];
+    } else if (arg == "--weekly-choices" && i + 1 < argc) {
       choices_until = argv[++i];
     } else if (arg == "--export" && i + 1 < argc) {
       export_dir = argv[++i];
@@ -271,7 +274,12 @@ int main(int argc, char** argv) {
       std::cerr << "bench_learn: --weekly-choices: " << until.error().message << '\n';
       return 2;
     }
-    weekly_choices(*log, *until);
+    auto zone = TimeZone::named(zone_name);
+    if (!zone) {
+      std::cerr << "bench_learn: --zone: " << zone.error().message << '\n';
+      return 2;
+    }
+    weekly_choices(*log, *until, *zone);
     return 0;
   }
 

@@ -86,12 +86,8 @@ WeeklyChoice choose_weekly(std::span<const SlotAttempt> all, double pooled_rate,
 }
 
 Json WeeklyChoice::to_json() const {
-  return Json{{"weekly", weekly},
-              {"evidence", evidence},
-              {"scored", scored},
-              {"weeks_won", weeks_won},
-              {"day_brier", day_brier},
-              {"week_brier", week_brier}};
+  return Json{{"weekly", weekly},       {"evidence", evidence},   {"scored", scored},
+              {"weeks_won", weeks_won}, {"day_brier", day_brier}, {"week_brier", week_brier}};
 }
 
 Result<WeeklyChoice> WeeklyChoice::from_json(const Json& j) {
@@ -101,9 +97,9 @@ Result<WeeklyChoice> WeeklyChoice::from_json(const Json& j) {
   WeeklyChoice c;
   c.weekly = j["weekly"].get<bool>();
   double scored = 0, weeks_won = 0;
-  for (auto [key, out] : {std::pair{"evidence", &c.evidence}, std::pair{"scored", &scored},
-                          std::pair{"weeks_won", &weeks_won},
-                          std::pair{"day_brier", &c.day_brier}, std::pair{"week_brier", &c.week_brier}}) {
+  for (auto [key, out] :
+       {std::pair{"evidence", &c.evidence}, std::pair{"scored", &scored}, std::pair{"weeks_won", &weeks_won},
+        std::pair{"day_brier", &c.day_brier}, std::pair{"week_brier", &c.week_brier}}) {
     auto v = json_number(j, key);
     if (!v) return v.error().with_context("weekly");
     *out = *v;

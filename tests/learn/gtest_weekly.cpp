@@ -48,14 +48,16 @@ EpisodeOptions with_weekly(WeeklyTerm w) {
 
 // Success probability by day of the week (Monday first), with at least one large difference.
 rc::Gen<std::array<double, 7>> gen_week_levels() {
-  return rc::gen::suchThat(
-      rc::gen::map(rc::gen::container<std::vector<int>>(7, rc::gen::inRange(1, 20)),
-                   [](const std::vector<int>& v) {
-                     std::array<double, 7> out{};
-                     for (std::size_t d = 0; d < 7; ++d) out[d] = v[d] / 20.0;
-                     return out;
-                   }),
-      [](const std::array<double, 7>& l) { return *std::max_element(l.begin(), l.end()) - *std::min_element(l.begin(), l.end()) >= 0.5; });
+  return rc::gen::suchThat(rc::gen::map(rc::gen::container<std::vector<int>>(7, rc::gen::inRange(1, 20)),
+                                        [](const std::vector<int>& v) {
+                                          std::array<double, 7> out{};
+                                          for (std::size_t d = 0; d < 7; ++d) out[d] = v[d] / 20.0;
+                                          return out;
+                                        }),
+                           [](const std::array<double, 7>& l) {
+                             return *std::max_element(l.begin(), l.end()) - *std::min_element(l.begin(), l.end()) >=
+                                    0.5;
+                           });
 }
 
 RC_GTEST_PROP(Weekly, APureWeeklyPatternIsLearned, ()) {
@@ -91,7 +93,9 @@ RC_GTEST_PROP(Weekly, NoWeeklyPatternGetsNoWeeklyTerm, ()) {
   const int weeks = *rc::gen::inRange(4, 13);
   const int step = *rc::gen::element(600, 1800);
   Uniform uniform(*rc::gen::arbitrary<std::uint64_t>());
-  auto p = [&](std::int64_t tow, std::int64_t) { return parts[static_cast<std::size_t>((tow % 86400) / 21600)] / 20.0; };
+  auto p = [&](std::int64_t tow, std::int64_t) {
+    return parts[static_cast<std::size_t>((tow % 86400) / 21600)] / 20.0;
+  };
   const auto series = bernoulli_series(7 * weeks, step, p, uniform);
   const auto model = fit_episode_binary(series);
   RC_LOG() << "z " << model->model().weekly().evidence << "\n";
@@ -190,12 +194,14 @@ RC_GTEST_PROP(Weekly, ChoiceMatchesTheSlowReference, ()) {
   // Up to 60 first attempts over up to 5 weeks, in time order, each with its local day.
   const auto raw = *rc::gen::container<std::vector<std::tuple<int, bool>>>(
       rc::gen::tuple(rc::gen::inRange(0, 5 * kWeekSlots), rc::gen::arbitrary<bool>()));
-  std::vector<std::tuple<int, bool>> sorted(raw.begin(), raw.begin() + static_cast<std::ptrdiff_t>(std::min<std::size_t>(raw.size(), 60)));
+  std::vector<std::tuple<int, bool>> sorted(
+      raw.begin(), raw.begin() + static_cast<std::ptrdiff_t>(std::min<std::size_t>(raw.size(), 60)));
   std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return std::get<0>(a) < std::get<0>(b); });
   std::vector<SlotAttempt> firsts;
   for (auto [slot, ok] : sorted) firsts.push_back({slot / kDaySlots, slot % kWeekSlots, ok});
   EpisodeOptions o;
-  o.day_resolutions = *rc::gen::element(std::vector<int>{1, 2, 3, 4, 6, 8, 12}, std::vector<int>{3, 24}, std::vector<int>{5, 6});
+  o.day_resolutions =
+      *rc::gen::element(std::vector<int>{1, 2, 3, 4, 6, 8, 12}, std::vector<int>{3, 24}, std::vector<int>{5, 6});
   const double pooled = *rc::gen::inRange(0, 101) / 100.0;
   const auto fast = choose_weekly(firsts, pooled, o);
   const auto slow = reference_choice(firsts, pooled, o);

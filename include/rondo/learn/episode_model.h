@@ -79,8 +79,8 @@ struct EpisodeOptions {
   // The time-of-week term of q(t) and how it is chosen (see the top of this file).
   WeeklyTerm weekly = WeeklyTerm::kAuto;
   // kAuto keeps the term when z = −Σd / sqrt(Σd²) >= this, d the paired differences of the
-  // prequential Brier scores (week − day) of the first attempts, and Σd < 0 in two weeks or more. Calibrated on series without any
-  // weekly structure (docs/learning.md), not on a data set.
+  // prequential Brier scores (week − day) of the first attempts, and Σd < 0 in two weeks or more. Calibrated on series
+  // without any weekly structure (docs/learning.md), not on a data set.
   double weekly_evidence = 2;
   // Prior strengths, in pseudo-observations.
   double bin_prior = 10;          // a time-of-day bin towards the edge's first-attempt rate
@@ -122,10 +122,10 @@ struct EpisodePriors {
   // Least-squares line of a retry's duration on the previous attempt's: the expected value.
   double retry_intercept = 0, retry_slope = 1;
 
-  int day_slot(Time t) const;      // 0..kDaySlots-1, local time in options.zone
-  int week_slot(Time t) const;     // 0..kWeekSlots-1 from local Monday 00:00; day_slot = week_slot % kDaySlots
+  int day_slot(Time t) const;   // 0..kDaySlots-1, local time in options.zone
+  int week_slot(Time t) const;  // 0..kWeekSlots-1 from local Monday 00:00; day_slot = week_slot % kDaySlots
   SlotAttempt slot_attempt(Time t, bool success) const;  // with the local day number
-  int duration_bin(Time t) const;  // 0..options.duration_bins-1, local time in options.zone
+  int duration_bin(Time t) const;                        // 0..options.duration_bins-1, local time in options.zone
   Json to_json() const;
   static Result<EpisodePriors> from_json(const Json& j);
 };
