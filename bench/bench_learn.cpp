@@ -79,73 +79,72 @@ void export_series(const std::vector<Traversal>& log, const std::filesystem::pat
 // How often the time-of-week term is chosen on series with no weekly structure (false positives,
 // by threshold) and with a Wednesday-afternoon closure (power), for series of 2 to 8 weeks. What
 // EpisodeOptions::weekly_evidence was set from; no data set is involved.
+// The choices on one kind of series: share with z at or above each threshold, share chosen (z >= 2
+// and won in two weeks), and the extreme z.
+struct Tally {
+  static constexpr std::array<double, 3> kThresholds{2.0, 2.5, 3.0};
+  std::array<int, 3> hits{};
+  int chosen = 0, runs = 0;
+  double min_z = 1e9, max_z = -1e9;
+  void add(const WeeklyChoice& c) {
+    ++runs;
+    for (std::size_t k = 0; k < kThresholds.size(); ++k) hits[k] += c.evidence >= kThresholds[k] ? 1 : 0;
+    chosen += c.weekly ? 1 : 0;
+    min_z = std::min(min_z, c.evidence);
+    max_z = std::max(max_z, c.evidence);
+  }
+  void print(const std::string& what) const {
+    const double n = runs;
+    fmt::print("{:<44} {:>5} {:>7.3f} {:>7.3f} {:>7.3f} {:>7.3f} {:>7.2f} {:>7.2f}\n", what, runs, hits[0] / n,
+               hits[1] / n, hits[2] / n, chosen / n, min_z, max_z);
+  }
+};
+
 void weekly_calibration() {
   std::mt19937_64 rng(19);
   auto uniform = [&] { return std::uniform_real_distribution<double>(0.0, 1.0)(rng); };
-  const double thresholds[] = {2.0, 2.5, 3.0};
-  fmt::print("{:<44} {:>6} {:>8} {:>8} {:>8} {:>8}\n", "series (no weekly structure)", "runs", "z>=2", "z>=2.5", "z>=3",
-             "max z");
+  auto choice = [](const std::vector<BinarySample>& series) { return fit_episode_binary(series)->model().weekly(); };
+  fmt::print("{:<44} {:>5} {:>7} {:>7} {:>7} {:>7} {:>7} {:>7}\n", "series", "runs", "z>=2", "z>=2.5", "z>=3", "chosen",
+             "min z", "max z");
   for (int days : {14, 21, 28, 56}) {
     for (int step : {600, 1800, 3600}) {
-      const int runs = 200;
-      std::array<int, 3> hits{};
-      double max_z = -1e9;
-      for (int r = 0; r < runs; ++r) {
-        // A random daily profile: a base rate and a sinusoid of random amplitude and phase.
+      Tally tally;
+      for (int r = 0; r < 200; ++r) {
+        // No weekly structure: a base rate and a daily sinusoid of random amplitude and phase.
         const double base = 0.1 + 0.8 * uniform(), amp = 0.5 * std::min(base, 1 - base) * uniform();
         const double phase = 6.283185307 * uniform();
         auto p = [&](std::int64_t tow, std::int64_t) {
           return base + amp * std::sin(6.283185307 * static_cast<double>(tow % 86400) / 86400.0 + phase);
         };
-        const auto series = testing::bernoulli_series(days, step, p, uniform);
-        const double z = fit_episode_binary(series)->model().weekly().evidence;
-        max_z = std::max(max_z, z);
-        for (std::size_t k = 0; k < 3; ++k) hits[k] += z >= thresholds[k] ? 1 : 0;
+        tally.add(choice(testing::bernoulli_series(days, step, p, uniform)));
       }
-      fmt::print("{:<44} {:>6} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.2f}\n",
-                 fmt::format("{} days, a sample every {} min", days, step / 60), runs, hits[0] / double(runs),
-                 hits[1] / double(runs), hits[2] / double(runs), max_z);
+      tally.print(fmt::format("no week: {} days, every {} min", days, step / 60));
     }
   }
   // Persistent states: a two-state Markov chain (mean stay 2 h open, 1 h closed), sampled every 10
   // minutes, on top of a daily profile: autocorrelated samples, the hardest case for the test.
-  for (int days : {14, 28, 56}) {
-    const int runs = 200;
-    std::array<int, 3> hits{};
-    double max_z = -1e9;
-    for (int r = 0; r < runs; ++r) {
+  for (int days : {14, 21, 28, 56}) {
+    Tally tally;
+    for (int r = 0; r < 200; ++r) {
       bool open = true;
       auto p = [&](std::int64_t tow, std::int64_t) {
         const double night = (tow % 86400) < 7 * 3600 ? 0.5 : 1.0;
         open = open ? uniform() >= 10.0 / 120.0 * night : uniform() < 10.0 / 60.0;
         return open ? 1.0 : 0.0;
       };
-      const double z = fit_episode_binary(testing::bernoulli_series(days, 600, p, uniform))->model().weekly().evidence;
-      max_z = std::max(max_z, z);
-      for (std::size_t k = 0; k < 3; ++k) hits[k] += z >= thresholds[k] ? 1 : 0;
+      tally.add(choice(testing::bernoulli_series(days, 600, p, uniform)));
     }
-    fmt::print("{:<44} {:>6} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.2f}\n",
-               fmt::format("{} days, Markov states, every 10 min", days), runs, hits[0] / double(runs),
-               hits[1] / double(runs), hits[2] / double(runs), max_z);
+    tally.print(fmt::format("no week: {} days, Markov states, every 10 min", days));
   }
-  fmt::print("\n{:<44} {:>6} {:>8} {:>8} {:>8} {:>8}\n", "series (Wednesday 13-17 closed, else p)", "runs", "z>=2",
-             "z>=2.5", "z>=3", "min z");
   for (int days : {14, 21, 28}) {
     for (int step : {1800, 3600}) {
       for (double open : {0.95, 0.7}) {
-        const int runs = 100;
-        std::array<int, 3> hits{};
-        double min_z = 1e9;
-        for (int r = 0; r < runs; ++r) {
+        Tally tally;
+        for (int r = 0; r < 100; ++r) {
           auto p = [&](std::int64_t tow, std::int64_t) { return testing::wednesday_closure(tow, open); };
-          const double z =
-              fit_episode_binary(testing::bernoulli_series(days, step, p, uniform))->model().weekly().evidence;
-          min_z = std::min(min_z, z);
-          for (std::size_t k = 0; k < 3; ++k) hits[k] += z >= thresholds[k] ? 1 : 0;
+          tally.add(choice(testing::bernoulli_series(days, step, p, uniform)));
         }
-        fmt::print("{:<44} {:>6} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.2f}\n",
-                   fmt::format("{} days, every {} min, p = {}", days, step / 60, open), runs, hits[0] / double(runs),
-                   hits[1] / double(runs), hits[2] / double(runs), min_z);
+        tally.print(fmt::format("Wed 13-17 closed: {} days, every {} min, p {}", days, step / 60, open));
       }
     }
   }

@@ -12,6 +12,7 @@
 
 #include "rondo/learn/edge_models.h"
 #include "rondo/learn/episode_model.h"
+#include "rondo/learn/model_json.h"
 #include "series.h"
 
 namespace rondo::learn {
@@ -100,6 +101,33 @@ RC_GTEST_PROP(Weekly, NoWeeklyPatternGetsNoWeeklyTerm, ()) {
   const auto model = fit_episode_binary(series);
   RC_LOG() << "z " << model->model().weekly().evidence << "\n";
   RC_ASSERT(!model->model().weekly().weekly);
+}
+
+TEST(Weekly, TheChoiceAndTheWeekCountsSurviveJson) {
+  Uniform uniform(3);
+  auto p = [](std::int64_t tow, std::int64_t) { return testing::wednesday_closure(tow, 0.95); };
+  const auto fitted = fit_episode_binary(bernoulli_series(28, 1800, p, uniform));
+  ASSERT_TRUE(fitted->model().weekly().weekly);
+  auto loaded = binary_model_from_json(fitted->to_json());
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  const Time wednesday_15 = monday() + hours(24 * 30 + 15), tuesday_15 = monday() + hours(24 * 29 + 15);
+  EXPECT_DOUBLE_EQ((*loaded)->probability(wednesday_15), fitted->probability(wednesday_15));
+  EXPECT_LT(fitted->probability(wednesday_15), fitted->probability(tuesday_15) - 0.3);
+  EXPECT_EQ((*loaded)->to_json(), fitted->to_json());
+  // A file written before the weekly term (no week counts, no choice) loads as time of day only.
+  Json old = fitted->to_json();
+  old["edge"].erase("weekly");
+  old["edge"]["stats"].erase("week_successes");
+  old["edge"]["stats"].erase("week_attempts");
+  old["priors"].erase("weekly");
+  auto legacy = binary_model_from_json(old);
+  ASSERT_TRUE(legacy.ok()) << legacy.error().message;
+  EXPECT_GT((*legacy)->probability(wednesday_15), fitted->probability(wednesday_15) + 0.3);
+  // A weekly choice without its week counts is an error.
+  Json broken = fitted->to_json();
+  broken["edge"]["stats"].erase("week_attempts");
+  broken["edge"]["stats"].erase("week_successes");
+  EXPECT_FALSE(binary_model_from_json(broken).ok());
 }
 
 TEST(Weekly, AConstantSeriesGetsNoWeeklyTerm) {
