@@ -34,19 +34,20 @@ WeeklyChoice choose_weekly(std::span<const SlotAttempt> all, double pooled_rate,
     }
     today.clear();
   };
-  // The paired differences summed per week (7-day blocks from the first day).
-  std::int64_t week_start = 0;
+  // The paired differences summed per week (7-day blocks from the first day). The first block
+  // never counts as won: it has no earlier week, only bins that cross midnight into yesterday.
+  std::int64_t first_day = 0, week_start = 0;
   double week_sum = 0;
   bool any = false;
   auto close_week = [&] {
-    if (week_sum < 0) ++out.weeks_won;
+    if (week_sum < 0 && week_start > first_day) ++out.weeks_won;
     week_sum = 0;
   };
   int firsts = 0;
   for (const SlotAttempt& f : all) {
     if (!f.first || f.week_slot < 0 || f.week_slot >= kWeekSlots) continue;
     ++firsts;
-    if (!any) week_start = f.day;
+    if (!any) first_day = week_start = f.day;
     any = true;
     if (f.day >= week_start + 7) {
       close_week();

@@ -210,7 +210,7 @@ WeeklyChoice reference_choice(const std::vector<SlotAttempt>& firsts, double poo
   }
   WeeklyChoice out;
   out.scored = scored;
-  for (const auto& [week, sum] : by_week) out.weeks_won += sum < 0 ? 1 : 0;
+  for (const auto& [week, sum] : by_week) out.weeks_won += week > 0 && sum < 0 ? 1 : 0;
   out.evidence = sum_dd > 0 ? -sum_d / std::sqrt(sum_dd) : 0;
   out.weekly = out.evidence >= o.weekly_evidence && out.weeks_won >= 2;
   out.day_brier = firsts.empty() ? 0 : day_loss / static_cast<double>(firsts.size());

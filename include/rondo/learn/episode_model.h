@@ -164,7 +164,7 @@ struct WeeklyChoice {
   bool weekly = false;
   double evidence = 0;  // z (see EpisodeOptions::weekly_evidence)
   int scored = 0;       // first attempts the two structures predicted differently
-  int weeks_won = 0;    // weeks (7-day blocks from the first attempt) in which the term lowered the score
+  int weeks_won = 0;    // 7-day blocks after the first in which the term lowered the score
   double day_brier = 0, week_brier = 0;  // means over all first attempts
   Json to_json() const;
   static Result<WeeklyChoice> from_json(const Json& j);
