@@ -167,8 +167,8 @@ class OfflineEpisodePredictor final : public EdgePredictor {
 
 class EpisodeContender final : public Contender {
  public:
-  explicit EpisodeContender(EpisodeOptions options) : options_(std::move(options)) {}
-  std::string name() const override { return "episode"; }
+  EpisodeContender(std::string name, EpisodeOptions options) : name_(std::move(name)), options_(std::move(options)) {}
+  std::string name() const override { return name_; }
   std::vector<std::unique_ptr<EdgePredictor>> fit(const std::vector<EdgeHistory>& edges, bool online) const override {
     std::vector<std::vector<Attempt>> attempts;
     for (const auto& e : edges) attempts.push_back(e.train);
@@ -185,8 +185,14 @@ class EpisodeContender final : public Contender {
   }
 
  private:
+  std::string name_;
   EpisodeOptions options_;
 };
+
+EpisodeOptions with_weekly(EpisodeOptions o, WeeklyTerm weekly) {
+  o.weekly = weekly;
+  return o;
+}
 
 }  // namespace
 
@@ -196,7 +202,10 @@ std::vector<std::unique_ptr<Contender>> all_contenders(const EpisodeOptions& epi
     out.push_back(std::make_unique<StaticContender>(dedup));
     for (int order : {1, 2, 3, -1}) out.push_back(std::make_unique<FremenContender>(order, dedup));
   }
-  out.push_back(std::make_unique<EpisodeContender>(episode));
+  // "episode": time of day only (the model of issue 3); "episode-week": the time-of-week term
+  // chosen per edge (the default of EpisodeOptions since issue 19).
+  out.push_back(std::make_unique<EpisodeContender>("episode", with_weekly(episode, WeeklyTerm::kOff)));
+  out.push_back(std::make_unique<EpisodeContender>("episode-week", with_weekly(episode, WeeklyTerm::kAuto)));
   return out;
 }
 

@@ -28,7 +28,8 @@ class Contender {
 };
 
 // static, fremen-1..3 and fremen-auto, without and with de-duplication, then our models (fitted
-// with `episode`).
+// with `episode`): "episode" with time of day only, "episode-week" with the time-of-week term
+// chosen per edge (whatever `episode.weekly` says).
 std::vector<std::unique_ptr<Contender>> all_contenders(const EpisodeOptions& episode = {});
 
 }  // namespace rondo::learn

@@ -66,6 +66,20 @@ int EpisodePriors::day_slot(Time t) const {
   return static_cast<int>(time_of_day_ms(t, options.zone) * kDaySlots / kDayMs);
 }
 
+SlotAttempt EpisodePriors::slot_attempt(Time t, bool success) const {
+  // One zone lookup for the day, the day of the week and the time of day.
+  const Time local = t + options.zone.utc_offset(t);
+  const auto day = std::chrono::floor<std::chrono::days>(local);
+  const std::int64_t ms = std::clamp<std::int64_t>((local - day).count(), 0, kDayMs - 1);
+  const unsigned since_monday = (std::chrono::weekday{day}.iso_encoding() + 6) % 7;
+  return {day.time_since_epoch().count(),
+          static_cast<int>(since_monday) * kDaySlots + static_cast<int>(ms * kDaySlots / kDayMs), success};
+}
+
+int EpisodePriors::week_slot(Time t) const {
+  return slot_attempt(t, false).week_slot;
+}
+
 int EpisodePriors::duration_bin(Time t) const {
   return static_cast<int>(time_of_day_ms(t, options.zone) * options.duration_bins / kDayMs);
 }
@@ -94,9 +108,12 @@ void EpisodeStats::add(const Attempt& a, const EpisodePriors& priors) {
       failed_episodes += 1;
       log_length_sum += std::log(static_cast<double>(episode_length));
     }
-    const auto slot = idx(priors.day_slot(a.start));
+    const int week = priors.week_slot(a.start);
+    const auto slot = idx(week % kDaySlots);
     first_attempts[slot] += 1;
     first_successes[slot] += a.success ? 1 : 0;
+    week_attempts[idx(week)] += 1;
+    week_successes[idx(week)] += a.success ? 1 : 0;
     episode_length = 1;
     episode_first_failed = !a.success;
   }
@@ -108,9 +125,10 @@ void EpisodeStats::add(const Attempt& a, const EpisodePriors& priors) {
 
 namespace {
 
-// Calls f(q) for the first-attempt estimate of every shifted histogram at `t`.
+// Calls f(q) for the first-attempt estimate of every shifted histogram at `t` (with the
+// time-of-week term when `weekly`).
 template <class F>
-void for_each_histogram(Time t, const EpisodePriors& priors, const EpisodeStats& live, F&& f) {
+void for_each_histogram(Time t, const EpisodePriors& priors, const EpisodeStats& live, bool weekly, F&& f) {
   const auto& o = priors.options;
   double successes = 0, attempts = 0;
   for (std::size_t b = 0; b < live.first_attempts.size(); ++b) {
@@ -118,17 +136,9 @@ void for_each_histogram(Time t, const EpisodePriors& priors, const EpisodeStats&
     attempts += live.first_attempts[b];
   }
   const double edge = (successes + o.edge_prior * priors.first_success) / (attempts + o.edge_prior);
-  const int slot = priors.day_slot(t);
-  for_each_shifted_histogram(o.day_resolutions, [&](int width, int offset) {
-    const int first = slot - (((slot - offset) % width) + width) % width;
-    double s = 0, n = 0;
-    for (int k = 0; k < width; ++k) {
-      const auto i = idx((first + k + kDaySlots) % kDaySlots);
-      s += live.first_successes[i];
-      n += live.first_attempts[i];
-    }
-    f((s + o.bin_prior * edge) / (n + o.bin_prior));
-  });
+  const SlotCounts counts{live.first_successes.data(), live.first_attempts.data(), live.week_successes.data(),
+                          live.week_attempts.data()};
+  for_each_bin_estimate(priors.week_slot(t), counts, edge, o, weekly, [&](double, double q) { f(q); });
 }
 
 }  // namespace
@@ -136,7 +146,7 @@ void for_each_histogram(Time t, const EpisodePriors& priors, const EpisodeStats&
 double EpisodeEdgeModel::first_attempt_probability(Time t, const EpisodeStats& live) const {
   double sum = 0;
   int count = 0;
-  for_each_histogram(t, *priors_, live, [&](double q) {
+  for_each_histogram(t, *priors_, live, weekly_.weekly, [&](double q) {
     sum += q;
     ++count;
   });
@@ -154,7 +164,7 @@ double EpisodeEdgeModel::offline_probability(Time t, const EpisodeStats& live) c
   const double length = retry_length(live);
   double sum = 0;
   int count = 0;
-  for_each_histogram(t, *priors_, live, [&](double q) {
+  for_each_histogram(t, *priors_, live, weekly_.weekly, [&](double q) {
     sum += q / (q + (1 - q) * length);
     ++count;
   });
@@ -199,11 +209,15 @@ struct PooledSums {
 };
 
 // The statistics of every edge under `priors` (only its options are read), and their pooled sums.
+// `firsts` gets each edge's attempts where they fall in the week, in order (what chooses the
+// structure of its q(t)).
 std::vector<EpisodeStats> collect(const std::vector<std::vector<Attempt>>& edges, const EpisodePriors& priors,
-                                  PooledSums& pooled) {
+                                  PooledSums& pooled, std::vector<std::vector<SlotAttempt>>& firsts) {
   std::vector<EpisodeStats> out;
   out.reserve(edges.size());
-  for (const auto& attempts : edges) {
+  firsts.assign(edges.size(), {});
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const auto& attempts = edges[e];
     EpisodeStats stats;
     for (const Attempt& a : attempts) {
       pooled.durations[a.success ? 1 : 0].push_back(a.seconds);
@@ -214,6 +228,10 @@ std::vector<EpisodeStats> collect(const std::vector<std::vector<Attempt>>& edges
         pooled.sy += a.seconds;
         pooled.sxx += stats.last_seconds * stats.last_seconds;
         pooled.sxy += stats.last_seconds * a.seconds;
+      }
+      if (priors.options.weekly == WeeklyTerm::kAuto) {
+        firsts[e].push_back(priors.slot_attempt(a.start, a.success));
+        firsts[e].back().first = !stats.in_retry(a.start, priors);
       }
       stats.add(a, priors);
     }
@@ -307,7 +325,8 @@ EpisodeFit fit_episode_models(const std::vector<std::vector<Attempt>>& edges, co
   EpisodePriors shape;
   shape.options = options;
   PooledSums sums;
-  auto stats = collect(edges, shape, sums);
+  std::vector<std::vector<SlotAttempt>> firsts;
+  auto stats = collect(edges, shape, sums, firsts);
   EpisodeFit fit;
   auto priors = pooled_priors(options, sums);
   fit.priors = priors;
@@ -316,7 +335,13 @@ EpisodeFit fit_episode_models(const std::vector<std::vector<Attempt>>& edges, co
   for (std::size_t e = 0; e < edges.size(); ++e) {
     auto tables = duration_tables(edges[e], *priors, pooled);
     tables.offline = std::move(offline[e]);
-    fit.edges.push_back(std::make_shared<const EpisodeEdgeModel>(priors, std::move(stats[e]), std::move(tables)));
+    WeeklyChoice weekly;
+    if (options.weekly == WeeklyTerm::kOn) weekly.weekly = true;
+    if (options.weekly == WeeklyTerm::kAuto) {
+      weekly = choose_weekly(firsts[e], priors->first_success, options);
+    }
+    fit.edges.push_back(
+        std::make_shared<const EpisodeEdgeModel>(priors, std::move(stats[e]), std::move(tables), weekly));
   }
   return fit;
 }

@@ -27,6 +27,18 @@ Status read_array(const Json& j, const char* key, std::array<double, N>& out) {
   return {};
 }
 
+const char* weekly_name(WeeklyTerm w) {
+  switch (w) {
+    case WeeklyTerm::kOff:
+      return "off";
+    case WeeklyTerm::kOn:
+      return "on";
+    case WeeklyTerm::kAuto:
+      break;
+  }
+  return "auto";
+}
+
 }  // namespace
 
 Json EpisodePriors::to_json() const {
@@ -43,6 +55,9 @@ Json EpisodePriors::to_json() const {
               {"day_resolutions", o.day_resolutions},
               {"duration_bins", o.duration_bins},
               {"duration_mixture", o.duration_mixture},
+              {"weekly", weekly_name(o.weekly)},
+              {"weekly_evidence", o.weekly_evidence},
+              {"weekly_prior", o.weekly_prior},
               {"first_success", first_success},
               {"log_retry_length", log_retry_length},
               {"state_successes", array_json(state_successes)},
@@ -96,6 +111,21 @@ Result<EpisodePriors> EpisodePriors::from_json(const Json& j) {
     if (!j["duration_mixture"].is_boolean()) return Error::invalid("model: 'duration_mixture' must be true or false");
     p.options.duration_mixture = j["duration_mixture"].get<bool>();
   }
+  // Optional: files written before the time-of-week term had none.
+  p.options.weekly = WeeklyTerm::kOff;
+  if (j.contains("weekly")) {
+    const Json& w = j["weekly"];
+    if (!w.is_string() || (w != "off" && w != "auto" && w != "on")) {
+      return Error::invalid("model: 'weekly' must be \"off\", \"auto\" or \"on\"");
+    }
+    p.options.weekly = w == "off" ? WeeklyTerm::kOff : w == "on" ? WeeklyTerm::kOn : WeeklyTerm::kAuto;
+    for (auto [key, out] : {std::pair{"weekly_evidence", &p.options.weekly_evidence},
+                            std::pair{"weekly_prior", &p.options.weekly_prior}}) {
+      auto v = json_number(j, key);
+      if (!v) return v.error();
+      *out = *v;
+    }
+  }
   p.options.retry_gap = from_seconds(retry_gap_s);
   p.options.duration_half_life = from_seconds(half_life_s);
   if (!j.contains("time_zone") || !j["time_zone"].is_string()) {
@@ -116,6 +146,8 @@ Result<EpisodePriors> EpisodePriors::from_json(const Json& j) {
 Json EpisodeStats::to_json() const {
   return Json{{"first_successes", first_successes},
               {"first_attempts", first_attempts},
+              {"week_successes", week_successes},
+              {"week_attempts", week_attempts},
               {"failed_episodes", failed_episodes},
               {"log_length_sum", log_length_sum},
               {"state_successes", array_json(state_successes)},
@@ -139,6 +171,19 @@ Result<EpisodeStats> EpisodeStats::from_json(const Json& j) {
   }
   s.first_successes = *fs;
   s.first_attempts = *fa;
+  // Optional: files written before the time-of-week term kept day counts only (their models have
+  // no weekly term, so the week counts only start with new observations).
+  if (j.contains("week_successes") || j.contains("week_attempts")) {
+    auto ws = json_numbers(j, "week_successes");
+    auto wa = json_numbers(j, "week_attempts");
+    if (!ws) return ws.error();
+    if (!wa) return wa.error();
+    if (ws->size() != idx(kWeekSlots) || wa->size() != idx(kWeekSlots)) {
+      return Error::invalid("model: 'week_successes'/'week_attempts' must have one number per 15 minutes of the week");
+    }
+    s.week_successes = *ws;
+    s.week_attempts = *wa;
+  }
   auto failed = json_number(j, "failed_episodes");
   auto log_sum = json_number(j, "log_length_sum");
   auto last_end = json_number(j, "last_end_ms");
@@ -171,6 +216,7 @@ Json EpisodeEdgeModel::to_json() const {
   for (const auto& t : durations_.failure) failure.push_back(t.to_json());
   for (const auto& t : durations_.offline) offline.push_back(t.to_json());
   return Json{{"stats", stats_.to_json()},
+              {"weekly", weekly_.to_json()},
               {"durations",
                {{"success", success},
                 {"failure", failure},
@@ -215,7 +261,16 @@ Result<EpisodeEdgeModel> EpisodeEdgeModel::from_json(const Json& j, std::shared_
   }
   tables.success_mean = *success_mean;
   tables.failure_mean = *failure_mean;
-  return EpisodeEdgeModel(std::move(priors), std::move(*stats), std::move(tables));
+  WeeklyChoice weekly;  // optional: none in files written before the time-of-week term
+  if (j.contains("weekly")) {
+    auto w = WeeklyChoice::from_json(j["weekly"]);
+    if (!w) return w.error();
+    weekly = *w;
+    if (weekly.weekly && !j["stats"].contains("week_attempts")) {
+      return Error::invalid("model: an edge with a weekly term needs 'stats.week_attempts'");
+    }
+  }
+  return EpisodeEdgeModel(std::move(priors), std::move(*stats), std::move(tables), weekly);
 }
 
 Json EpisodeBinaryModel::to_json() const {

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 
 #include "rondo/learn/derived_series.h"
 #include "rondo/learn/evaluation.h"
@@ -66,6 +67,26 @@ TEST(EvaluateBinarySeries, ScoresEveryModelInBothProtocols) {
   const Json j = evaluation_to_json(*result);
   EXPECT_TRUE(j["models"][0].contains("rmse"));
   EXPECT_FALSE(evaluate_binary_series({}, test).ok());
+}
+
+TEST(EvaluateBinarySeries, TheWeeklyRowLearnsAWeeklyClosure) {
+  // Closed on Wednesday afternoons, otherwise open 95 % of the time: four weeks to learn, two to test.
+  std::mt19937_64 rng(7);
+  auto uniform = [&] { return std::uniform_real_distribution<double>(0.0, 1.0)(rng); };
+  auto p = [](std::int64_t tow, std::int64_t) { return testing::wednesday_closure(tow, 0.95); };
+  const auto all = testing::bernoulli_series(42, 1800, p, uniform);
+  const std::vector<BinarySample> train(all.begin(), all.begin() + 28 * 48);
+  const std::vector<BinarySample> test(all.begin() + 28 * 48, all.end());
+  auto result = evaluate_binary_series(train, test);
+  ASSERT_TRUE(result.ok());
+  std::map<std::string, double> offline;
+  int weekly_rows = 0;
+  for (const auto& row : result->models) {
+    if (row.name == "episode-week") ++weekly_rows;
+    if (row.protocol == "offline" && !row.train_dedup) offline[row.name] = row.brier;
+  }
+  EXPECT_EQ(weekly_rows, 2);  // offline and online
+  EXPECT_LT(offline.at("episode-week"), offline.at("episode") - 0.005);
 }
 
 TEST(EvaluateEdges, NoEdgePassingTheFilterIsAnError) {

@@ -42,4 +42,21 @@ inline std::vector<Attempt> bursty_edge(int days) {
   return out;
 }
 
+// One sample every `step_s` for `days` from monday(), true with probability p(seconds since
+// Monday 00:00 UTC, seconds since the first sample); `uniform()` draws from [0, 1).
+template <class P, class U>
+std::vector<BinarySample> bernoulli_series(int days, int step_s, P&& p, U&& uniform) {
+  std::vector<BinarySample> out;
+  for (std::int64_t s = 0; s < std::int64_t{days} * 86400; s += step_s) {
+    out.push_back({monday() + seconds(s), uniform() < p(s % (7 * 86400), s)});
+  }
+  return out;
+}
+
+// A weekly closure: true with probability `open` except on Wednesdays 13:00-17:00 (never).
+inline double wednesday_closure(std::int64_t time_of_week_s, double open) {
+  const auto day = time_of_week_s / 86400, tod = time_of_week_s % 86400;
+  return day == 2 && tod >= 13 * 3600 && tod < 17 * 3600 ? 0.0 : open;
+}
+
 }  // namespace rondo::learn::testing

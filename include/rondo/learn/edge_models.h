@@ -60,6 +60,8 @@ class EdgeModels {
   Result<std::size_t> index_of(std::string_view edge_id) const;
   bool has_own_model(std::size_t index) const { return edges_[index].model != nullptr; }
   int attempts(std::size_t index) const { return edges_[index].attempts; }
+  // The edge's own fitted model (its weekly choice, statistics); null for the prior model.
+  const EpisodeEdgeModel* model(std::size_t index) const { return edges_[index].model.get(); }
 
   // Offline estimates (not conditioned on recent outcomes). Precondition: index < size().
   double success_probability(std::size_t index, Time t) const;

@@ -20,6 +20,14 @@
 //
 // Time of day is local time in `EpisodeOptions::zone` (IANA, daylight saving included).
 //
+// The week: q(t) may also carry a time-of-week term: each time-of-day bin's estimate is corrected
+// by how the same bin on the same day of the week differs from it, that difference shrunk towards
+// none (`weekly_prior` pseudo-observations). Whether an edge (or a
+// binary series) gets it is chosen per edge from its own training data (WeeklyChoice): both
+// structures predict every first attempt from the attempts before it (prequential, so every score
+// is on data the counts have not seen), and the weekly term is kept only when its Brier score is
+// lower by at least `weekly_evidence` standard errors of the paired differences.
+//
 //   std::vector<std::vector<Attempt>> per_edge = ...;    // training attempts, each in start order
 //   auto fitted = fit_episode_models(per_edge, {});
 //   double p = fitted.edges[3]->probability(t);                       // offline
@@ -44,6 +52,9 @@
 
 namespace rondo::learn {
 
+// Whether q(t) has a time-of-week term: never, chosen per edge on its training data, always.
+enum class WeeklyTerm { kOff, kAuto, kOn };
+
 struct EpisodeOptions {
   // An attempt that starts less than this after a failed attempt on the same edge ended is a retry.
   Duration retry_gap = seconds(60);
@@ -65,8 +76,15 @@ struct EpisodeOptions {
   // 105 ms). Mixtures scored better on time-ordered validation periods before the default split
   // (docs/learning.md).
   bool duration_mixture = true;
+  // The time-of-week term of q(t) and how it is chosen (see the top of this file).
+  WeeklyTerm weekly = WeeklyTerm::kAuto;
+  // kAuto keeps the term when z = −Σd / sqrt(Σd²) >= this, d the paired differences of the
+  // prequential Brier scores (week − day) of the first attempts, and Σd < 0 in two weeks or more. Calibrated on series
+  // without any weekly structure (docs/learning.md), not on a data set.
+  double weekly_evidence = 2;
   // Prior strengths, in pseudo-observations.
   double bin_prior = 10;          // a time-of-day bin towards the edge's first-attempt rate
+  double weekly_prior = 10;       // a time-of-week bin's deviation from its time-of-day bin towards 0
   double edge_prior = 2;          // an edge's first-attempt rate towards the pooled rate
   double length_prior = 5;        // an edge's log retry length towards the pooled one
   double state_prior = 10;        // an edge's state table towards the pooled state table
@@ -79,10 +97,19 @@ struct EpisodeOptions {
 inline constexpr int kGapBuckets = 13;
 inline constexpr int kStates = 2 * kGapBuckets;
 
-// Counts of first attempts are kept per 15 minutes of the day.
+// Counts of first attempts are kept per 15 minutes of the day and of the week (Monday first).
 inline constexpr int kDaySlots = 96;
+inline constexpr int kWeekSlots = 7 * kDaySlots;
 // Each histogram is averaged over this many shifts of its bin edges (by a quarter bin).
 inline constexpr int kHistogramShifts = 4;
+
+// One attempt where it falls in the local week, for choosing the structure of q(t).
+struct SlotAttempt {
+  std::int64_t day = 0;  // local days since 1970-01-01
+  int week_slot = 0;
+  bool success = false;
+  bool first = true;  // starts an episode (only first attempts are counted in q's bins)
+};
 
 // What is pooled over all edges of a fit. Immutable once fitted.
 struct EpisodePriors {
@@ -95,8 +122,10 @@ struct EpisodePriors {
   // Least-squares line of a retry's duration on the previous attempt's: the expected value.
   double retry_intercept = 0, retry_slope = 1;
 
-  int day_slot(Time t) const;      // 0..kDaySlots-1, local time in options.zone
-  int duration_bin(Time t) const;  // 0..options.duration_bins-1, local time in options.zone
+  int day_slot(Time t) const;   // 0..kDaySlots-1, local time in options.zone
+  int week_slot(Time t) const;  // 0..kWeekSlots-1 from local Monday 00:00; day_slot = week_slot % kDaySlots
+  SlotAttempt slot_attempt(Time t, bool success) const;  // with the local day number
+  int duration_bin(Time t) const;                        // 0..options.duration_bins-1, local time in options.zone
   Json to_json() const;
   static Result<EpisodePriors> from_json(const Json& j);
 };
@@ -105,6 +134,7 @@ struct EpisodePriors {
 // failed-episode lengths, and the recency state. add() takes attempts in order of their end.
 struct EpisodeStats {
   std::vector<double> first_successes, first_attempts;  // per 15-minute slot of the day
+  std::vector<double> week_successes, week_attempts;    // per 15-minute slot of the week
   double failed_episodes = 0, log_length_sum = 0;
   std::array<double, kStates> state_successes{}, state_attempts{};
   // Recency: the last attempt seen, and the failed episode in progress.
@@ -115,7 +145,11 @@ struct EpisodeStats {
   int episode_length = 0;  // attempts in the current episode so far
   bool episode_first_failed = false;
 
-  EpisodeStats() : first_successes(kDaySlots, 0.0), first_attempts(kDaySlots, 0.0) {}
+  EpisodeStats()
+      : first_successes(kDaySlots, 0.0),
+        first_attempts(kDaySlots, 0.0),
+        week_successes(kWeekSlots, 0.0),
+        week_attempts(kWeekSlots, 0.0) {}
   void add(const Attempt& a, const EpisodePriors& priors);
   // True when an attempt starting at t would be a retry of a failure.
   bool in_retry(Time t, const EpisodePriors& priors) const;
@@ -123,6 +157,27 @@ struct EpisodeStats {
   Json to_json() const;
   static Result<EpisodeStats> from_json(const Json& j);
 };
+
+// The structure chosen for one edge's q(t), and the evidence: the prequential Brier scores of its
+// first attempts under time of day alone and with the time-of-week term (0 when not scored).
+struct WeeklyChoice {
+  bool weekly = false;
+  double evidence = 0;  // z (see EpisodeOptions::weekly_evidence)
+  int scored = 0;       // first attempts the two structures predicted differently
+  int weeks_won = 0;    // 7-day blocks after the first in which the term lowered the score
+  double day_brier = 0, week_brier = 0;  // means over all first attempts
+  Json to_json() const;
+  static Result<WeeklyChoice> from_json(const Json& j);
+};
+
+// Chooses the structure of q(t) from one edge's attempts (in time order; only first attempts are
+// used: retries of one failure are one observation of q, not hundreds). Each first attempt of a
+// day is predicted from those of the days before it only (day-ahead, as the nightly fit is used:
+// otherwise a state that persists for hours would make the finer bins look prescient). The weekly
+// term is kept when z >= options.weekly_evidence and it lowered the Brier score in at least two
+// different weeks (a weekly pattern recurs; one odd day remembered a week later does not).
+// `pooled_rate` is what an edge's rate is shrunk towards. Deterministic.
+WeeklyChoice choose_weekly(std::span<const SlotAttempt> attempts, double pooled_rate, const EpisodeOptions& options);
 
 // One edge's fitted model: shared priors, the edge's statistics and duration tables. Immutable.
 class EpisodeEdgeModel {
@@ -134,8 +189,9 @@ class EpisodeEdgeModel {
     // Offline: per 15-minute slot of the local day, all attempts (offline_durations.h).
     std::vector<QuantileTable> offline;
   };
-  EpisodeEdgeModel(std::shared_ptr<const EpisodePriors> priors, EpisodeStats stats, DurationTables durations)
-      : priors_(std::move(priors)), stats_(std::move(stats)), durations_(std::move(durations)) {}
+  EpisodeEdgeModel(std::shared_ptr<const EpisodePriors> priors, EpisodeStats stats, DurationTables durations,
+                   WeeklyChoice weekly = {})
+      : priors_(std::move(priors)), stats_(std::move(stats)), durations_(std::move(durations)), weekly_(weekly) {}
 
   // Offline: success probability of an attempt starting at t, not knowing recent outcomes.
   double probability(Time t) const { return probability(t, stats_, false); }
@@ -155,6 +211,8 @@ class EpisodeEdgeModel {
 
   const EpisodeStats& stats() const { return stats_; }
   const std::shared_ptr<const EpisodePriors>& priors() const { return priors_; }
+  // Whether q(t) has the time-of-week term, and why.
+  const WeeklyChoice& weekly() const { return weekly_; }
   // The edge's part only (statistics and duration tables); the priors are saved once per set.
   Json to_json() const;
   static Result<EpisodeEdgeModel> from_json(const Json& j, std::shared_ptr<const EpisodePriors> priors);
@@ -163,6 +221,7 @@ class EpisodeEdgeModel {
   std::shared_ptr<const EpisodePriors> priors_;
   EpisodeStats stats_;
   DurationTables durations_;
+  WeeklyChoice weekly_;
 };
 
 struct EpisodeFit {
