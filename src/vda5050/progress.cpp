@@ -180,7 +180,7 @@ void ProgressTracker::track_rejections(const State& s, std::vector<ProgressEvent
   std::set<std::pair<std::string, std::string>> now;
   for (const VehicleError& e : s.errors) {
     if (e.error_type != "validationError" && e.error_type != "orderError" &&
-        e.error_type != "orderUpdateError") {
+        e.error_type != "orderUpdateError" && e.error_type != "noRouteError") {
       continue;
     }
     now.insert({e.error_type, e.error_description});

@@ -77,7 +77,8 @@ struct BatteryChanged {
   bool charging = false;
   bool operator==(const BatteryChanged&) const = default;
 };
-// A validationError, orderError or orderUpdateError newly in the state, in the vehicle's words.
+// A validationError, orderError, orderUpdateError or noRouteError newly in the state (the
+// vehicle refused an order or update), in the vehicle's words.
 struct Rejected {
   std::string error_type;
   std::string description;
