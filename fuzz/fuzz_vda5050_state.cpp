@@ -15,8 +15,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (state.error().message.empty()) std::abort();
     return 0;
   }
-  if (state->header.header_id < 0 || state->order_update_id < 0 ||
-      state->last_node_sequence_id < 0) {
+  if (state->header.header_id < 0 || state->order_update_id < 0 || state->last_node_sequence_id < 0) {
     std::abort();
   }
   if (!(state->battery_state.battery_charge >= 0 && state->battery_state.battery_charge <= 100)) {

@@ -109,14 +109,13 @@ Result<std::vector<ActionState>> decode_action_states(const Field& root) {
     ActionState s;
     RONDO_ASSIGN_OR_RETURN(s.action_id, req_string(a, "actionId"));
     RONDO_ASSIGN_OR_RETURN(s.action_type, opt_string(a, "actionType"));
-    RONDO_ASSIGN_OR_RETURN(s.action_status,
-                           parse_enum<ActionStatus>(a, "actionStatus",
-                                                    {{"WAITING", ActionStatus::kWaiting},
-                                                     {"INITIALIZING", ActionStatus::kInitializing},
-                                                     {"RUNNING", ActionStatus::kRunning},
-                                                     {"PAUSED", ActionStatus::kPaused},
-                                                     {"FINISHED", ActionStatus::kFinished},
-                                                     {"FAILED", ActionStatus::kFailed}}));
+    RONDO_ASSIGN_OR_RETURN(s.action_status, parse_enum<ActionStatus>(a, "actionStatus",
+                                                                     {{"WAITING", ActionStatus::kWaiting},
+                                                                      {"INITIALIZING", ActionStatus::kInitializing},
+                                                                      {"RUNNING", ActionStatus::kRunning},
+                                                                      {"PAUSED", ActionStatus::kPaused},
+                                                                      {"FINISHED", ActionStatus::kFinished},
+                                                                      {"FAILED", ActionStatus::kFailed}}));
     RONDO_ASSIGN_OR_RETURN(s.result_description, opt_string(a, "resultDescription"));
     out.push_back(std::move(s));
   }
@@ -130,9 +129,9 @@ Result<std::vector<VehicleError>> decode_errors(const Field& root) {
   for (const Field& e : items) {
     VehicleError v;
     RONDO_ASSIGN_OR_RETURN(v.error_type, req_string(e, "errorType"));
-    RONDO_ASSIGN_OR_RETURN(v.error_level,
-                           parse_enum<ErrorLevel>(e, "errorLevel", {{"WARNING", ErrorLevel::kWarning},
-                                                                    {"FATAL", ErrorLevel::kFatal}}));
+    RONDO_ASSIGN_OR_RETURN(
+        v.error_level,
+        parse_enum<ErrorLevel>(e, "errorLevel", {{"WARNING", ErrorLevel::kWarning}, {"FATAL", ErrorLevel::kFatal}}));
     RONDO_ASSIGN_OR_RETURN(v.error_description, opt_string(e, "errorDescription"));
     RONDO_ASSIGN_OR_RETURN(auto refs, opt_items(e, "errorReferences"));
     for (const Field& r : refs) {
@@ -201,14 +200,12 @@ Result<State> decode_state_fields(const Field& root) {
   if (auto v = root.optional("distanceSinceLastNode")) {
     RONDO_ASSIGN_OR_RETURN(s.distance_since_last_node, v->as_number());
   }
-  RONDO_ASSIGN_OR_RETURN(
-      s.operating_mode,
-      parse_enum<OperatingMode>(root, "operatingMode",
-                                {{"AUTOMATIC", OperatingMode::kAutomatic},
-                                 {"SEMIAUTOMATIC", OperatingMode::kSemiautomatic},
-                                 {"MANUAL", OperatingMode::kManual},
-                                 {"SERVICE", OperatingMode::kService},
-                                 {"TEACHIN", OperatingMode::kTeachin}}));
+  RONDO_ASSIGN_OR_RETURN(s.operating_mode, parse_enum<OperatingMode>(root, "operatingMode",
+                                                                     {{"AUTOMATIC", OperatingMode::kAutomatic},
+                                                                      {"SEMIAUTOMATIC", OperatingMode::kSemiautomatic},
+                                                                      {"MANUAL", OperatingMode::kManual},
+                                                                      {"SERVICE", OperatingMode::kService},
+                                                                      {"TEACHIN", OperatingMode::kTeachin}}));
   RONDO_ASSIGN_OR_RETURN(s.action_states, decode_action_states(root));
   RONDO_ASSIGN_OR_RETURN(s.battery_state, decode_battery(root));
   RONDO_ASSIGN_OR_RETURN(s.errors, decode_errors(root));
@@ -227,12 +224,11 @@ Result<Connection> decode_connection(std::string_view payload) {
   RONDO_ASSIGN_OR_RETURN(Field root, parse_object(payload, "connection"));
   Connection c;
   RONDO_ASSIGN_OR_RETURN(c.header, decode_header(root));
-  RONDO_ASSIGN_OR_RETURN(
-      c.connection_state,
-      parse_enum<ConnectionState>(root, "connectionState",
-                                  {{"ONLINE", ConnectionState::kOnline},
-                                   {"OFFLINE", ConnectionState::kOffline},
-                                   {"CONNECTIONBROKEN", ConnectionState::kConnectionBroken}}));
+  RONDO_ASSIGN_OR_RETURN(c.connection_state,
+                         parse_enum<ConnectionState>(root, "connectionState",
+                                                     {{"ONLINE", ConnectionState::kOnline},
+                                                      {"OFFLINE", ConnectionState::kOffline},
+                                                      {"CONNECTIONBROKEN", ConnectionState::kConnectionBroken}}));
   return c;
 }
 
@@ -243,8 +239,9 @@ Result<Factsheet> decode_factsheet(std::string_view payload, const Compatibility
   auto type = root.optional("typeSpecification");
   if (!type) {
     if (!compat.vda5050_lib_1_4) {
-      return root.error("typeSpecification: missing (a header-only factsheet is accepted only "
-                        "with the vda5050_lib_1_4 compatibility option)");
+      return root.error(
+          "typeSpecification: missing (a header-only factsheet is accepted only "
+          "with the vda5050_lib_1_4 compatibility option)");
     }
     f.header_only = true;
     return f;

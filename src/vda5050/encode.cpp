@@ -92,8 +92,7 @@ Json encode_order(const Header& header, const Order& order) {
   return j;
 }
 
-Json encode_instant_actions(const Header& header, const InstantActions& message,
-                            const Compatibility& compat) {
+Json encode_instant_actions(const Header& header, const InstantActions& message, const Compatibility& compat) {
   Json j = encode_header(header);
   j["actions"] = encode_actions(message.actions);
   if (compat.vda5050_lib_1_4) j["instantActions"] = j["actions"];
@@ -101,13 +100,19 @@ Json encode_instant_actions(const Header& header, const InstantActions& message,
 }
 
 Action cancel_order_action(std::string action_id) {
-  return Action{.action_type = "cancelOrder", .action_id = std::move(action_id),
-                .blocking_type = BlockingType::kHard, .action_description = "", .action_parameters = {}};
+  return Action{.action_type = "cancelOrder",
+                .action_id = std::move(action_id),
+                .blocking_type = BlockingType::kHard,
+                .action_description = "",
+                .action_parameters = {}};
 }
 
 Action state_request_action(std::string action_id) {
-  return Action{.action_type = "stateRequest", .action_id = std::move(action_id),
-                .blocking_type = BlockingType::kNone, .action_description = "", .action_parameters = {}};
+  return Action{.action_type = "stateRequest",
+                .action_id = std::move(action_id),
+                .blocking_type = BlockingType::kNone,
+                .action_description = "",
+                .action_parameters = {}};
 }
 
 }  // namespace rondo::vda5050

@@ -24,8 +24,7 @@ Result<std::string> paho_server_uri(const std::string& broker) {
 
 struct MqttClient::Impl {
   Impl(const std::string& uri, MqttOptions o, MqttHandlers h, Post p)
-      : options(std::move(o)), handlers(std::move(h)), post(std::move(p)),
-        client(uri, options.client_id, nullptr) {}
+      : options(std::move(o)), handlers(std::move(h)), post(std::move(p)), client(uri, options.client_id, nullptr) {}
 
   MqttOptions options;
   MqttHandlers handlers;
@@ -112,16 +111,17 @@ Result<std::unique_ptr<MqttClient>> MqttClient::create(MqttOptions options, Mqtt
     if (!m || !self->handlers.message) return;
     std::string topic = m->get_topic();
     std::string payload = m->to_string();
-    self->post([self, topic = std::move(topic), payload = std::move(payload)] {
-      self->handlers.message(topic, payload);
-    });
+    self->post(
+        [self, topic = std::move(topic), payload = std::move(payload)] { self->handlers.message(topic, payload); });
   });
   return std::unique_ptr<MqttClient>(new MqttClient(std::move(impl)));
 }
 
 MqttClient::MqttClient(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
-MqttClient::~MqttClient() { stop(); }
+MqttClient::~MqttClient() {
+  stop();
+}
 
 void MqttClient::subscribe(const std::string& topic_filter, int qos) {
   {
@@ -173,6 +173,8 @@ void MqttClient::stop(Duration timeout) {
   }
 }
 
-bool MqttClient::connected() const { return impl_->client.is_connected(); }
+bool MqttClient::connected() const {
+  return impl_->client.is_connected();
+}
 
 }  // namespace rondo::vda5050

@@ -1,5 +1,6 @@
 #include "rondo/vda5050/order_builder.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <numbers>
@@ -18,8 +19,8 @@ Result<std::vector<map::EdgeIndex>> route_edges(const map::TopoMap& map, const R
   if (spec.route.empty()) return Error::invalid("route: must have at least one node");
   for (std::size_t i = 0; i < spec.route.size(); ++i) {
     if (spec.route[i] >= map.node_count()) {
-      return Error::invalid("route[" + std::to_string(i) + "]: node index " +
-                            std::to_string(spec.route[i]) + " is not in map '" + map.name() + "'");
+      return Error::invalid("route[" + std::to_string(i) + "]: node index " + std::to_string(spec.route[i]) +
+                            " is not in map '" + map.name() + "'");
     }
   }
   std::vector<map::EdgeIndex> edges;
@@ -32,15 +33,14 @@ Result<std::vector<map::EdgeIndex>> route_edges(const map::TopoMap& map, const R
       }
     }
     if (!found) {
-      return Error::invalid("route[" + std::to_string(i + 1) + "]: no map edge from '" +
-                            map.node(spec.route[i]).name + "' to '" +
-                            map.node(spec.route[i + 1]).name + "'");
+      return Error::invalid("route[" + std::to_string(i + 1) + "]: no map edge from '" + map.node(spec.route[i]).name +
+                            "' to '" + map.node(spec.route[i + 1]).name + "'");
     }
     edges.push_back(*found);
   }
   if (spec.base_edges > edges.size()) {
-    return Error::invalid("base_edges: " + std::to_string(spec.base_edges) +
-                          " is more than the route's " + std::to_string(edges.size()) + " edges");
+    return Error::invalid("base_edges: " + std::to_string(spec.base_edges) + " is more than the route's " +
+                          std::to_string(edges.size()) + " edges");
   }
   if (spec.map_id.empty()) return Error::invalid("map_id: must not be empty");
   return edges;
@@ -62,9 +62,8 @@ std::vector<Action> node_actions(const std::string& order_id, std::int64_t seque
   return out;
 }
 
-Result<Order> build(const map::TopoMap& map, const std::string& order_id,
-                    std::int64_t order_update_id, std::int64_t first_sequence_id,
-                    const RouteSpec& spec) {
+Result<Order> build(const map::TopoMap& map, const std::string& order_id, std::int64_t order_update_id,
+                    std::int64_t first_sequence_id, const RouteSpec& spec) {
   if (order_id.empty()) return Error::invalid("order_id: must not be empty");
   RONDO_ASSIGN_OR_RETURN(auto edges, route_edges(map, spec));
   Order order;
@@ -76,7 +75,9 @@ Result<Order> build(const map::TopoMap& map, const std::string& order_id,
     node.node_id = n.name;
     node.sequence_id = first_sequence_id + 2 * static_cast<std::int64_t>(i);
     node.released = i <= spec.base_edges;
-    node.position = NodePosition{.x = n.pose.x, .y = n.pose.y, .theta = wrap_angle(n.pose.yaw),
+    node.position = NodePosition{.x = n.pose.x,
+                                 .y = n.pose.y,
+                                 .theta = wrap_angle(n.pose.yaw),
                                  .allowed_deviation_xy = n.xy_goal_tolerance,
                                  .allowed_deviation_theta = std::min(n.yaw_goal_tolerance, std::numbers::pi),
                                  .map_id = spec.map_id};

@@ -7,10 +7,14 @@ namespace rondo::vda5050 {
 
 const char* to_string(EdgeOutcome o) {
   switch (o) {
-    case EdgeOutcome::kSucceeded: return "succeeded";
-    case EdgeOutcome::kFailed: return "failed";
-    case EdgeOutcome::kCancelled: return "cancelled";
-    case EdgeOutcome::kRobotFault: return "robot fault";
+    case EdgeOutcome::kSucceeded:
+      return "succeeded";
+    case EdgeOutcome::kFailed:
+      return "failed";
+    case EdgeOutcome::kCancelled:
+      return "cancelled";
+    case EdgeOutcome::kRobotFault:
+      return "robot fault";
   }
   return "?";
 }
@@ -34,7 +38,9 @@ void ProgressTracker::order_sent(const Order& order, Time t) {
   for (const OrderEdge& e : order.edges) edges_[e.sequence_id] = EdgeInfo{e, t};
 }
 
-void ProgressTracker::cancel_sent(const std::string& action_id, Time) { cancel_id_ = action_id; }
+void ProgressTracker::cancel_sent(const std::string& action_id, Time) {
+  cancel_id_ = action_id;
+}
 
 void ProgressTracker::end_order() {
   order_id_.clear();
@@ -75,9 +81,12 @@ void ProgressTracker::finish_edges_up_to(std::int64_t sequence_id, Time t, std::
   if (!passed.empty()) {
     const Time start = free_since(*passed.front());
     for (const EdgeInfo* e : passed) {
-      EdgeAttempt a{.edge_id = e->edge.edge_id, .from_node = e->edge.start_node_id,
-                    .to_node = e->edge.end_node_id, .sequence_id = e->edge.sequence_id,
-                    .start = start, .duration = t - start,
+      EdgeAttempt a{.edge_id = e->edge.edge_id,
+                    .from_node = e->edge.start_node_id,
+                    .to_node = e->edge.end_node_id,
+                    .sequence_id = e->edge.sequence_id,
+                    .start = start,
+                    .duration = t - start,
                     .outcome = fault_in_current_edge_ ? EdgeOutcome::kRobotFault : EdgeOutcome::kSucceeded,
                     .timed = passed.size() == 1};
       out.emplace_back(EdgeFinished{std::move(a)});
@@ -93,10 +102,13 @@ void ProgressTracker::end_current_edge(EdgeOutcome outcome, Time t, std::vector<
   if (e == nullptr || free_since(*e) > t) return;
   const Time start = free_since(*e);
   out.emplace_back(EdgeFinished{EdgeAttempt{
-      .edge_id = e->edge.edge_id, .from_node = e->edge.start_node_id, .to_node = e->edge.end_node_id,
-      .sequence_id = e->edge.sequence_id, .start = start, .duration = t - start,
-      .outcome = (outcome == EdgeOutcome::kFailed && fault_in_current_edge_) ? EdgeOutcome::kRobotFault
-                                                                              : outcome,
+      .edge_id = e->edge.edge_id,
+      .from_node = e->edge.start_node_id,
+      .to_node = e->edge.end_node_id,
+      .sequence_id = e->edge.sequence_id,
+      .start = start,
+      .duration = t - start,
+      .outcome = (outcome == EdgeOutcome::kFailed && fault_in_current_edge_) ? EdgeOutcome::kRobotFault : outcome,
       .timed = true}});
 }
 
@@ -125,10 +137,9 @@ void ProgressTracker::track_route(const State& s, Time t, std::vector<ProgressEv
     }
     return;
   }
-  const bool horizon_only = std::none_of(s.node_states.begin(), s.node_states.end(),
-                                         [](const NodeState& n) { return n.released; });
-  if (next_released_edge() == nullptr && horizon_only && !s.driving &&
-      waiting_reported_at_ != last_sequence_) {
+  const bool horizon_only =
+      std::none_of(s.node_states.begin(), s.node_states.end(), [](const NodeState& n) { return n.released; });
+  if (next_released_edge() == nullptr && horizon_only && !s.driving && waiting_reported_at_ != last_sequence_) {
     waiting_reported_at_ = last_sequence_;
     out.emplace_back(WaitingForUpdate{nodes_.at(last_sequence_), last_sequence_});
   }
@@ -179,8 +190,8 @@ void ProgressTracker::track_faults(const State& s, Time t, std::vector<ProgressE
 void ProgressTracker::track_rejections(const State& s, std::vector<ProgressEvent>& out) {
   std::set<std::pair<std::string, std::string>> now;
   for (const VehicleError& e : s.errors) {
-    if (e.error_type != "validationError" && e.error_type != "orderError" &&
-        e.error_type != "orderUpdateError" && e.error_type != "noRouteError") {
+    if (e.error_type != "validationError" && e.error_type != "orderError" && e.error_type != "orderUpdateError" &&
+        e.error_type != "noRouteError") {
       continue;
     }
     now.insert({e.error_type, e.error_description});
@@ -193,8 +204,7 @@ void ProgressTracker::track_rejections(const State& s, std::vector<ProgressEvent
 
 void ProgressTracker::track_battery(const State& s, std::vector<ProgressEvent>& out) {
   BatteryChanged b{s.battery_state.battery_charge, s.battery_state.charging};
-  if (!battery_ || battery_->charging != b.charging ||
-      std::floor(battery_->charge) != std::floor(b.charge)) {
+  if (!battery_ || battery_->charging != b.charging || std::floor(battery_->charge) != std::floor(b.charge)) {
     battery_ = b;
     out.emplace_back(b);
   }

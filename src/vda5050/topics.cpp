@@ -6,8 +6,7 @@ namespace rondo::vda5050 {
 namespace {
 
 constexpr std::array<Topic, kTopicCount> kAllTopics = {
-    Topic::kOrder,     Topic::kInstantActions, Topic::kState,
-    Topic::kConnection, Topic::kFactsheet,     Topic::kVisualization};
+    Topic::kOrder, Topic::kInstantActions, Topic::kState, Topic::kConnection, Topic::kFactsheet, Topic::kVisualization};
 
 Status check_level(const std::string& value, const char* field) {
   if (value.empty()) return Error::invalid(std::string(field) + ": must not be empty");
@@ -24,12 +23,18 @@ Status check_level(const std::string& value, const char* field) {
 
 const char* to_string(Topic t) {
   switch (t) {
-    case Topic::kOrder: return "order";
-    case Topic::kInstantActions: return "instantActions";
-    case Topic::kState: return "state";
-    case Topic::kConnection: return "connection";
-    case Topic::kFactsheet: return "factsheet";
-    case Topic::kVisualization: return "visualization";
+    case Topic::kOrder:
+      return "order";
+    case Topic::kInstantActions:
+      return "instantActions";
+    case Topic::kState:
+      return "state";
+    case Topic::kConnection:
+      return "connection";
+    case Topic::kFactsheet:
+      return "factsheet";
+    case Topic::kVisualization:
+      return "visualization";
   }
   return "?";
 }

@@ -12,7 +12,9 @@ namespace {
 
 using testing::sample_state_json;
 
-Time at(const char* text) { return *parse_time(text); }
+Time at(const char* text) {
+  return *parse_time(text);
+}
 
 TEST(Vda5050Header, TimestampIsUtcWithMilliseconds) {
   EXPECT_EQ(format_timestamp(at("2026-12-01T20:58:07Z")), "2026-12-01T20:58:07.000Z");
@@ -44,18 +46,36 @@ TEST(Vda5050Topics, NamesAndParse) {
 
 TEST(Vda5050Encode, OrderCarriesEveryField) {
   Order o{.order_id = "o1", .order_update_id = 3, .nodes = {}, .edges = {}};
-  o.nodes.push_back({.node_id = "A", .sequence_id = 0, .released = true,
-                     .position = NodePosition{.x = 1, .y = 2, .theta = 0.5, .allowed_deviation_xy = 0,
-                                              .allowed_deviation_theta = 0, .map_id = "m"},
-                     .actions = {}});
-  o.nodes.push_back({.node_id = "B", .sequence_id = 2, .released = false, .position = std::nullopt,
-                     .actions = {Action{.action_type = "say", .action_id = "o1/0",
-                                        .blocking_type = BlockingType::kHard, .action_description = "",
+  o.nodes.push_back(
+      {.node_id = "A",
+       .sequence_id = 0,
+       .released = true,
+       .position =
+           NodePosition{
+               .x = 1, .y = 2, .theta = 0.5, .allowed_deviation_xy = 0, .allowed_deviation_theta = 0, .map_id = "m"},
+       .actions = {}});
+  o.nodes.push_back({.node_id = "B",
+                     .sequence_id = 2,
+                     .released = false,
+                     .position = std::nullopt,
+                     .actions = {Action{.action_type = "say",
+                                        .action_id = "o1/0",
+                                        .blocking_type = BlockingType::kHard,
+                                        .action_description = "",
                                         .action_parameters = {{"text", std::string("hi")}}}}});
-  o.edges.push_back({.edge_id = "A_B", .sequence_id = 1, .released = false, .start_node_id = "A",
-                     .end_node_id = "B", .max_speed = 0.5, .length = 3.0, .actions = {}});
-  Header h{.header_id = 4, .timestamp = at("2026-12-01T10:00:00Z"), .version = "2.0.0",
-           .manufacturer = "acme", .serial_number = "agv-7"};
+  o.edges.push_back({.edge_id = "A_B",
+                     .sequence_id = 1,
+                     .released = false,
+                     .start_node_id = "A",
+                     .end_node_id = "B",
+                     .max_speed = 0.5,
+                     .length = 3.0,
+                     .actions = {}});
+  Header h{.header_id = 4,
+           .timestamp = at("2026-12-01T10:00:00Z"),
+           .version = "2.0.0",
+           .manufacturer = "acme",
+           .serial_number = "agv-7"};
   Json j = encode_order(h, o);
   EXPECT_EQ(j["headerId"], 4);
   EXPECT_EQ(j["timestamp"], "2026-12-01T10:00:00.000Z");
@@ -70,8 +90,11 @@ TEST(Vda5050Encode, OrderCarriesEveryField) {
 }
 
 TEST(Vda5050Encode, InstantActionsOldKeyOnlyWithTheCompatibilityOption) {
-  Header h{.header_id = 0, .timestamp = at("2026-12-01T10:00:00Z"), .version = "2.0.0",
-           .manufacturer = "acme", .serial_number = "agv-7"};
+  Header h{.header_id = 0,
+           .timestamp = at("2026-12-01T10:00:00Z"),
+           .version = "2.0.0",
+           .manufacturer = "acme",
+           .serial_number = "agv-7"};
   InstantActions ia{.actions = {cancel_order_action("c1")}};
   Json standard = encode_instant_actions(h, ia);
   EXPECT_EQ(standard["actions"][0]["actionType"], "cancelOrder");
@@ -111,7 +134,8 @@ TEST(Vda5050Decode, MalformedStatesAreErrorsThatNameTheField) {
   std::vector<Case> cases = {
       {"missing", [](Json& j) { j.erase("lastNodeSequenceId"); }, "lastNodeSequenceId"},
       {"type", [](Json& j) { j["driving"] = "yes"; }, "driving"},
-      {"nested", [](Json& j) { j["nodeStates"] = Json::parse(R"([{"nodeId":"B","sequenceId":"2","released":true}])"); }, "nodeStates[0].sequenceId"},
+      {"nested", [](Json& j) { j["nodeStates"] = Json::parse(R"([{"nodeId":"B","sequenceId":"2","released":true}])"); },
+       "nodeStates[0].sequenceId"},
       {"enum", [](Json& j) { j["operatingMode"] = "AUTOPILOT"; }, "operatingMode"},
       {"battery", [](Json& j) { j["batteryState"]["batteryCharge"] = 150; }, "batteryCharge"},
       {"negative", [](Json& j) { j["headerId"] = -1; }, "headerId"},
@@ -136,7 +160,8 @@ TEST(Vda5050Decode, ConnectionAndFactsheet) {
   ASSERT_TRUE(c.ok()) << c.error().message;
   EXPECT_EQ(c->connection_state, ConnectionState::kConnectionBroken);
   EXPECT_FALSE(decode_connection(R"({"headerId":1,"timestamp":"2026-12-01T10:00:00Z","version":"2.0.0",
-      "manufacturer":"acme","serialNumber":"agv-7","connectionState":"MAYBE"})").ok());
+      "manufacturer":"acme","serialNumber":"agv-7","connectionState":"MAYBE"})")
+                   .ok());
 
   const char* header_only = R"({"headerId":0,"timestamp":"2026-12-01T10:00:00Z","version":"2.0.0",
       "manufacturer":"acme","serialNumber":"agv-7"})";
@@ -156,8 +181,7 @@ TEST(Vda5050Decode, ConnectionAndFactsheet) {
 
 TEST(Vda5050Inbox, WrongVehicleAndBackwardsHeaderIdsAreIgnoredWithAReason) {
   Inbox inbox("acme", "agv-7");
-  Header h{.header_id = 3, .timestamp = {}, .version = "2.0.0", .manufacturer = "acme",
-           .serial_number = "agv-7"};
+  Header h{.header_id = 3, .timestamp = {}, .version = "2.0.0", .manufacturer = "acme", .serial_number = "agv-7"};
   EXPECT_TRUE(inbox.admit(Topic::kState, h).ok());
   auto again = inbox.admit(Topic::kState, h);
   ASSERT_FALSE(again.ok());
@@ -176,6 +200,28 @@ TEST(Vda5050Inbox, WrongVehicleAndBackwardsHeaderIdsAreIgnoredWithAReason) {
   inbox.new_session();  // a restarted vehicle counts from 0 again
   h.header_id = 0;
   EXPECT_TRUE(inbox.admit(Topic::kState, h).ok());
+}
+
+TEST(Vda5050Inbox, ConnectionSessionsAndTheOlderLastWill) {
+  Inbox inbox("acme", "agv-7");
+  auto conn = [](std::int64_t id, ConnectionState s) {
+    return Connection{.header = {.header_id = id, .timestamp = {}, .version = "2.0.0", .manufacturer = "acme",
+                                 .serial_number = "agv-7"},
+                      .connection_state = s};
+  };
+  Header state{.header_id = 40, .timestamp = {}, .version = "2.0.0", .manufacturer = "acme", .serial_number = "agv-7"};
+  EXPECT_TRUE(inbox.admit(conn(1, ConnectionState::kOnline)).ok());
+  EXPECT_TRUE(inbox.admit(Topic::kState, state).ok());
+  // The will was composed at connect, before ONLINE: headerId 0, and still taken.
+  EXPECT_TRUE(inbox.admit(conn(0, ConnectionState::kConnectionBroken)).ok());
+  EXPECT_FALSE(inbox.admit(conn(0, ConnectionState::kOffline)).ok());
+  // The restarted vehicle: ONLINE starts a new session, its states count from 0 again.
+  EXPECT_TRUE(inbox.admit(conn(1, ConnectionState::kOnline)).ok());
+  state.header_id = 0;
+  EXPECT_TRUE(inbox.admit(Topic::kState, state).ok());
+  Connection other = conn(9, ConnectionState::kOnline);
+  other.header.serial_number = "agv-8";
+  EXPECT_FALSE(inbox.admit(other).ok());
 }
 
 }  // namespace

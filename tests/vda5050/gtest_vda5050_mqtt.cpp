@@ -30,12 +30,16 @@ TEST(Vda5050Mqtt, PublishSubscribeAndResubscribeAfterABrokerRestart) {
   std::vector<std::string> received;
   int connects = 0;
   int losses = 0;
-  MqttHandlers handlers{
-      .message = [&](const std::string& topic, const std::string& payload) { received.push_back(topic + " " + payload); },
-      .connected = [&] { ++connects; },
-      .connection_lost = [&](const std::string&) { ++losses; }};
-  auto sub = MqttClient::create({.broker = broker->url(), .client_id = "rondo-test-sub", .will = std::nullopt,
-                                 .keep_alive = seconds(5), .min_retry = seconds(1), .max_retry = seconds(2)},
+  MqttHandlers handlers{.message = [&](const std::string& topic,
+                                       const std::string& payload) { received.push_back(topic + " " + payload); },
+                        .connected = [&] { ++connects; },
+                        .connection_lost = [&](const std::string&) { ++losses; }};
+  auto sub = MqttClient::create({.broker = broker->url(),
+                                 .client_id = "rondo-test-sub",
+                                 .will = std::nullopt,
+                                 .keep_alive = seconds(5),
+                                 .min_retry = seconds(1),
+                                 .max_retry = seconds(2)},
                                 handlers, events.poster());
   ASSERT_TRUE(sub.ok()) << sub.error().message;
   (*sub)->subscribe("t/v2/m/s/state", 1);
@@ -43,8 +47,12 @@ TEST(Vda5050Mqtt, PublishSubscribeAndResubscribeAfterABrokerRestart) {
 
   int pub_connects = 0;
   MqttHandlers pub_handlers{.message = nullptr, .connected = [&] { ++pub_connects; }, .connection_lost = nullptr};
-  auto pub = MqttClient::create({.broker = broker->url(), .client_id = "rondo-test-pub", .will = std::nullopt,
-                                 .keep_alive = seconds(5), .min_retry = seconds(1), .max_retry = seconds(2)},
+  auto pub = MqttClient::create({.broker = broker->url(),
+                                 .client_id = "rondo-test-pub",
+                                 .will = std::nullopt,
+                                 .keep_alive = seconds(5),
+                                 .min_retry = seconds(1),
+                                 .max_retry = seconds(2)},
                                 pub_handlers, events.poster());
   ASSERT_TRUE(pub.ok());
   EXPECT_FALSE((*pub)->publish({.topic = "t/v2/m/s/state", .payload = "early", .qos = 1, .retained = false}).ok());

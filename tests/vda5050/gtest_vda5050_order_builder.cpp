@@ -41,8 +41,7 @@ std::vector<map::NodeIndex> gen_route(std::size_t nodes, map::NodeIndex start, s
 }
 
 // The shape every order must have, whatever the route.
-void check_order_shape(const Order& o, const RouteSpec& spec, const map::TopoMap& map,
-                       std::int64_t first_sequence) {
+void check_order_shape(const Order& o, const RouteSpec& spec, const map::TopoMap& map, std::int64_t first_sequence) {
   RC_ASSERT(o.nodes.size() == spec.route.size());
   RC_ASSERT(o.edges.size() + 1 == o.nodes.size());
   for (std::size_t i = 0; i < o.nodes.size(); ++i) {
@@ -126,7 +125,9 @@ TEST(Vda5050OrderBuilder, OnTheG4sMap) {
     }
   }
   ASSERT_EQ(route.size(), 4u);
-  RouteSpec spec{.route = route, .base_edges = 1, .map_id = "g4s_y2",
+  RouteSpec spec{.route = route,
+                 .base_edges = 1,
+                 .map_id = "g4s_y2",
                  .final_actions = {rondo::Action{"check_door", {{"door", "fd3"}, {"duration", "2.5"}}}}};
   auto o = build_order(*map, "nav-1", spec);
   ASSERT_TRUE(o.ok()) << o.error().message;
@@ -161,11 +162,16 @@ TEST(Vda5050OrderBuilder, BadRoutesAreErrors) {
     auto o = build_order(map, "o", s);
     return o.ok() ? std::string() : o.error().message;
   };
-  EXPECT_NE(err({.route = {}, .base_edges = 0, .map_id = "m", .final_actions = {}}).find("at least one"), std::string::npos);
-  EXPECT_NE(err({.route = {0, 7}, .base_edges = 0, .map_id = "m", .final_actions = {}}).find("route[1]"), std::string::npos);
-  EXPECT_NE(err({.route = {0, 0}, .base_edges = 0, .map_id = "m", .final_actions = {}}).find("no map edge"), std::string::npos);
-  EXPECT_NE(err({.route = {0, 1}, .base_edges = 2, .map_id = "m", .final_actions = {}}).find("base_edges"), std::string::npos);
-  EXPECT_NE(err({.route = {0, 1}, .base_edges = 1, .map_id = "", .final_actions = {}}).find("map_id"), std::string::npos);
+  EXPECT_NE(err({.route = {}, .base_edges = 0, .map_id = "m", .final_actions = {}}).find("at least one"),
+            std::string::npos);
+  EXPECT_NE(err({.route = {0, 7}, .base_edges = 0, .map_id = "m", .final_actions = {}}).find("route[1]"),
+            std::string::npos);
+  EXPECT_NE(err({.route = {0, 0}, .base_edges = 0, .map_id = "m", .final_actions = {}}).find("no map edge"),
+            std::string::npos);
+  EXPECT_NE(err({.route = {0, 1}, .base_edges = 2, .map_id = "m", .final_actions = {}}).find("base_edges"),
+            std::string::npos);
+  EXPECT_NE(err({.route = {0, 1}, .base_edges = 1, .map_id = "", .final_actions = {}}).find("map_id"),
+            std::string::npos);
   auto o = build_order(map, "o", {.route = {0, 1, 2}, .base_edges = 1, .map_id = "m", .final_actions = {}});
   ASSERT_TRUE(o.ok());
   auto u = build_update(map, *o, {.route = {2, 0}, .base_edges = 1, .map_id = "m", .final_actions = {}});

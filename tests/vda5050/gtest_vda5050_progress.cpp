@@ -6,21 +6,30 @@
 namespace rondo::vda5050 {
 namespace {
 
-Time at(int seconds) { return *parse_time("2026-12-01T10:00:00Z") + rondo::seconds(seconds); }
+Time at(int seconds) {
+  return *parse_time("2026-12-01T10:00:00Z") + rondo::seconds(seconds);
+}
 
 // A line A - B - C - D, edges with sequenceIds 1, 3, 5; the first `base` edges released.
 Order line_order(std::size_t base, std::int64_t update = 0) {
   Order o{.order_id = "o1", .order_update_id = update, .nodes = {}, .edges = {}};
   const char* names[] = {"A", "B", "C", "D"};
   for (std::size_t i = 0; i < 4; ++i) {
-    o.nodes.push_back({.node_id = names[i], .sequence_id = static_cast<std::int64_t>(2 * i),
-                       .released = i <= base, .position = std::nullopt, .actions = {}});
+    o.nodes.push_back({.node_id = names[i],
+                       .sequence_id = static_cast<std::int64_t>(2 * i),
+                       .released = i <= base,
+                       .position = std::nullopt,
+                       .actions = {}});
   }
   for (std::size_t i = 0; i < 3; ++i) {
     o.edges.push_back({.edge_id = std::string(names[i]) + names[i + 1],
-                       .sequence_id = static_cast<std::int64_t>(2 * i + 1), .released = i < base,
-                       .start_node_id = names[i], .end_node_id = names[i + 1], .max_speed = std::nullopt,
-                       .length = std::nullopt, .actions = {}});
+                       .sequence_id = static_cast<std::int64_t>(2 * i + 1),
+                       .released = i < base,
+                       .start_node_id = names[i],
+                       .end_node_id = names[i + 1],
+                       .max_speed = std::nullopt,
+                       .length = std::nullopt,
+                       .actions = {}});
   }
   return o;
 }

@@ -27,7 +27,9 @@ const SchemaCheck& order_schema() {
   return check;
 }
 
-Time now() { return *parse_time("2026-12-01T10:00:00.123Z"); }
+Time now() {
+  return *parse_time("2026-12-01T10:00:00.123Z");
+}
 
 // A random walk on the G4S map, drawn by RapidCheck.
 std::vector<map::NodeIndex> walk(map::NodeIndex start, std::size_t length) {
@@ -67,8 +69,8 @@ TEST(Vda5050Schema, InstantActionsValidateInTheStandardShape) {
   EXPECT_EQ(strict.problems(standard), "");
   // With the compatibility option the extra old key is there: the schema still admits it, the
   // standard shape does not.
-  Json compat = encode_instant_actions(headers.next(Topic::kInstantActions, now()), ia,
-                                       Compatibility{.vda5050_lib_1_4 = true});
+  Json compat =
+      encode_instant_actions(headers.next(Topic::kInstantActions, now()), ia, Compatibility{.vda5050_lib_1_4 = true});
   EXPECT_EQ(SchemaCheck::load("instantActions", Strictness::kSchema).problems(compat), "");
   EXPECT_NE(strict.problems(compat), "");
 }

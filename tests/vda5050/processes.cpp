@@ -48,7 +48,9 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::file
   if (rc != 0) throw std::runtime_error("cannot start " + argv[0]);
 }
 
-ChildProcess::~ChildProcess() { stop(); }
+ChildProcess::~ChildProcess() {
+  stop();
+}
 
 bool ChildProcess::running() {
   if (pid_ <= 0) return false;

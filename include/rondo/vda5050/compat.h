@@ -9,7 +9,7 @@
 //   - its factsheet is only a header: the decoder then accepts a header-only factsheet
 //     (Factsheet::header_only) instead of ignoring it as malformed;
 //   - it does not republish ONLINE on `connection` after an automatic reconnect: a fresh state
-//     message then counts as the vehicle being online (ConnectionWatch).
+//     message then counts as the vehicle being online again (ConnectionWatch, connection_watch.h).
 // Its `connection` at QoS 0 needs no workaround: rondo subscribes at QoS 1 and reads what comes.
 #pragma once
 

@@ -19,8 +19,7 @@ Json encode_header(const Header& header);
 Json encode_action(const Action& action);
 Json encode_order(const Header& header, const Order& order);
 // With compat.vda5050_lib_1_4 the actions are also written under the old key `instantActions`.
-Json encode_instant_actions(const Header& header, const InstantActions& message,
-                            const Compatibility& compat = {});
+Json encode_instant_actions(const Header& header, const InstantActions& message, const Compatibility& compat = {});
 
 // The instant action that cancels the vehicle's order (blockingType HARD, no parameters).
 Action cancel_order_action(std::string action_id);

@@ -6,6 +6,8 @@
 //
 // A vehicle that restarts counts its headerIds from 0 again; it announces itself with ONLINE
 // on `connection`, so an ONLINE message starts a new session: every topic's order resets.
+// A CONNECTIONBROKEN is the vehicle's last will, which it composed when it connected, before its
+// ONLINE: its headerId is older by nature, so it is admitted whatever its headerId.
 #pragma once
 
 #include <array>
@@ -27,7 +29,9 @@ class Inbox {
   // OK when the message is for this vehicle and newer than the last admitted one on `topic`;
   // an error saying why it is ignored otherwise (nothing is recorded then).
   Status admit(Topic topic, const Header& header);
-  // A new session of the vehicle: forget the last headerIds (call on ONLINE, before admit()).
+  // A `connection` message, with the session rules above.
+  Status admit(const Connection& connection);
+  // A new session of the vehicle: forget the last headerIds.
   void new_session() { last_.fill(std::nullopt); }
 
  private:

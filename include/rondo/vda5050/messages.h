@@ -57,7 +57,7 @@ struct Action {
 struct NodePosition {
   double x = 0;
   double y = 0;
-  std::optional<double> theta;  // absent: the vehicle may choose its heading
+  std::optional<double> theta;         // absent: the vehicle may choose its heading
   double allowed_deviation_xy = 0;     // metres; 0 is the vehicle's own tolerance
   double allowed_deviation_theta = 0;  // radians
   std::string map_id;

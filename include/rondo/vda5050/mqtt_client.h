@@ -35,13 +35,13 @@ struct MqttOptions {
   std::string client_id;  // unique at the broker
   std::optional<MqttMessage> will;
   Duration keep_alive = seconds(10);
-  Duration min_retry = seconds(1);   // reconnect back-off, doubling up to max_retry
+  Duration min_retry = seconds(1);  // reconnect back-off, doubling up to max_retry
   Duration max_retry = seconds(8);
 };
 
 struct MqttHandlers {
   std::function<void(const std::string& topic, const std::string& payload)> message;
-  std::function<void()> connected;                       // after each (re)connect and re-subscribe
+  std::function<void()> connected;  // after each (re)connect and re-subscribe
   std::function<void(const std::string& cause)> connection_lost;
 };
 

@@ -28,9 +28,9 @@
 namespace rondo::vda5050 {
 
 struct RouteSpec {
-  std::vector<map::NodeIndex> route;  // consecutive nodes joined by map edges; at least one node
-  std::size_t base_edges = 0;         // how many of the route's edges are released (<= edges)
-  std::string map_id;                 // the deployment's VDA 5050 mapId
+  std::vector<map::NodeIndex> route;         // consecutive nodes joined by map edges; at least one node
+  std::size_t base_edges = 0;                // how many of the route's edges are released (<= edges)
+  std::string map_id;                        // the deployment's VDA 5050 mapId
   std::vector<rondo::Action> final_actions;  // run at the last node of the route
 };
 

@@ -46,7 +46,10 @@ struct EdgeAttempt {
   bool operator==(const EdgeAttempt&) const = default;
 };
 
-struct EdgeFinished { EdgeAttempt attempt; bool operator==(const EdgeFinished&) const = default; };
+struct EdgeFinished {
+  EdgeAttempt attempt;
+  bool operator==(const EdgeFinished&) const = default;
+};
 struct ActionChanged {
   std::string action_id;
   std::string action_type;
@@ -62,7 +65,10 @@ struct WaitingForUpdate {
   bool operator==(const WaitingForUpdate&) const = default;
 };
 // Every node and edge of the order is traversed (node actions are reported on their own).
-struct RouteFinished { std::string node_id; bool operator==(const RouteFinished&) const = default; };
+struct RouteFinished {
+  std::string node_id;
+  bool operator==(const RouteFinished&) const = default;
+};
 // The vehicle reported the cancelOrder instant action FINISHED (succeeded) or FAILED.
 struct CancelFinished {
   std::string action_id;
@@ -70,8 +76,13 @@ struct CancelFinished {
   std::string result_description;
   bool operator==(const CancelFinished&) const = default;
 };
-struct FaultRaised { std::string reason; bool operator==(const FaultRaised&) const = default; };
-struct FaultCleared { bool operator==(const FaultCleared&) const = default; };
+struct FaultRaised {
+  std::string reason;
+  bool operator==(const FaultRaised&) const = default;
+};
+struct FaultCleared {
+  bool operator==(const FaultCleared&) const = default;
+};
 struct BatteryChanged {
   double charge = 0;  // percent
   bool charging = false;
@@ -85,8 +96,8 @@ struct Rejected {
   bool operator==(const Rejected&) const = default;
 };
 
-using ProgressEvent = std::variant<EdgeFinished, ActionChanged, WaitingForUpdate, RouteFinished,
-                                   CancelFinished, FaultRaised, FaultCleared, BatteryChanged, Rejected>;
+using ProgressEvent = std::variant<EdgeFinished, ActionChanged, WaitingForUpdate, RouteFinished, CancelFinished,
+                                   FaultRaised, FaultCleared, BatteryChanged, Rejected>;
 
 class ProgressTracker {
  public:
