@@ -115,4 +115,12 @@ Action state_request_action(std::string action_id) {
                 .action_parameters = {}};
 }
 
+Action factsheet_request_action(std::string action_id) {
+  return Action{.action_type = "factsheetRequest",
+                .action_id = std::move(action_id),
+                .blocking_type = BlockingType::kNone,
+                .action_description = "",
+                .action_parameters = {}};
+}
+
 }  // namespace rondo::vda5050

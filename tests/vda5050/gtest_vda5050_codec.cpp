@@ -205,7 +205,10 @@ TEST(Vda5050Inbox, WrongVehicleAndBackwardsHeaderIdsAreIgnoredWithAReason) {
 TEST(Vda5050Inbox, ConnectionSessionsAndTheOlderLastWill) {
   Inbox inbox("acme", "agv-7");
   auto conn = [](std::int64_t id, ConnectionState s) {
-    return Connection{.header = {.header_id = id, .timestamp = {}, .version = "2.0.0", .manufacturer = "acme",
+    return Connection{.header = {.header_id = id,
+                                 .timestamp = {},
+                                 .version = "2.0.0",
+                                 .manufacturer = "acme",
                                  .serial_number = "agv-7"},
                       .connection_state = s};
   };

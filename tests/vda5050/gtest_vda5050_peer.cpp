@@ -66,6 +66,7 @@ struct Master {
 
   std::optional<ConnectionState> connection;
   std::optional<State> last_state;
+  std::optional<Factsheet> factsheet;
   int states = 0;
   std::vector<std::string> ignored;
   std::vector<ProgressEvent> events;
@@ -78,6 +79,11 @@ struct Master {
       if (!c) return ignored.push_back(c.error().message);
       if (auto ok = inbox.admit(*c); !ok) return ignored.push_back(ok.error().message);
       connection = c->connection_state;
+    } else if (which == Topic::kFactsheet) {
+      auto f = decode_factsheet(payload, compat);
+      if (!f) return ignored.push_back(f.error().message);
+      if (auto ok = inbox.admit(Topic::kFactsheet, f->header); !ok) return ignored.push_back(ok.error().message);
+      factsheet = std::move(*f);
     } else if (which == Topic::kState) {
       auto s = decode_state(payload);
       if (!s) return ignored.push_back(s.error().message);
@@ -94,6 +100,15 @@ struct Master {
     progress.order_sent(order, now());
     ASSERT_TRUE(
         client->publish({.topic = topics.of(Topic::kOrder), .payload = j.dump(), .qos = 1, .retained = false}).ok());
+  }
+
+  void instant(const Action& action) {
+    Json j = encode_instant_actions(headers.next(Topic::kInstantActions, now()), InstantActions{.actions = {action}},
+                                    compat);
+    EXPECT_EQ(instant_schema.problems(j), "");
+    ASSERT_TRUE(
+        client->publish({.topic = topics.of(Topic::kInstantActions), .payload = j.dump(), .qos = 1, .retained = false})
+            .ok());
   }
 
   void cancel(const std::string& action_id) {
@@ -171,11 +186,10 @@ std::unique_ptr<testing::ChildProcess> start_vehicle(const std::string& node, co
   // Numbers as --name=value: a negative value would otherwise read as an option.
   auto arg = [](const char* name, double v) { return std::string("--") + name + "=" + std::to_string(v); };
   return std::make_unique<testing::ChildProcess>(
-      std::vector<std::string>{node, "tests/vda5050/peer/virtual_agv.js", "--broker", broker.url(), "--interface",
-                               "uagv", "--manufacturer", "acme", "--serial", "agv-7", "--map", "g4s_y2", "--node",
-                               at.name, arg("x", at.pose.x), arg("y", at.pose.y),
-                               arg("theta", std::remainder(at.pose.yaw, 2 * M_PI)), arg("speed", kSpeed),
-                               arg("time-lapse", kTimeLapse)},
+      std::vector<std::string>{
+          node, "tests/vda5050/peer/virtual_agv.js", "--broker", broker.url(), "--interface", "uagv", "--manufacturer",
+          "acme", "--serial", "agv-7", "--map", "g4s_y2", "--node", at.name, arg("x", at.pose.x), arg("y", at.pose.y),
+          arg("theta", std::remainder(at.pose.yaw, 2 * M_PI)), arg("speed", kSpeed), arg("time-lapse", kTimeLapse)},
       log);
 }
 
@@ -192,7 +206,9 @@ void wait_online(Master& master, testing::ChildProcess& agv, const fs::path& log
 }
 
 // node, or "" (and the test is skipped by the caller) when it is not installed.
-std::string node_program() { return testing::find_program({"/usr/bin/node", "/usr/local/bin/node"}); }
+std::string node_program() {
+  return testing::find_program({"/usr/bin/node", "/usr/local/bin/node"});
+}
 
 TEST(Vda5050Peer, OrderUpdateActionsAndCancelAgainstVdaLib) {
   std::string why;
@@ -305,7 +321,6 @@ TEST(Vda5050Peer, OrderUpdateActionsAndCancelAgainstVdaLib) {
   master.client->stop();
 }
 
-
 // A vehicle killed with SIGKILL leaves its last will (CONNECTIONBROKEN), and the connection
 // watch calls it offline; restarted, it says ONLINE, counts its headerIds from 0 again, and its
 // states are taken (a new session), not ignored as out of order.
@@ -333,8 +348,8 @@ TEST(Vda5050Peer, AKilledVehicleLeavesItsLastWillAndARestartedOneIsTaken) {
   const int states_before = master.states;
 
   agv->kill_hard();
-  ASSERT_TRUE(master.queue.run_until([&] { return master.connection == ConnectionState::kConnectionBroken; },
-                                     kDeadline));
+  ASSERT_TRUE(
+      master.queue.run_until([&] { return master.connection == ConnectionState::kConnectionBroken; }, kDeadline));
   watch.on_connection(*master.connection, now());
   EXPECT_NE(watch.why_offline(now()).find("CONNECTIONBROKEN"), std::string::npos);
 
@@ -342,6 +357,15 @@ TEST(Vda5050Peer, AKilledVehicleLeavesItsLastWillAndARestartedOneIsTaken) {
   master.last_state.reset();
   ASSERT_NO_FATAL_FAILURE(wait_online(master, *agv, log));
   EXPECT_GT(master.states, states_before);
+  // Asked for, its factsheet is a header only (a known deviation), taken with the compatibility
+  // option. (The one it publishes when it starts is dropped: it is not connected yet.)
+  master.instant(factsheet_request_action("factsheet-1"));
+  ASSERT_TRUE(master.queue.run_until([&] { return master.factsheet.has_value(); }, kDeadline))
+      << (master.ignored.empty() ? std::string("nothing ignored") : master.ignored.back());
+  EXPECT_TRUE(master.factsheet->header_only);
+  EXPECT_FALSE(decode_factsheet(R"({"headerId":0,"timestamp":"2026-12-01T10:00:00Z","version":"2.0.0",
+      "manufacturer":"acme","serialNumber":"agv-7"})")
+                   .ok());
   EXPECT_LE(master.last_state->header.header_id, 2);  // a new session counts from 0 again
   EXPECT_TRUE(master.ignored.empty()) << master.ignored.front();
   agv->stop();

@@ -63,7 +63,8 @@ RC_GTEST_PROP(Vda5050Schema, EveryOrderAndUpdateOnTheG4sMapValidates, ()) {
 
 TEST(Vda5050Schema, InstantActionsValidateInTheStandardShape) {
   HeaderCounter headers("acme", "agv-7");
-  InstantActions ia{.actions = {cancel_order_action("cancel-1"), state_request_action("sr-1")}};
+  InstantActions ia{
+      .actions = {cancel_order_action("cancel-1"), state_request_action("sr-1"), factsheet_request_action("fr-1")}};
   Json standard = encode_instant_actions(headers.next(Topic::kInstantActions, now()), ia);
   auto strict = SchemaCheck::load("instantActions", Strictness::kStandardShape);
   EXPECT_EQ(strict.problems(standard), "");

@@ -25,5 +25,7 @@ Json encode_instant_actions(const Header& header, const InstantActions& message,
 Action cancel_order_action(std::string action_id);
 // The instant action that asks the vehicle to publish its state now (blockingType NONE).
 Action state_request_action(std::string action_id);
+// The instant action that asks the vehicle to publish its factsheet (blockingType NONE).
+Action factsheet_request_action(std::string action_id);
 
 }  // namespace rondo::vda5050
