@@ -149,7 +149,8 @@ TEST(Vda5050Decode, MalformedStatesAreErrorsThatNameTheField) {
     ASSERT_FALSE(s.ok()) << c.what;
     EXPECT_NE(s.error().message.find(c.expect), std::string::npos) << c.what << ": " << s.error().message;
   }
-  for (const char* text : {"", "{", "[]", "null", "42", "{\"headerId\":", std::string(200, '[').c_str()}) {
+  const std::string deep(200, '[');  // deeper than Document::kMaxDepth
+  for (const std::string& text : std::vector<std::string>{"", "{", "[]", "null", "42", "{\"headerId\":", deep}) {
     EXPECT_FALSE(decode_state(text).ok()) << text;
   }
 }
