@@ -8,6 +8,7 @@ find_package(SQLite3 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(fmt REQUIRED)
 find_package(spdlog REQUIRED)
+find_package(PahoMqttCpp REQUIRED)  # libpaho-mqttpp-dev (with libpaho-mqtt-dev), rondo::vda5050
 if(RONDO_BUILD_TESTS)
   find_package(GTest REQUIRED)
   find_package(rapidcheck REQUIRED)

@@ -1,0 +1,44 @@
+#include "rondo/vda5050/config.h"
+
+#include "rondo/vda5050/mqtt_client.h"
+
+namespace rondo::vda5050 {
+namespace {
+
+Result<std::string> required_text(const Field& f, std::string_view key) {
+  RONDO_ASSIGN_OR_RETURN(Field v, f.required(key));
+  RONDO_ASSIGN_OR_RETURN(std::string s, v.as_string());
+  if (s.empty()) return v.error("must not be empty");
+  return s;
+}
+
+}  // namespace
+
+Result<Vda5050Config> parse_vda5050_config(const Field& robot) {
+  RONDO_RETURN_IF_ERROR(robot.expect_keys({"kind", "broker", "interface_name", "manufacturer", "serial_number",
+                                           "map_id", "offline_after", "compatibility"}));
+  RONDO_ASSIGN_OR_RETURN(std::string kind, required_text(robot, "kind"));
+  if (kind != "vda5050") return robot.error_at("kind", "is '" + kind + "', not vda5050");
+  Vda5050Config c;
+  RONDO_ASSIGN_OR_RETURN(c.broker, required_text(robot, "broker"));
+  if (auto uri = paho_server_uri(c.broker); !uri) return robot.error_at("broker", uri.error().message);
+  RONDO_ASSIGN_OR_RETURN(c.topics.interface_name, required_text(robot, "interface_name"));
+  RONDO_ASSIGN_OR_RETURN(c.topics.manufacturer, required_text(robot, "manufacturer"));
+  RONDO_ASSIGN_OR_RETURN(c.topics.serial_number, required_text(robot, "serial_number"));
+  if (auto ok = validate(c.topics); !ok) return robot.error(ok.error().message);
+  RONDO_ASSIGN_OR_RETURN(c.map_id, required_text(robot, "map_id"));
+  if (auto f = robot.optional("offline_after")) {
+    RONDO_ASSIGN_OR_RETURN(c.offline_after, f->as_duration());
+    if (c.offline_after <= Duration{0}) return f->error("must be longer than 0s");
+  }
+  if (auto f = robot.optional("compatibility")) {
+    RONDO_ASSIGN_OR_RETURN(std::string mode, f->as_string());
+    if (mode != "vda5050-lib-1.4") {
+      return f->error("'" + mode + "' is not a known compatibility mode (only vda5050-lib-1.4)");
+    }
+    c.compat.vda5050_lib_1_4 = true;
+  }
+  return c;
+}
+
+}  // namespace rondo::vda5050

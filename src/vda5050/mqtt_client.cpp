@@ -1,0 +1,180 @@
+#include "rondo/vda5050/mqtt_client.h"
+
+#include <condition_variable>
+#include <map>
+#include <mutex>
+#include <thread>
+
+#include <mqtt/async_client.h>
+
+namespace rondo::vda5050 {
+
+Result<std::string> paho_server_uri(const std::string& broker) {
+  std::string rest;
+  for (const char* scheme : {"mqtt://", "tcp://"}) {
+    if (broker.rfind(scheme, 0) == 0) rest = broker.substr(std::string(scheme).size());
+  }
+  const auto colon = rest.rfind(':');
+  if (rest.empty() || colon == std::string::npos || colon == 0 || colon + 1 == rest.size() ||
+      rest.find_first_not_of("0123456789", colon + 1) != std::string::npos) {
+    return Error::invalid("broker: '" + broker + "' is not mqtt://host:port");
+  }
+  return "tcp://" + rest;
+}
+
+struct MqttClient::Impl {
+  Impl(const std::string& uri, MqttOptions o, MqttHandlers h, Post p)
+      : options(std::move(o)), handlers(std::move(h)), post(std::move(p)), client(uri, options.client_id, nullptr) {}
+
+  MqttOptions options;
+  MqttHandlers handlers;
+  Post post;
+  mqtt::async_client client;
+  mqtt::connect_options connect_options;
+
+  mutable std::mutex mutex;
+  std::condition_variable wake;
+  std::map<std::string, int> subscriptions;  // filter -> qos
+  bool stopping = false;
+  std::thread connector;
+
+  void subscribe_all() {
+    std::map<std::string, int> subs;
+    {
+      std::lock_guard lock(mutex);
+      subs = subscriptions;
+    }
+    for (const auto& [filter, qos] : subs) {
+      try {
+        client.subscribe(filter, qos);  // asynchronous; never waited on in a Paho callback
+      } catch (const mqtt::exception&) {
+        // The connection dropped again; the next connect subscribes anew.
+      }
+    }
+  }
+
+  // The first connection: Paho's automatic reconnect only covers a connection once made.
+  void connect_until_connected() {
+    auto backoff = options.min_retry;
+    for (;;) {
+      {
+        std::lock_guard lock(mutex);
+        if (stopping) return;
+      }
+      try {
+        if (client.connect(connect_options)->wait_for(std::chrono::seconds(10))) return;
+      } catch (const mqtt::exception&) {
+        // refused or unreachable: wait and try again
+      }
+      std::unique_lock lock(mutex);
+      if (wake.wait_for(lock, backoff, [&] { return stopping; })) return;
+      backoff = std::min(backoff * 2, options.max_retry);
+    }
+  }
+};
+
+Result<std::unique_ptr<MqttClient>> MqttClient::create(MqttOptions options, MqttHandlers handlers, Post post) {
+  RONDO_ASSIGN_OR_RETURN(std::string uri, paho_server_uri(options.broker));
+  if (options.client_id.empty()) return Error::invalid("client_id: must not be empty");
+  if (!post) return Error::invalid("post: a function to hand events over is required");
+  std::unique_ptr<Impl> impl;
+  try {
+    impl = std::make_unique<Impl>(uri, std::move(options), std::move(handlers), std::move(post));
+  } catch (const mqtt::exception& e) {
+    return Error::invalid(std::string("broker: ") + e.what());
+  }
+  auto builder = mqtt::connect_options_builder()
+                     .clean_session(true)
+                     .keep_alive_interval(std::chrono::duration_cast<std::chrono::seconds>(impl->options.keep_alive))
+                     .connect_timeout(std::chrono::seconds(5))
+                     .automatic_reconnect(std::chrono::duration_cast<std::chrono::seconds>(impl->options.min_retry),
+                                          std::chrono::duration_cast<std::chrono::seconds>(impl->options.max_retry));
+  if (impl->options.will) {
+    const MqttMessage& w = *impl->options.will;
+    builder.will(mqtt::message(w.topic, w.payload, w.qos, w.retained));
+  }
+  impl->connect_options = builder.finalize();
+
+  Impl* self = impl.get();
+  // Every connect, the first and each automatic reconnect: the session is clean, so subscribe
+  // again before telling the owner.
+  self->client.set_connected_handler([self](const std::string&) {
+    self->subscribe_all();
+    if (self->handlers.connected) self->post([self] { self->handlers.connected(); });
+  });
+  self->client.set_connection_lost_handler([self](const std::string& cause) {
+    if (self->handlers.connection_lost) {
+      self->post([self, cause] { self->handlers.connection_lost(cause); });
+    }
+  });
+  self->client.set_message_callback([self](mqtt::const_message_ptr m) {
+    if (!m || !self->handlers.message) return;
+    std::string topic = m->get_topic();
+    std::string payload = m->to_string();
+    self->post(
+        [self, topic = std::move(topic), payload = std::move(payload)] { self->handlers.message(topic, payload); });
+  });
+  return std::unique_ptr<MqttClient>(new MqttClient(std::move(impl)));
+}
+
+MqttClient::MqttClient(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+MqttClient::~MqttClient() {
+  stop();
+}
+
+void MqttClient::subscribe(const std::string& topic_filter, int qos) {
+  {
+    std::lock_guard lock(impl_->mutex);
+    impl_->subscriptions[topic_filter] = qos;
+  }
+  if (impl_->client.is_connected()) {
+    try {
+      impl_->client.subscribe(topic_filter, qos);
+    } catch (const mqtt::exception&) {
+      // made again on the next connect
+    }
+  }
+}
+
+void MqttClient::start() {
+  std::lock_guard lock(impl_->mutex);
+  if (impl_->connector.joinable() || impl_->stopping) return;
+  impl_->connector = std::thread([self = impl_.get()] { self->connect_until_connected(); });
+}
+
+Status MqttClient::publish(const MqttMessage& message) {
+  if (!impl_->client.is_connected()) {
+    return Error::io("mqtt: not connected to " + impl_->options.broker + "; " + message.topic + " not sent");
+  }
+  try {
+    impl_->client.publish(mqtt::make_message(message.topic, message.payload, message.qos, message.retained));
+  } catch (const mqtt::exception& e) {
+    return Error::io("mqtt: publishing on " + message.topic + " failed: " + e.what());
+  }
+  return {};
+}
+
+void MqttClient::stop(Duration timeout) {
+  {
+    std::lock_guard lock(impl_->mutex);
+    if (impl_->stopping) return;
+    impl_->stopping = true;
+  }
+  impl_->wake.notify_all();
+  if (impl_->connector.joinable()) impl_->connector.join();
+  impl_->client.disable_callbacks();
+  try {
+    if (impl_->client.is_connected()) {
+      impl_->client.disconnect(static_cast<int>(timeout.count()))->wait_for(timeout);
+    }
+  } catch (const mqtt::exception&) {
+    // already gone
+  }
+}
+
+bool MqttClient::connected() const {
+  return impl_->client.is_connected();
+}
+
+}  // namespace rondo::vda5050
