@@ -73,6 +73,13 @@ Result<Time> TimeZone::parse_time(std::string_view text) const {
   return at(std::chrono::year_month_day{midnight}, parsed->local - midnight);
 }
 
+std::string TimeZone::format_clock(Time t) const {
+  const auto info = zone_->get_info(t);
+  const Duration tod = time_of_day(t);
+  const auto m = std::chrono::duration_cast<std::chrono::minutes>(tod).count();
+  return fmt::format("{:02}:{:02} {}", m / 60, m % 60, info.abbrev);
+}
+
 std::string TimeZone::format_local(Time t) const {
   const Duration offset = utc_offset(t);
   std::string utc = rondo::format_time(t + offset);  // local reading, formatted with a trailing Z

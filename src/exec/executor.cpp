@@ -30,10 +30,7 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
 
 Executor::~Executor() { robot_.set_listener(nullptr); }
 
-std::string Executor::fmt_time(Time t) const {
-  const Duration tod = zone_.time_of_day(t);
-  return format_time_of_day(std::chrono::floor<std::chrono::minutes>(tod));
-}
+std::string Executor::fmt_time(Time t) const { return zone_.format_clock(t); }
 
 Status Executor::accept(const Task& task) {
   if (auto ok = validate(task, "task " + task.id); !ok) return ok;

@@ -106,7 +106,7 @@ void Executor::reschedule(std::vector<TaskId> new_ids, const std::string& why) {
   problem.robot = {.location = 0, .time = free};
   problem.travel = std::make_shared<MapTravel>(*travel_, nodes);
 
-  schedule::TryScheduleRequest request{.problem = std::move(problem), .new_tasks = {}};
+  schedule::TryScheduleRequest request{.problem = std::move(problem), .new_tasks = {}, .zone = zone_};
   for (std::size_t i = old_count; i < ids.size(); ++i) request.new_tasks.push_back(i);
   for (std::size_t i = first_deferred; i < ids.size(); ++i) request.cannot_preempt.push_back(i);
   if (current_ && (phase_ == Phase::kNavigating || phase_ == Phase::kActing)) {

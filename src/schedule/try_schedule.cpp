@@ -50,20 +50,19 @@ void close_drops(const Problem& p, std::vector<bool>& keep) {
   }
 }
 
-std::string clock_of(Time t) {
-  const std::string s = format_time(t);  // 2026-03-02T10:05:00Z
-  return s.size() >= 16 ? s.substr(11, 5) : s;
-}
+// Local clock times, the zone named once: "10:00–10:15 GMT".
+std::string hhmm(const TimeZone& zone, Time t) { return zone.format_clock(t).substr(0, 5); }
 
-DroppedTask reason_for(const Problem& p, std::size_t i, const Schedule& kept, const std::vector<std::size_t>& index) {
+DroppedTask reason_for(const Problem& p, std::size_t i, const Schedule& kept, const std::vector<std::size_t>& index,
+                       const TimeZone& zone) {
   const ProblemTask& t = p.tasks[i];
-  const std::string window = fmt::format("window {}–{}", clock_of(t.release), clock_of(t.deadline));
+  const std::string window = fmt::format("window {}–{}", hhmm(zone, t.release), zone.format_clock(t.deadline));
   // Alone from the robot's position?
   const Duration first_travel = p.travel->travel(p.robot.location, t.start_location, p.robot.time);
   if (p.robot.time + first_travel > t.latest_start())
     return {i,
             fmt::format("{} cannot be reached from the robot's position at {} (travel {})", window,
-                        clock_of(p.robot.time), format_duration(first_travel)),
+                        zone.format_clock(p.robot.time), format_duration(first_travel)),
             DropCause::kUnreachable};
   // Where would it go? After the last kept task that starts before its latest start.
   std::vector<std::string> stronger;
@@ -80,7 +79,7 @@ DroppedTask reason_for(const Problem& p, std::size_t i, const Schedule& kept, co
     const Duration leg = p.travel->travel(b.end_location, t.start_location, before->end);
     if (before->end + leg > t.latest_start())
       where = fmt::format("{} cannot be reached after task {} ends at {} (travel {})", window, b.id,
-                          clock_of(before->end), format_duration(leg));
+                          zone.format_clock(before->end), format_duration(leg));
   }
   if (where.empty()) where = fmt::format("{} does not fit between the kept tasks", window);
   if (!stronger.empty()) {
@@ -189,7 +188,7 @@ TryScheduleResult try_schedule(const TryScheduleRequest& request, Scheduler& sol
   s.dropped.clear();
   for (std::size_t i = 0; i < p.tasks.size(); ++i) {
     if (keep[i]) continue;
-    DroppedTask d = reason_for(p, i, best, best_index);
+    DroppedTask d = reason_for(p, i, best, best_index, request.zone);
     if (!blocked_by.empty() && request.running && p.tasks[i].priority > request.running->priority)
       d.reason += fmt::format("; the running task {} cannot be interrupted", blocked_by);
     s.dropped.push_back(std::move(d));

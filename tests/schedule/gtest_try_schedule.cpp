@@ -82,8 +82,8 @@ std::vector<Scenario> scenarios() {
                {base_problem(), {0}, RunningTask{"talking", 2, false}},
                TryScheduleOutcome::kSomeDropped,
                {"urgent"},
-               {"cannot be reached from the robot's position at 10:20 (travel 2m); the running task talking cannot be "
-                "interrupted"},
+               {"cannot be reached from the robot's position at 10:20 UTC (travel 2m); the running task talking cannot "
+                "be interrupted"},
                ""};
     s.request.problem.robot.time = kTen + minutes(20);
     s.request.problem.tasks = {task("urgent", 1, 0, 10, 3, 5)};

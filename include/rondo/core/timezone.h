@@ -45,6 +45,9 @@ class TimeZone {
   Result<Time> parse_time(std::string_view text) const;
   // ISO 8601 local time with its offset, e.g. "2026-07-01T09:00:00+01:00".
   std::string format_local(Time t) const;
+  // The local clock time to the minute with the zone's abbreviation, for people: "09:05 BST". The
+  // one format of times in reasons and messages.
+  std::string format_clock(Time t) const;
 
   bool operator==(const TimeZone& other) const { return name_ == other.name_; }
 

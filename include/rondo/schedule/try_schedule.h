@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "rondo/core/timezone.h"
 #include "rondo/schedule/scheduler.h"
 
 namespace rondo::schedule {
@@ -44,6 +45,8 @@ struct TryScheduleRequest {
   // New tasks that may be dropped but never preempt the running task, whatever their priority
   // (tasks offered again after an earlier drop).
   std::vector<std::size_t> cannot_preempt{};
+  // The zone that times in drop reasons are given in (TimeZone::format_clock); UTC by default.
+  TimeZone zone = TimeZone::utc();
   DropPolicy policy = DropPolicy::kPaperThenRestore;
 };
 

@@ -1,0 +1,252 @@
+// The executor against a robot the test answers by hand (scripted_robot.h): the branches that a
+// simulated world reaches only by chance, each asserted on what the executor asked of the robot
+// and on the event log.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rondo/store/traversal_log.h"
+#include "scenario.h"
+#include "scripted_robot.h"
+
+namespace rondo::exec::testing {
+namespace {
+
+using ::testing::HasSubstr;
+
+// The scenario map with the executor on a ScriptedRobot at the dock, at 08:00 on a Monday.
+class Scripted {
+ public:
+  explicit Scripted(ExecutorOptions options = {}, map::TopoMap map = scenario_map())
+      : map_(std::move(map)),
+        zone_(TimeZone::named("Europe/London").value()),
+        clock_(zone_.parse_time("2026-11-23T08:00").value()),
+        db_(fresh_db_path()),
+        store_(store::Store::open(db_, {.sync_commits = false}).value()),
+        robot_(clock_, map_, *map_.find_node("Dock")) {
+    options.dock = *map_.find_node("Dock");
+    options.refit_at.reset();
+    executor_ = std::make_unique<Executor>(clock_, robot_, map_, store_, zone_, options);
+  }
+  ~Scripted() {
+    executor_.reset();
+    std::error_code ec;
+    std::filesystem::remove(db_, ec);
+  }
+  Executor& executor() { return *executor_; }
+  ScriptedRobot& robot() { return robot_; }
+  store::Store& store() { return store_; }
+  Time at(const std::string& local) const { return zone_.parse_time("2026-11-23T" + local).value(); }
+  void run_until(const std::string& local) { clock_.run_until(at(local)); }
+  void settle() { clock_.run_until(clock_.now()); }  // delivers what was posted, time stands still
+  // Answers every edge with success after 20 s until the robot stands at `node`.
+  void drive_to(const std::string& node) {
+    const map::NodeIndex target = *map_.find_node(node);
+    for (int guard = 0; robot_.location() != target && guard < 50; ++guard) {
+      settle();
+      ASSERT_TRUE(robot_.driving()) << "the executor asked for no edge on the way to " << node;
+      clock_.run_until(clock_.now() + seconds(20));
+      robot_.finish_edge(EdgeOutcome::kSucceeded, seconds(20));
+      settle();
+    }
+  }
+  std::string state(const std::string& id) const { return to_string(executor_->tasks().at(id).state); }
+  std::string code_of(const std::string& id, const std::string& event) const {
+    std::string code;
+    const std::vector<store::Event> events = store::read_events_of(store_, id).value();
+    for (const store::Event& e : events)
+      if (e.event == event) code = e.code;
+    return code;
+  }
+  std::string reason_of(const std::string& id, const std::string& event) const {
+    std::string reason;
+    const std::vector<store::Event> events = store::read_events_of(store_, id).value();
+    for (const store::Event& e : events)
+      if (e.event == event) reason = e.reason;
+    return reason;
+  }
+
+ private:
+  map::TopoMap map_;
+  TimeZone zone_;
+  SimClock clock_;
+  std::filesystem::path db_;
+  store::Store store_;
+  ScriptedRobot robot_;
+  std::unique_ptr<Executor> executor_;
+};
+
+TEST(ScriptedRobot, ARouteIsHandedOverWithItsHorizonAndTheRobotIsActivated) {
+  Scripted s;
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.executor().start();
+  s.settle();
+  ASSERT_GE(s.robot().calls.size(), 2u);
+  EXPECT_EQ(s.robot().calls[0], "activate");
+  EXPECT_EQ(s.robot().calls[1], "drive Dock_Hall +1");  // Hall_Office is the horizon
+}
+
+TEST(ScriptedRobot, AMonitorHeldWhileTheTaskCannotBeInterruptedFiresWhenItCan) {
+  Scripted s;  // action monitor: 1.5 x 5 min + 30 s = 8 min
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.executor().start();
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
+  ASSERT_TRUE(s.robot().acting());
+  s.robot().set_interruptible(false);
+  s.run_until("08:20");  // far past the limit
+  EXPECT_EQ(s.state("A"), "acting");
+  EXPECT_EQ(s.code_of("A", "overrun"), "overrun held");
+  EXPECT_EQ(s.robot().calls.back(), "act work");  // no cancel while it cannot be interrupted
+  EXPECT_FALSE(s.robot().asked("cancel"));
+  s.robot().set_interruptible(true);
+  s.settle();
+  EXPECT_TRUE(s.robot().asked("cancel"));
+  EXPECT_EQ(s.state("A"), "failed");
+  EXPECT_EQ(s.code_of("A", "failed"), "action overrun");
+}
+
+TEST(ScriptedRobot, NavigationGivesUpAfterMaxFailedEdges) {
+  Scripted s({.max_failed_edges = 3});
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.executor().start();
+  for (int i = 0; i < 3; ++i) {
+    s.settle();
+    ASSERT_TRUE(s.robot().driving()) << i;
+    s.robot().finish_edge(EdgeOutcome::kFailed, seconds(10));
+  }
+  s.settle();
+  EXPECT_EQ(s.state("A"), "failed");
+  EXPECT_EQ(s.code_of("A", "failed"), "navigation gave up");
+  EXPECT_EQ(store::count_traversals(s.store()).value(), 3u);  // failed attempts are learning data
+}
+
+// Dock <-> Hall <-> Office, and a one-way ramp Hall -> Pit with no way back; Island has no way in.
+map::TopoMap map_with_a_pit() {
+  std::vector<map::Node> nodes = {{.name = "Dock", .pose = {0, 0, 0}},
+                                  {.name = "Hall", .pose = {10, 0, 0}},
+                                  {.name = "Office", .pose = {20, 0, 0}},
+                                  {.name = "Pit", .pose = {10, -10, 0}},
+                                  {.name = "Island", .pose = {50, 0, 0}}};
+  std::vector<map::Edge> edges;
+  for (const auto& [a, b] : std::vector<std::pair<std::string, std::string>>{{"Dock", "Hall"}, {"Hall", "Office"}}) {
+    edges.push_back({.id = a + "_" + b, .from = a, .to = b, .action = "move_base"});
+    edges.push_back({.id = b + "_" + a, .from = b, .to = a, .action = "move_base"});
+  }
+  edges.push_back({.id = "Hall_Pit", .from = "Hall", .to = "Pit", .action = "move_base"});
+  edges.push_back({.id = "Island_Hall", .from = "Island", .to = "Hall", .action = "move_base"});
+  return map::TopoMap::build("pit", std::move(nodes), std::move(edges)).value();
+}
+
+TEST(ScriptedRobot, NoRouteLeftFromWhereTheRobotEndedUpFailsTheTask) {
+  Scripted s({}, map_with_a_pit());
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.executor().start();
+  s.settle();
+  ASSERT_EQ(s.robot().calls.back(), "drive Dock_Hall +1");
+  s.robot().move_to(*map_with_a_pit().find_node("Pit"));  // the vehicle slid down the ramp
+  s.robot().finish_edge(EdgeOutcome::kFailed, seconds(15));
+  s.settle();
+  EXPECT_EQ(s.state("A"), "failed");
+  EXPECT_EQ(s.code_of("A", "failed"), "no route");
+  EXPECT_THAT(s.reason_of("A", "failed"), HasSubstr("from Pit to Office"));
+}
+
+TEST(ScriptedRobot, AnOnDemandTaskWithNoRouteFailsAtOnce) {
+  Scripted s({}, map_with_a_pit());
+  s.executor().start();
+  ASSERT_TRUE(s.executor().add_task(on_demand("OD", "Island", minutes(2)), "request").ok());
+  s.settle();
+  EXPECT_EQ(s.state("OD"), "failed");
+  EXPECT_EQ(s.code_of("OD", "failed"), "no route");
+  EXPECT_THAT(s.reason_of("OD", "failed"), HasSubstr("Island"));
+}
+
+TEST(ScriptedRobot, ALongWaitIsSpentOnTheDockWithoutMoving) {
+  Scripted s;  // dock_when_waiting_over: 15 min
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("10:00"), s.at("11:00"), minutes(5)), "test").ok());
+  s.executor().start();
+  s.run_until("09:50");
+  EXPECT_EQ(s.robot().calls, (std::vector<std::string>{"activate"}));  // nothing asked while it waits
+  EXPECT_EQ(s.state("A"), "queued");
+  s.run_until("10:00");
+  EXPECT_EQ(s.robot().calls.back(), "drive Dock_Hall +1");  // leaves in time to arrive at 10:00
+}
+
+TEST(ScriptedRobot, ATripToTheDockIsCancelledForANewTask) {
+  Scripted s;
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.executor().start();
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
+  s.robot().finish_action(ActionOutcome::kSucceeded);
+  s.settle();
+  ASSERT_EQ(s.state("A"), "succeeded");
+  ASSERT_EQ(s.robot().calls.back(), "drive Office_Hall +1");  // home to the dock
+  const std::size_t before = s.robot().calls.size();
+  ASSERT_TRUE(s.executor().add_task(on_demand("OD", "Kitchen", minutes(2)), "request").ok());
+  s.settle();
+  ASSERT_TRUE(s.robot().driving());
+  // The trip home is cancelled, then the robot sets off for the kitchen from where it stopped.
+  EXPECT_EQ(std::vector<std::string>(s.robot().calls.begin() + static_cast<std::ptrdiff_t>(before), s.robot().calls.end()),
+            (std::vector<std::string>{"cancel", "drive Office_Hall +1"}));
+  EXPECT_EQ(s.state("OD"), "navigating");
+  const std::vector<Traversal> log = store::find_traversals(s.store()).value();
+  for (const Traversal& t : log) EXPECT_TRUE(t.success) << "a cancelled attempt is not learning data: " << t.edge_id;
+}
+
+TEST(ScriptedRobot, AnActionTheRobotStopsByItselfFailsTheTask) {
+  Scripted s;
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.executor().start();
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
+  s.robot().finish_action(ActionOutcome::kCancelled, "emergency stop pressed");
+  s.settle();
+  EXPECT_EQ(s.state("A"), "failed");
+  EXPECT_EQ(s.code_of("A", "failed"), "action failed");
+  EXPECT_THAT(s.reason_of("A", "failed"), HasSubstr("stopped by the robot"));
+}
+
+TEST(ScriptedRobot, AFaultInTheMiddleOfAnEdgePausesUntilTheRobotIsReady) {
+  Scripted s;
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.executor().start();
+  s.settle();
+  s.run_until("08:00:05");
+  s.robot().report_fault("lost connection");
+  s.robot().finish_edge(EdgeOutcome::kRobotFault, seconds(5));
+  s.run_until("08:30");
+  EXPECT_TRUE(s.executor().paused());
+  EXPECT_FALSE(s.robot().driving());  // nothing new while in fault
+  EXPECT_EQ(store::count_traversals(s.store()).value(), 0u);
+  EXPECT_EQ(s.code_of("A", "edge"), "robot fault");
+  s.robot().report_ready();
+  s.settle();
+  EXPECT_TRUE(s.robot().driving());  // goes on from where the robot is
+  EXPECT_EQ(s.robot().calls.back(), "drive Dock_Hall +1");
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
+  s.robot().finish_action(ActionOutcome::kSucceeded);
+  s.settle();
+  EXPECT_EQ(s.state("A"), "succeeded");
+}
+
+TEST(ScriptedRobot, CancellingARunningTaskThatCannotBeInterruptedWaitsForTheRobot) {
+  Scripted s;
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.executor().start();
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
+  s.robot().set_interruptible(false);
+  s.settle();
+  ASSERT_TRUE(s.executor().cancel_task("A", "not needed").ok());
+  EXPECT_EQ(s.code_of("A", "cancel pending"), "cancel pending");
+  EXPECT_EQ(s.robot().calls.back(), "act work");
+  EXPECT_FALSE(s.robot().asked("cancel"));
+  s.robot().set_interruptible(true);
+  s.settle();
+  EXPECT_TRUE(s.robot().asked("cancel"));
+  EXPECT_EQ(s.state("A"), "cancelled");
+}
+
+}  // namespace
+}  // namespace rondo::exec::testing
