@@ -66,7 +66,7 @@ void run_learn(const LearnArgs& args, CommandContext& ctx) {
   if (!zone) return (void)fail(ctx, zone.error().with_context("--zone"));
   auto from_map = map_edges(args);
   if (!from_map) return (void)fail(ctx, from_map.error());
-  auto db = store::Store::open(args.db, {.mode = store::OpenMode::kMustExist});
+  auto db = store::Store::open(args.db, {.mode = store::OpenMode::kReadOnly});
   if (!db) return (void)fail(ctx, db.error());
   auto log = store::find_traversals(*db);
   if (!log) return (void)fail(ctx, log.error());

@@ -11,10 +11,12 @@
 
 namespace rondo {
 
-namespace {
-// Beyond this many seconds (about 290 million years) a millisecond count overflows int64.
-constexpr double kMaxSeconds = 9.0e12;
-}  // namespace
+Result<Duration> checked_from_seconds(double s) {
+  if (!std::isfinite(s) || s > kMaxSeconds || s < -kMaxSeconds) {
+    return Error::invalid(fmt::format("{} seconds is out of range (at most {:g} either way)", s, kMaxSeconds));
+  }
+  return from_seconds(s);
+}
 
 Duration from_seconds(double s) {
   if (!std::isfinite(s)) return Duration{0};

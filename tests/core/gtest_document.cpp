@@ -2,6 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
+#include "core/alias_bomb.h"
+
 namespace rondo {
 namespace {
 
@@ -108,6 +113,92 @@ TEST(Document, YamlWriterQuotesWhatWouldChangeType) {
   auto back = Document::parse(to_yaml(j), DocumentFormat::kYaml, "w");
   ASSERT_TRUE(back.ok());
   EXPECT_EQ(back->json(), j);
+}
+
+TEST(Document, AnAliasBombIsRefusedByCountingValues) {
+  const std::string bomb = test::alias_bomb();
+  ASSERT_LT(bomb.size(), 1024u);
+  auto doc = Document::parse(bomb, DocumentFormat::kYaml, "bomb.yaml");
+  ASSERT_FALSE(doc.ok());
+  EXPECT_EQ(doc.error().code, ErrorCode::kInvalidInput);
+  EXPECT_NE(doc.error().message.find("bomb.yaml:"), std::string::npos) << doc.error().message;
+  EXPECT_NE(doc.error().message.find(test::kAliasBombLimit), std::string::npos)
+      << doc.error().message;
+}
+
+TEST(Document, LimitsOnAliasesAreCountedAndNamed) {
+  struct Case {
+    std::string name;
+    std::string text;
+    std::string expect;
+  };
+  std::string many_aliases = "a: &a x\nl:\n";
+  for (std::size_t i = 0; i <= Document::kMaxAliases; ++i) many_aliases += "- *a\n";
+  std::string deep_aliases = "a0: &a0 [x]\n";
+  for (int i = 1; i <= Document::kMaxAliasDepth + 1; ++i) {
+    deep_aliases += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [*a" + std::to_string(i - 1) + "]\n";
+  }
+  std::string deep_by_alias = "a: &a " + std::string(40, '[') + std::string(40, ']') + "\nb: " +
+                              std::string(30, '[') + "*a" + std::string(30, ']') + "\n";
+  const Case cases[] = {
+      {"aliases", many_aliases, "more than 100000 aliases (the limit is 100000)"},
+      {"alias depth", deep_aliases, "aliases nest more than 16 deep (the limit is 16)"},
+      {"depth through an alias", deep_by_alias, "nested deeper than 64 levels"},
+      {"recursive alias", "a: &a [1, *a]\n", "an alias refers to a collection that contains it"},
+      {"too big", std::string(Document::kMaxBytes + 1, '#'), "more than the limit of 16777216 bytes"},
+  };
+  for (const auto& c : cases) {
+    auto doc = Document::parse(c.text, DocumentFormat::kYaml, "t.yaml");
+    ASSERT_FALSE(doc.ok()) << c.name;
+    EXPECT_EQ(doc.error().code, ErrorCode::kInvalidInput) << c.name;
+    EXPECT_NE(doc.error().message.find(c.expect), std::string::npos) << c.name << ": " << doc.error().message;
+  }
+}
+
+TEST(Document, JsonCountsValuesToo) {
+  std::string text = "[";
+  for (std::size_t i = 0; i <= Document::kMaxValues; ++i) text += i ? ",0" : "0";
+  text += "]";
+  auto doc = Document::parse(text, DocumentFormat::kJson, "t.json");
+  ASSERT_FALSE(doc.ok());
+  EXPECT_NE(doc.error().message.find("more than 2000000 values"), std::string::npos) << doc.error().message;
+}
+
+TEST(Document, OrdinaryAnchorsAndAliasesStillWork) {
+  const Document doc = yaml(
+      "meta: &meta {map: riseholme, pointset: x}\n"
+      "quoted: &q '12'\n"
+      "nodes:\n"
+      "  - {name: A, meta: *meta, n: *q}\n"
+      "  - name: B\n"
+      "    meta: *meta\n"
+      "    edges: &edges [{to: A}, {to: C}]\n"
+      "  - {name: C, edges: *edges}\n"
+      "&k key: 1\n"
+      "other: {*k : 2}\n");
+  const Json& j = doc.json();
+  EXPECT_EQ(j["nodes"][0]["meta"]["map"], "riseholme");
+  EXPECT_EQ(j["nodes"][0]["n"], "12");
+  EXPECT_EQ(j["nodes"][1]["meta"], j["meta"]);
+  EXPECT_EQ(j["nodes"][2]["edges"][1]["to"], "C");
+  EXPECT_EQ(j["other"]["key"], 2);
+  EXPECT_EQ(doc.line_of("nodes[1].edges"), 7);
+  EXPECT_EQ(doc.line_of("nodes[2]"), 8);
+}
+
+TEST(Document, LoadRefusesAFileLargerThanTheLimitBeforeReadingIt) {
+  const auto file = std::filesystem::temp_directory_path() / "rondo_document_big.yaml";
+  {
+    std::ofstream out(file, std::ios::binary);
+    out.seekp(static_cast<std::streamoff>(Document::kMaxBytes) + 10);
+    out << '\n';
+  }
+  auto doc = Document::load(file);
+  std::filesystem::remove(file);
+  ASSERT_FALSE(doc.ok());
+  EXPECT_EQ(doc.error().code, ErrorCode::kInvalidInput);
+  EXPECT_NE(doc.error().message.find("more than the limit of 16777216 bytes"), std::string::npos)
+      << doc.error().message;
 }
 
 }  // namespace
