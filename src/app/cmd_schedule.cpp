@@ -35,7 +35,7 @@ struct ScheduleOptions {
   std::string solver = "default";
   double time_limit = 10;
   bool json = false;
-  std::uint64_t seed = 1;
+  std::int64_t seed = 1;  // signed, so that '-1' is refused instead of wrapping to 2^64 - 1
 };
 
 void run_schedule(const ScheduleOptions& o, CommandContext& ctx) {
@@ -52,6 +52,10 @@ void run_schedule(const ScheduleOptions& o, CommandContext& ctx) {
                                          kMaxTimeLimitSeconds, o.time_limit)));
     return;
   }
+  if (o.seed < 0) {
+    fail(ctx, Error::invalid(fmt::format("--seed: must not be negative, not {}", o.seed)));
+    return;
+  }
   Result<Problem> problem = tsptw ? load_tsptw(o.tsptw) : load_problem(o.file);
   if (!problem) {
     fail(ctx, problem.error());
@@ -63,7 +67,7 @@ void run_schedule(const ScheduleOptions& o, CommandContext& ctx) {
   }
   std::unique_ptr<Scheduler> solver;
   if (o.solver == "default") {
-    solver = std::make_unique<DefaultScheduler>(DefaultSchedulerOptions{.seed = o.seed});
+    solver = std::make_unique<DefaultScheduler>(DefaultSchedulerOptions{.seed = static_cast<std::uint64_t>(o.seed)});
   } else if (o.solver == "mip" || o.solver == "mip-ia") {
     if (auto ok = MipScheduler::check_supported(*problem); !ok) {
       fail(ctx, ok.error());

@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 
 #include "contenders.h"
+#include "rondo/core/document.h"
+#include "rondo/core/utf8.h"
 #include "rondo/learn/metrics.h"
 
 namespace rondo::learn {

@@ -53,7 +53,7 @@ TEST(Hardening, EveryLoaderRefusesAnAliasBombByCountingIt) {
       {"map", [&](const auto& d) { write(d / "bomb.yaml", bomb); return std::vector<std::string>{"map", "info", (d / "bomb.yaml").string()}; }},
       {"map convert", [&](const auto& d) { write(d / "bomb.yaml", bomb); return std::vector<std::string>{"map", "convert", (d / "bomb.yaml").string(), "-o", (d / "out.yaml").string()}; }},
       {"task file", [&](const auto& d) { write(d / "bomb.yaml", bomb); return std::vector<std::string>{"task", "check", (d / "bomb.yaml").string()}; }},
-      {"task expand", [&](const auto& d) { write(d / "bomb.yaml", bomb); return std::vector<std::string>{"task", "expand", (d / "bomb.yaml").string()}; }},
+      {"task expand", [&](const auto& d) { write(d / "bomb.yaml", bomb); return std::vector<std::string>{"task", "expand", (d / "bomb.yaml").string(), "--from", "2026-03-02"}; }},
       {"problem file", [&](const auto& d) { write(d / "bomb.yaml", bomb); return std::vector<std::string>{"schedule", (d / "bomb.yaml").string()}; }},
       {"deployment", [&](const auto& d) { return std::vector<std::string>{"run", g4s_with(d, "deployment.yaml", bomb).string(), "--days", "1", "--out", (d / "run").string()}; }},
       {"deployment map", [&](const auto& d) { return std::vector<std::string>{"run", g4s_with(d, "map.yaml", bomb).string(), "--days", "1", "--out", (d / "run").string()}; }},
@@ -135,6 +135,7 @@ TEST(Hardening, NumbersAreCheckedNotClampedOrOverflowed) {
       {"--time-limit nan", ok2, {"--time-limit", "nan"}, "--time-limit: must be a number of seconds"},
       {"--time-limit inf", ok2, {"--time-limit", "inf"}, "--time-limit"},
       {"--time-limit a year", ok2, {"--time-limit", "31536000"}, "--time-limit: must be a number of seconds"},
+      {"--seed -1", ok2, {"--seed", "-1"}, "--seed: must not be negative"},
       {"problem time 1e300", "#yaml\n" + with(with(problem, "DEADLINE", "1e300"), "PRIORITY", "0"), {}, "tasks[0].deadline: 1e+300 seconds is out of range"},
       {"problem priority out of range", "#yaml\n" + with(with(problem, "DEADLINE", "600"), "PRIORITY", "5000000000"), {}, "tasks[0].priority: must be from -1000000 to 1000000"},
   };
@@ -210,6 +211,18 @@ TEST(Hardening, AFailedLearnLeavesTheModelsFileAsItWas) {
   }
   EXPECT_EQ(slurp(dir / "empty.db"), "");  // and the read-only open did not make it a store
   std::filesystem::remove_all(dir.parent_path());
+}
+
+TEST(Hardening, OutOfRangeCountsOnTheCommandLineAreRefused) {
+  const std::vector<std::string> base = {"eval", "edges", "--witham", "../shared/data/witham_wharf", "--split",
+                                         "2014-08-01T00:00:00Z"};
+  for (const char* option : {"--min-train", "--min-test"}) {
+    auto args = base;
+    args.insert(args.end(), {option, "-5"});
+    const auto r = test::run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << option << ": " << r.err;
+    EXPECT_THAT(r.err, HasSubstr(option)) << r.err;
+  }
 }
 
 }  // namespace
