@@ -114,7 +114,9 @@ void run_stats(const StatsArgs& args, CommandContext& ctx) {
     return;
   }
   if (args.json) {
-    ctx.out << stats_json(args.db, *summary).dump(2) << '\n';
+    // A store written before import checked names may hold an edge id that is not UTF-8: it is
+    // shown with U+FFFD in its place rather than failing the whole report.
+    ctx.out << stats_json(args.db, *summary).dump(2, ' ', false, Json::error_handler_t::replace) << '\n';
   } else {
     print_stats_table(ctx.out, *summary);
   }

@@ -101,6 +101,9 @@ TEST(ReadOnly, LearnOnAnEdgeIdThatIsNotUtf8FailsAndKeepsTheModelsFile) {
                                              "t:1"})
                     .ok());
   }
+  const auto stats = run_cli({"log", "stats", "--db", tmp.str(), "--json"});
+  EXPECT_EQ(stats.exit_code, 0) << stats.err;
+  EXPECT_NE(stats.out.find("A\xef\xbf\xbd_B"), std::string::npos) << stats.out;  // U+FFFD for the bad byte
   const auto models = tmp.str() + ".models.json";
   {
     std::ofstream(models) << "{\"the\": \"old models\"}\n";
