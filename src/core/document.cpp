@@ -120,7 +120,7 @@ Result<Document> Document::parse(std::string_view text, DocumentFormat format, s
       doc.json_ = std::make_shared<Json>(Json::parse(text, limit_depth));
     } catch (const Json::exception& e) {
       // nlohmann's message names the byte and line: "parse error at line 3, column 5: ..."
-      return Error::invalid(*doc.source_ + ": " + e.what());
+      return Error::invalid(*doc.source_ + ": " + quote_for_message(e.what(), 400));
     } catch (const TooDeep&) {
       return Error::invalid(*doc.source_ + ": nested deeper than " + std::to_string(Document::kMaxDepth) + " levels");
     } catch (const TooMany&) {
@@ -135,9 +135,9 @@ Result<Document> Document::parse(std::string_view text, DocumentFormat format, s
     if (!json) return json.error();
     doc.json_ = std::make_shared<Json>(std::move(*json));
   } catch (const YAML::Exception& e) {
-    return Error::invalid(*doc.source_ + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
+    return Error::invalid(*doc.source_ + ":" + std::to_string(e.mark.line + 1) + ": " + quote_for_message(e.msg, 400));
   } catch (const std::exception& e) {
-    return Error::invalid(*doc.source_ + ": " + e.what());
+    return Error::invalid(*doc.source_ + ": " + quote_for_message(e.what(), 400));
   }
   return doc;
 }

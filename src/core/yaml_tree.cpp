@@ -5,6 +5,8 @@
 #include <yaml-cpp/mark.h>
 #include <yaml-cpp/parser.h>
 
+#include "rondo/core/utf8.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -232,7 +234,7 @@ Result<Json> yaml_to_json(std::string_view text, const std::string& source, std:
   } catch (const Stop& stop) {
     return stop.error;
   } catch (const YAML::Exception& e) {
-    return Error::invalid(source + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
+    return Error::invalid(source + ":" + std::to_string(e.mark.line + 1) + ": " + quote_for_message(e.msg, 400));
   }
   return builder.take();
 }

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/alias_bomb.h"
+#include "rondo/core/utf8.h"
 
 namespace rondo {
 namespace {
@@ -74,6 +75,27 @@ TEST(Document, MalformedTextIsAnErrorNotACrash) {
     ASSERT_FALSE(doc.ok()) << c.text.substr(0, 40);
     EXPECT_EQ(doc.error().code, ErrorCode::kInvalidInput);
     EXPECT_NE(doc.error().message.find(c.expect), std::string::npos) << doc.error().message;
+  }
+}
+
+// Found by fuzz_problem and fuzz_models: the parsers' own messages quote the byte they stopped at,
+// which can be the first byte of a longer UTF-8 character; the message must still be text.
+TEST(Document, ParserMessagesAreValidUtf8) {
+  struct Case {
+    DocumentFormat format;
+    std::string text;
+  };
+  const Case cases[] = {
+      {DocumentFormat::kYaml, "a: \"\\\xc3\xa9\"\n"},        // an escape of a two-byte character
+      {DocumentFormat::kJson, "[17\xc3\xa9]"},              // an invalid literal ending in one
+      {DocumentFormat::kJson, "{\"a\": tru\xe2\x82\xac}"},  // a three-byte one
+      {DocumentFormat::kYaml, std::string("\x00 #n\x00r\r@b\x00\x00" "e #n\x00r\r@b\x00\x00" "etraveltravel[0][1]", 42)},
+  };
+  for (const auto& c : cases) {
+    auto doc = Document::parse(c.text, c.format, "t");
+    if (doc.ok()) continue;
+    EXPECT_EQ(doc.error().code, ErrorCode::kInvalidInput);
+    EXPECT_FALSE(first_invalid_utf8(doc.error().message).has_value()) << replace_invalid_utf8(doc.error().message);
   }
 }
 
