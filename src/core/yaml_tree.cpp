@@ -78,6 +78,9 @@ class TreeBuilder : public YAML::EventHandler {
 
   void OnScalar(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
                 const std::string& value) override {
+    // The text is UTF-8, but an escape in a double-quoted scalar ("\\uD800") can still make a
+    // surrogate, which is not (found by fuzz_world and fuzz_requests).
+    if (first_invalid_utf8(value)) fail(mark, "a quoted string is not valid UTF-8 (an escaped surrogate?)");
     // "!" is the tag of a quoted scalar: it stays text whatever it says.
     const bool text = tag == "!" || tag == "tag:yaml.org,2002:str";
     add(mark, anchor, Anchored{text ? Json(value) : plain_scalar(value), value}, /*counted=*/false);

@@ -99,6 +99,28 @@ TEST(Document, ParserMessagesAreValidUtf8) {
   }
 }
 
+// Found by fuzz_world and fuzz_requests: yaml-cpp turns some bytes of valid UTF-8 text (a NUL
+// inside a plain key) into a string that is not UTF-8; such a scalar is refused, not passed on.
+TEST(Document, EveryScalarThatComesBackIsUtf8) {
+  const std::string cases[] = {
+      std::string("wilogs      \x00_hour: 5.52\n", 26),
+      std::string("id\x07\x00_prefix: &eq\nday: 1\n", 26),
+      std::string("a: \"x\x00y\"\n", 10),
+      std::string("# Tml: every edgebattery.ompt s6t\000@`\000\000.\012kind: replay\012logs: ../. 0.01\032\032\032\032\032\032\032h\032\032\032\032\032\032\032 ../. 0.01\032\032\032\032\032\032\032h\032\032\032\032\032\032\032so Europe/London\012wilogs      \000_hour: 5.52}\012", 151),
+      std::string("#office asking the robot for thi\012id\007\000_prefix: &eq\012day# Peopleffi2r t,h", 70),
+  };
+  for (const auto& text : cases) {
+    auto doc = Document::parse(text, DocumentFormat::kYaml, "t.yaml");
+    if (!doc.ok()) {
+      EXPECT_FALSE(first_invalid_utf8(doc.error().message).has_value()) << replace_invalid_utf8(doc.error().message);
+      continue;
+    }
+    const std::string dumped = doc->json().dump(-1, ' ', false, Json::error_handler_t::replace);
+    EXPECT_EQ(dumped.find("\xef\xbf\xbd"), std::string::npos) << dumped;  // nothing needed replacing
+    for (const auto& [key, value] : doc->json().items()) EXPECT_FALSE(first_invalid_utf8(key).has_value());
+  }
+}
+
 TEST(Document, SixtyFourLevelsAreAllowed) {
   for (auto format : {DocumentFormat::kYaml, DocumentFormat::kJson}) {
     auto doc = Document::parse(std::string(64, '[') + std::string(64, ']'), format, "t");

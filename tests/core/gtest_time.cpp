@@ -95,6 +95,12 @@ TEST(Duration, InputSecondsAreCheckedNotClamped) {
   }
 }
 
+TEST(Duration, AnUnknownUnitIsQuotedWhole) {
+  auto d = parse_duration("6\xd0\x8ds");  // found by fuzz_problem: a two-byte character as the unit
+  ASSERT_FALSE(d.ok());
+  EXPECT_NE(d.error().message.find("unknown unit '\xd0\x8d'"), std::string::npos) << d.error().message;
+}
+
 TEST(Duration, TooLongTextIsRefused) {
   for (const char* text : {"9999999999999999s", "99999999999999h", "3000000000h 1s", "2500000000000:00"}) {
     auto d = parse_duration(text);
