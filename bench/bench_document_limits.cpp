@@ -33,7 +33,8 @@ void run(const char* name, const std::string& text) {
 int main() {
   std::printf("load average %s\n", rondo::bench::load_average().c_str());
   std::string plain = "nodes:\n";
-  for (int i = 0; i < 20000; ++i) plain += "  - {name: n" + std::to_string(i) + ", pose: {x: 1.5, y: 2.5}, edges: [a, b]}\n";
+  for (int i = 0; i < 20000; ++i)
+    plain += "  - {name: n" + std::to_string(i) + ", pose: {x: 1.5, y: 2.5}, edges: [a, b]}\n";
   run("ordinary 20000 nodes", plain);
   run("alias bomb", rondo::test::alias_bomb());
   std::string many = "a: &a [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]\nl:\n";

@@ -12,6 +12,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!doc) return rondo::fuzz::check_error(doc.error()), 0;
   auto p = rondo::schedule::decode_problem(*doc);
   if (!p) return rondo::fuzz::check_error(p.error()), 0;
-  if (auto ok = rondo::schedule::validate(*p); !ok) rondo::fuzz::broken("a decoded problem fails validate", ok.error().message);
+  if (auto ok = rondo::schedule::validate(*p); !ok)
+    rondo::fuzz::broken("a decoded problem fails validate", ok.error().message);
   return 0;
 }

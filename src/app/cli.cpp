@@ -68,7 +68,9 @@ namespace {
 }
 }  // namespace
 
-void install_terminate_handler() { std::set_terminate(on_terminate); }
+void install_terminate_handler() {
+  std::set_terminate(on_terminate);
+}
 
 int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   return run_guarded([&] { return run_commands(args, out, err); }, err);

@@ -59,8 +59,8 @@ void run_import(const ImportArgs& args, CommandContext& ctx) {
       "  edges:           {}\n"
       "  inserted:        {}\n"
       "  already present: {}\n",
-      printable_path(args.witham_dir), printable_path(args.db), report->attempts, report->successes, report->edges, report->stored.inserted,
-      report->stored.already_present);
+      printable_path(args.witham_dir), printable_path(args.db), report->attempts, report->successes, report->edges,
+      report->stored.inserted, report->stored.already_present);
 }
 
 Json stats_json(const std::string& db_file, const store::TraversalSummary& summary) {

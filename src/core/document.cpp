@@ -148,8 +148,8 @@ Result<std::string> read_text_file(const std::filesystem::path& file, std::size_
   if (!std::filesystem::exists(file, ec)) return Error::not_found(name + ": no such file");
   if (std::filesystem::is_directory(file, ec)) return Error::invalid(name + ": is a folder, not a file");
   const auto too_big = [&](std::uintmax_t size) {
-    return Error::invalid(name + ": " + (size == 0 ? "more" : std::to_string(size)) + " bytes, more than the limit of " +
-                          std::to_string(max_bytes) + " bytes");
+    return Error::invalid(name + ": " + (size == 0 ? "more" : std::to_string(size)) +
+                          " bytes, more than the limit of " + std::to_string(max_bytes) + " bytes");
   };
   if (const auto size = std::filesystem::file_size(file, ec); !ec && size > max_bytes) return too_big(size);
   std::ifstream in(file, std::ios::binary);

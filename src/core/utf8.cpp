@@ -78,6 +78,8 @@ std::string quote_for_message(std::string_view text, std::size_t max_chars) {
   return out;
 }
 
-std::string printable_path(const std::filesystem::path& path) { return replace_invalid_utf8(path.native()); }
+std::string printable_path(const std::filesystem::path& path) {
+  return replace_invalid_utf8(path.native());
+}
 
 }  // namespace rondo

@@ -51,7 +51,8 @@ Result<std::vector<Traversal>> read_witham_edge_log(const std::filesystem::path&
     words >> t >> d >> s;
     const auto where = file.string() + ":" + std::to_string(number) + ": ";
     if (s.empty() || (words >> extra)) {
-      return Error::invalid(where + "expected 'unix_time duration_seconds success(0|1)', found '" + quote_for_message(line) + "'");
+      return Error::invalid(where + "expected 'unix_time duration_seconds success(0|1)', found '" +
+                            quote_for_message(line) + "'");
     }
     double start = 0;
     double seconds_taken = 0;

@@ -28,8 +28,8 @@ Json plain_scalar(const std::string& s) {
   // Only text that looks like a number is tried as a float, so "1h30m" or "inf-ish" stay strings.
   bool numeric = first != last;
   for (const char* c = first; c != last && numeric; ++c) {
-    numeric = (std::isdigit(static_cast<unsigned char>(*c)) != 0) || *c == '.' || *c == 'e' || *c == 'E' ||
-              *c == '-' || *c == '+';
+    numeric = (std::isdigit(static_cast<unsigned char>(*c)) != 0) || *c == '.' || *c == 'e' || *c == 'E' || *c == '-' ||
+              *c == '+';
   }
   if (numeric) {
     double d = 0;
@@ -58,9 +58,9 @@ struct Stop {
 struct Anchored {
   Json value;
   std::optional<std::string> scalar_text;  // a scalar's text as written, for use as a key
-  std::size_t values = 1;                   // values in the subtree, aliases expanded
-  int height = 0;                           // collection levels in the subtree (0 for a scalar)
-  int alias_depth = 0;                      // aliases nested inside the subtree's anchors
+  std::size_t values = 1;                  // values in the subtree, aliases expanded
+  int height = 0;                          // collection levels in the subtree (0 for a scalar)
+  int alias_depth = 0;                     // aliases nested inside the subtree's anchors
 };
 
 class TreeBuilder : public YAML::EventHandler {
@@ -196,8 +196,8 @@ class TreeBuilder : public YAML::EventHandler {
     if (expecting_key()) fail(mark, "keys must be plain text");
     std::string path = next_path(mark);
     if (stack_.size() >= static_cast<std::size_t>(Document::kMaxDepth)) {
-      fail(mark, (path.empty() ? "" : path + ": ") + "nested deeper than " + std::to_string(Document::kMaxDepth) +
-                     " levels");
+      fail(mark,
+           (path.empty() ? "" : path + ": ") + "nested deeper than " + std::to_string(Document::kMaxDepth) + " levels");
     }
     count(mark, 1);
     if (anchor != 0 && anchors_.size() > anchor) anchors_[anchor].reset();  // open: not yet usable

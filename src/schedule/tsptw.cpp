@@ -101,7 +101,8 @@ Result<Problem> parse_tsptw(std::string_view text, const std::string& source) {
       // anything is allocated for it.
       if (n * n > r.remaining())
         return r.error(key.line, fmt::format("EDGE_WEIGHT_SECTION: DIMENSION {} needs {} entries, the file has only {} "
-                                             "tokens left", dimension, n * n, r.remaining()));
+                                             "tokens left",
+                                             dimension, n * n, r.remaining()));
       matrix.resize(n * n);
       for (std::size_t k = 0; k < n * n; ++k) {
         auto v = r.integer(fmt::format("EDGE_WEIGHT_SECTION: entry ({}, {})", k / n + 1, k % n + 1));
@@ -117,7 +118,8 @@ Result<Problem> parse_tsptw(std::string_view text, const std::string& source) {
       const auto n = static_cast<std::size_t>(dimension);
       if (3 * n > r.remaining())
         return r.error(key.line, fmt::format("TIME_WINDOW_SECTION: DIMENSION {} needs {} entries, the file has only {} "
-                                             "tokens left", dimension, 3 * n, r.remaining()));
+                                             "tokens left",
+                                             dimension, 3 * n, r.remaining()));
       windows.assign(n, {0, 0});
       window_seen.assign(n, false);
       for (std::size_t k = 0; k < n; ++k) {

@@ -78,9 +78,9 @@ Status check_readable_schema(SQLite::Database& db, const std::filesystem::path& 
     const int found = db.execAndGet("PRAGMA user_version").getInt();
     const int latest = Store::latest_schema_version();
     if (found == 0) {
-      return Error::invalid(fmt::format(
-          "{}: an empty database, not yet a rondo store (nothing to read; 'rondo log import' makes one)",
-          file.string()));
+      return Error::invalid(
+          fmt::format("{}: an empty database, not yet a rondo store (nothing to read; 'rondo log import' makes one)",
+                      file.string()));
     }
     if (found > latest) {
       return Error{ErrorCode::kUnsupported,
@@ -106,9 +106,9 @@ int Store::latest_schema_version() {
 Result<Store> Store::open(const std::filesystem::path& file, const StoreOptions& options) {
   if (auto ok = check_path(file, options.mode); !ok) return ok.error();
   const bool read_only = options.mode == OpenMode::kReadOnly;
-  const int flags = read_only ? SQLite::OPEN_READONLY
-                              : SQLite::OPEN_READWRITE |
-                                    (options.mode == OpenMode::kCreateIfMissing ? SQLite::OPEN_CREATE : 0);
+  const int flags =
+      read_only ? SQLite::OPEN_READONLY
+                : SQLite::OPEN_READWRITE | (options.mode == OpenMode::kCreateIfMissing ? SQLite::OPEN_CREATE : 0);
   std::unique_ptr<SQLite::Database> db;
   try {
     db = std::make_unique<SQLite::Database>(file, flags, busy_timeout_ms(options.busy_timeout));

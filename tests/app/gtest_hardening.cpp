@@ -50,16 +50,56 @@ TEST(Hardening, EveryLoaderRefusesAnAliasBombByCountingIt) {
     std::function<std::vector<std::string>(const std::filesystem::path& dir)> args;
   };
   const Case cases[] = {
-      {"map", [&](const auto& d) { write(d / "bomb.yaml", bomb); return std::vector<std::string>{"map", "info", (d / "bomb.yaml").string()}; }},
-      {"map convert", [&](const auto& d) { write(d / "bomb.yaml", bomb); return std::vector<std::string>{"map", "convert", (d / "bomb.yaml").string(), "-o", (d / "out.yaml").string()}; }},
-      {"task file", [&](const auto& d) { write(d / "bomb.yaml", bomb); return std::vector<std::string>{"task", "check", (d / "bomb.yaml").string()}; }},
-      {"task expand", [&](const auto& d) { write(d / "bomb.yaml", bomb); return std::vector<std::string>{"task", "expand", (d / "bomb.yaml").string(), "--from", "2026-03-02"}; }},
-      {"problem file", [&](const auto& d) { write(d / "bomb.yaml", bomb); return std::vector<std::string>{"schedule", (d / "bomb.yaml").string()}; }},
-      {"deployment", [&](const auto& d) { return std::vector<std::string>{"run", g4s_with(d, "deployment.yaml", bomb).string(), "--days", "1", "--out", (d / "run").string()}; }},
-      {"deployment map", [&](const auto& d) { return std::vector<std::string>{"run", g4s_with(d, "map.yaml", bomb).string(), "--days", "1", "--out", (d / "run").string()}; }},
-      {"routines", [&](const auto& d) { return std::vector<std::string>{"run", g4s_with(d, "routines.yaml", bomb).string(), "--days", "1", "--out", (d / "run").string()}; }},
-      {"world", [&](const auto& d) { return std::vector<std::string>{"run", g4s_with(d, "world.yaml", bomb).string(), "--days", "1", "--out", (d / "run").string()}; }},
-      {"requests", [&](const auto& d) { return std::vector<std::string>{"run", g4s_with(d, "requests.yaml", bomb).string(), "--days", "1", "--out", (d / "run").string()}; }},
+      {"map",
+       [&](const auto& d) {
+         write(d / "bomb.yaml", bomb);
+         return std::vector<std::string>{"map", "info", (d / "bomb.yaml").string()};
+       }},
+      {"map convert",
+       [&](const auto& d) {
+         write(d / "bomb.yaml", bomb);
+         return std::vector<std::string>{"map", "convert", (d / "bomb.yaml").string(), "-o", (d / "out.yaml").string()};
+       }},
+      {"task file",
+       [&](const auto& d) {
+         write(d / "bomb.yaml", bomb);
+         return std::vector<std::string>{"task", "check", (d / "bomb.yaml").string()};
+       }},
+      {"task expand",
+       [&](const auto& d) {
+         write(d / "bomb.yaml", bomb);
+         return std::vector<std::string>{"task", "expand", (d / "bomb.yaml").string(), "--from", "2026-03-02"};
+       }},
+      {"problem file",
+       [&](const auto& d) {
+         write(d / "bomb.yaml", bomb);
+         return std::vector<std::string>{"schedule", (d / "bomb.yaml").string()};
+       }},
+      {"deployment",
+       [&](const auto& d) {
+         return std::vector<std::string>{
+             "run", g4s_with(d, "deployment.yaml", bomb).string(), "--days", "1", "--out", (d / "run").string()};
+       }},
+      {"deployment map",
+       [&](const auto& d) {
+         return std::vector<std::string>{
+             "run", g4s_with(d, "map.yaml", bomb).string(), "--days", "1", "--out", (d / "run").string()};
+       }},
+      {"routines",
+       [&](const auto& d) {
+         return std::vector<std::string>{
+             "run", g4s_with(d, "routines.yaml", bomb).string(), "--days", "1", "--out", (d / "run").string()};
+       }},
+      {"world",
+       [&](const auto& d) {
+         return std::vector<std::string>{
+             "run", g4s_with(d, "world.yaml", bomb).string(), "--days", "1", "--out", (d / "run").string()};
+       }},
+      {"requests",
+       [&](const auto& d) {
+         return std::vector<std::string>{
+             "run", g4s_with(d, "requests.yaml", bomb).string(), "--days", "1", "--out", (d / "run").string()};
+       }},
   };
   for (const auto& c : cases) {
     const auto dir = fresh_dir("bomb");
@@ -78,9 +118,9 @@ TEST(Hardening, TheGuardTurnsEveryExceptionIntoExitOne) {
     std::string expect;
   };
   const Case cases[] = {
-      {"bad_alloc", [] () -> int { throw std::bad_alloc(); }, "rondo: error: out of memory"},
-      {"std::exception", [] () -> int { throw std::runtime_error("boom"); }, "rondo: internal error: boom"},
-      {"anything else", [] () -> int { throw 42; }, "rondo: internal error: unknown exception"},
+      {"bad_alloc", []() -> int { throw std::bad_alloc(); }, "rondo: error: out of memory"},
+      {"std::exception", []() -> int { throw std::runtime_error("boom"); }, "rondo: internal error: boom"},
+      {"anything else", []() -> int { throw 42; }, "rondo: internal error: unknown exception"},
       {"no exception", [] { return 2; }, ""},
   };
   for (const auto& c : cases) {
@@ -122,22 +162,38 @@ TEST(Hardening, NumbersAreCheckedNotClampedOrOverflowed) {
     std::string expect;
   };
   const std::string ok2 = tsptw("2", "0 5\n5 0", "1 0 100\n2 0 100");
-  const std::string problem = "locations: [dock, A]\ntravel: [[0, 60], [60, 0]]\nrobot: {location: dock, time: 0}\n"
-                              "tasks:\n  - {id: a, release: 0, deadline: DEADLINE, start: A, priority: PRIORITY}\n";
+  const std::string problem =
+      "locations: [dock, A]\ntravel: [[0, 60], [60, 0]]\nrobot: {location: dock, time: 0}\n"
+      "tasks:\n  - {id: a, release: 0, deadline: DEADLINE, start: A, priority: PRIORITY}\n";
   const auto with = [&](std::string text, const std::string& key, const std::string& value) {
     text.replace(text.find(key), key.size(), value);
     return text;
   };
   const Case cases[] = {
-      {"DIMENSION past the bytes present", tsptw("90000", "0 1\n1 0", "1 0 10"), {}, "DIMENSION 90000 needs 8100000000 entries"},
-      {"TSPTW window near 1e16", tsptw("2", "0 5\n5 0", "1 0 10000000000000000\n2 0 100"), {}, "10000000000000000 is out of range"},
-      {"TSPTW weight near 1e16", tsptw("2", "0 9999999999999999\n5 0", "1 0 100\n2 0 100"), {}, "is out of range (at most 1000000000 seconds)"},
+      {"DIMENSION past the bytes present",
+       tsptw("90000", "0 1\n1 0", "1 0 10"),
+       {},
+       "DIMENSION 90000 needs 8100000000 entries"},
+      {"TSPTW window near 1e16",
+       tsptw("2", "0 5\n5 0", "1 0 10000000000000000\n2 0 100"),
+       {},
+       "10000000000000000 is out of range"},
+      {"TSPTW weight near 1e16",
+       tsptw("2", "0 9999999999999999\n5 0", "1 0 100\n2 0 100"),
+       {},
+       "is out of range (at most 1000000000 seconds)"},
       {"--time-limit nan", ok2, {"--time-limit", "nan"}, "--time-limit: must be a number of seconds"},
       {"--time-limit inf", ok2, {"--time-limit", "inf"}, "--time-limit"},
       {"--time-limit a year", ok2, {"--time-limit", "31536000"}, "--time-limit: must be a number of seconds"},
       {"--seed -1", ok2, {"--seed", "-1"}, "--seed: must not be negative"},
-      {"problem time 1e300", "#yaml\n" + with(with(problem, "DEADLINE", "1e300"), "PRIORITY", "0"), {}, "tasks[0].deadline: 1e+300 seconds is out of range"},
-      {"problem priority out of range", "#yaml\n" + with(with(problem, "DEADLINE", "600"), "PRIORITY", "5000000000"), {}, "tasks[0].priority: must be from -1000000 to 1000000"},
+      {"problem time 1e300",
+       "#yaml\n" + with(with(problem, "DEADLINE", "1e300"), "PRIORITY", "0"),
+       {},
+       "tasks[0].deadline: 1e+300 seconds is out of range"},
+      {"problem priority out of range",
+       "#yaml\n" + with(with(problem, "DEADLINE", "600"), "PRIORITY", "5000000000"),
+       {},
+       "tasks[0].priority: must be from -1000000 to 1000000"},
   };
   const auto dir = fresh_dir("numbers");
   for (const auto& c : cases) {
@@ -202,7 +258,8 @@ TEST(Hardening, AFailedLearnLeavesTheModelsFileAsItWas) {
   const Case cases[] = {
       {"missing database", {"learn", "--db", (dir / "none.db").string(), "-o", (dir / "models.json").string()}},
       {"empty database", {"learn", "--db", (dir / "empty.db").string(), "-o", (dir / "models.json").string()}},
-      {"bad zone", {"learn", "--db", (dir / "empty.db").string(), "--zone", "Mars/Olympus", "-o", (dir / "models.json").string()}},
+      {"bad zone",
+       {"learn", "--db", (dir / "empty.db").string(), "--zone", "Mars/Olympus", "-o", (dir / "models.json").string()}},
   };
   for (const auto& c : cases) {
     const auto r = test::run_cli(c.args);
@@ -214,8 +271,8 @@ TEST(Hardening, AFailedLearnLeavesTheModelsFileAsItWas) {
 }
 
 TEST(Hardening, OutOfRangeCountsOnTheCommandLineAreRefused) {
-  const std::vector<std::string> base = {"eval", "edges", "--witham", "../shared/data/witham_wharf", "--split",
-                                         "2014-08-01T00:00:00Z"};
+  const std::vector<std::string> base = {
+      "eval", "edges", "--witham", "../shared/data/witham_wharf", "--split", "2014-08-01T00:00:00Z"};
   for (const char* option : {"--min-train", "--min-test"}) {
     auto args = base;
     args.insert(args.end(), {option, "-5"});

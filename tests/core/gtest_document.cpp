@@ -86,10 +86,13 @@ TEST(Document, ParserMessagesAreValidUtf8) {
     std::string text;
   };
   const Case cases[] = {
-      {DocumentFormat::kYaml, "a: \"\\\xc3\xa9\"\n"},        // an escape of a two-byte character
+      {DocumentFormat::kYaml, "a: \"\\\xc3\xa9\"\n"},       // an escape of a two-byte character
       {DocumentFormat::kJson, "[17\xc3\xa9]"},              // an invalid literal ending in one
       {DocumentFormat::kJson, "{\"a\": tru\xe2\x82\xac}"},  // a three-byte one
-      {DocumentFormat::kYaml, std::string("\x00 #n\x00r\r@b\x00\x00" "e #n\x00r\r@b\x00\x00" "etraveltravel[0][1]", 42)},
+      {DocumentFormat::kYaml, std::string("\x00 #n\x00r\r@b\x00\x00"
+                                          "e #n\x00r\r@b\x00\x00"
+                                          "etraveltravel[0][1]",
+                                          42)},
   };
   for (const auto& c : cases) {
     auto doc = Document::parse(c.text, c.format, "t");
@@ -106,7 +109,11 @@ TEST(Document, EveryScalarThatComesBackIsUtf8) {
       std::string("wilogs      \x00_hour: 5.52\n", 26),
       std::string("id\x07\x00_prefix: &eq\nday: 1\n", 26),
       std::string("a: \"x\x00y\"\n", 10),
-      std::string("# Tml: every edgebattery.ompt s6t\000@`\000\000.\012kind: replay\012logs: ../. 0.01\032\032\032\032\032\032\032h\032\032\032\032\032\032\032 ../. 0.01\032\032\032\032\032\032\032h\032\032\032\032\032\032\032so Europe/London\012wilogs      \000_hour: 5.52}\012", 151),
+      std::string("# Tml: every edgebattery.ompt s6t\000@`\000\000.\012kind: replay\012logs: ../. "
+                  "0.01\032\032\032\032\032\032\032h\032\032\032\032\032\032\032 ../. "
+                  "0.01\032\032\032\032\032\032\032h\032\032\032\032\032\032\032so Europe/London\012wilogs      "
+                  "\000_hour: 5.52}\012",
+                  151),
       std::string("#office asking the robot for thi\012id\007\000_prefix: &eq\012day# Peopleffi2r t,h", 70),
   };
   for (const auto& text : cases) {
@@ -166,8 +173,7 @@ TEST(Document, AnAliasBombIsRefusedByCountingValues) {
   ASSERT_FALSE(doc.ok());
   EXPECT_EQ(doc.error().code, ErrorCode::kInvalidInput);
   EXPECT_NE(doc.error().message.find("bomb.yaml:"), std::string::npos) << doc.error().message;
-  EXPECT_NE(doc.error().message.find(test::kAliasBombLimit), std::string::npos)
-      << doc.error().message;
+  EXPECT_NE(doc.error().message.find(test::kAliasBombLimit), std::string::npos) << doc.error().message;
 }
 
 TEST(Document, LimitsOnAliasesAreCountedAndNamed) {
@@ -182,8 +188,8 @@ TEST(Document, LimitsOnAliasesAreCountedAndNamed) {
   for (int i = 1; i <= Document::kMaxAliasDepth + 1; ++i) {
     deep_aliases += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [*a" + std::to_string(i - 1) + "]\n";
   }
-  std::string deep_by_alias = "a: &a " + std::string(40, '[') + std::string(40, ']') + "\nb: " +
-                              std::string(30, '[') + "*a" + std::string(30, ']') + "\n";
+  std::string deep_by_alias = "a: &a " + std::string(40, '[') + std::string(40, ']') + "\nb: " + std::string(30, '[') +
+                              "*a" + std::string(30, ']') + "\n";
   const Case cases[] = {
       {"aliases", many_aliases, "more than 100000 aliases (the limit is 100000)"},
       {"alias depth", deep_aliases, "aliases nest more than 16 deep (the limit is 16)"},

@@ -66,7 +66,8 @@ TEST(ReadOnly, AReadOnlyOpenWritesNothingToACurrentStore) {
   {
     auto db = Store::open(tmp.path());
     ASSERT_TRUE(db.ok());
-    ASSERT_TRUE(add_traversal(*db, Traversal{"A_B", "A", "B", Time{} + seconds(1400000000), seconds(12), true, "t:1"}).ok());
+    ASSERT_TRUE(
+        add_traversal(*db, Traversal{"A_B", "A", "B", Time{} + seconds(1400000000), seconds(12), true, "t:1"}).ok());
   }
   {
     // Fold the WAL into the file, so that the file alone is the store.
@@ -97,17 +98,15 @@ TEST(ReadOnly, LearnOnAnEdgeIdThatIsNotUtf8FailsAndKeepsTheModelsFile) {
   {
     auto db = Store::open(tmp.path());
     ASSERT_TRUE(db.ok());
-    ASSERT_TRUE(add_traversal(*db, Traversal{"A\xff_B", "A\xff", "B", Time{} + seconds(1400000000), seconds(12), true,
-                                             "t:1"})
-                    .ok());
+    ASSERT_TRUE(
+        add_traversal(*db, Traversal{"A\xff_B", "A\xff", "B", Time{} + seconds(1400000000), seconds(12), true, "t:1"})
+            .ok());
   }
   const auto stats = run_cli({"log", "stats", "--db", tmp.str(), "--json"});
   EXPECT_EQ(stats.exit_code, 0) << stats.err;
   EXPECT_NE(stats.out.find("A\xef\xbf\xbd_B"), std::string::npos) << stats.out;  // U+FFFD for the bad byte
   const auto models = tmp.str() + ".models.json";
-  {
-    std::ofstream(models) << "{\"the\": \"old models\"}\n";
-  }
+  { std::ofstream(models) << "{\"the\": \"old models\"}\n"; }
   const std::string before = bytes_of(models);
   const auto r = run_cli({"learn", "--db", tmp.str(), "-o", models});
   EXPECT_EQ(r.exit_code, 2) << r.err;
