@@ -1,6 +1,10 @@
 #include "cli.h"
 
+#include <unistd.h>
+
+#include <cstdlib>
 #include <exception>
+#include <new>
 
 #include "commands.h"
 
@@ -27,7 +31,53 @@ int fail(CommandContext& ctx, const Error& error) {
   return ctx.exit_code;
 }
 
+int run_guarded(const std::function<int()>& body, std::ostream& err) {
+  try {
+    return body();
+  } catch (const std::bad_alloc&) {
+    // Nothing here allocates: the message is a literal.
+    err << "rondo: error: out of memory (the input may be too large for this machine)\n";
+  } catch (const std::exception& e) {
+    err << "rondo: internal error: " << e.what() << '\n';
+  } catch (...) {
+    err << "rondo: internal error: unknown exception\n";
+  }
+  return 1;
+}
+
+namespace {
+[[noreturn]] void on_terminate() {
+  // Called for an exception that escapes a thread, or a noexcept function: say what, exit 1.
+  const char* what = "unknown exception";
+  if (auto current = std::current_exception()) {
+    try {
+      std::rethrow_exception(current);
+    } catch (const std::bad_alloc&) {
+      what = "out of memory";
+    } catch (const std::exception& e) {
+      what = e.what();
+    } catch (...) {
+    }
+  } else {
+    what = "terminated without an exception";
+  }
+  const char prefix[] = "rondo: internal error: ";
+  (void)!::write(STDERR_FILENO, prefix, sizeof prefix - 1);
+  (void)!::write(STDERR_FILENO, what, std::char_traits<char>::length(what));
+  (void)!::write(STDERR_FILENO, "\n", 1);
+  std::_Exit(1);
+}
+}  // namespace
+
+void install_terminate_handler() {
+  std::set_terminate(on_terminate);
+}
+
 int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  return run_guarded([&] { return run_commands(args, out, err); }, err);
+}
+
+int run_commands(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   CommandContext ctx{out, err};
   CLI::App app{"rondo: a long-term task executive for mobile service robots", "rondo"};
   app.set_version_flag("--version", std::string("rondo ") + RONDO_VERSION);
@@ -60,12 +110,6 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     // Bad command-line input is bad input: exit code 2 with CLI11's message naming the option.
     err << "rondo: error: " << e.what() << "\nRun 'rondo --help' for usage.\n";
     return 2;
-  } catch (const std::exception& e) {
-    err << "rondo: internal error: " << e.what() << '\n';
-    return 1;
-  } catch (...) {
-    err << "rondo: internal error: unknown exception\n";
-    return 1;
   }
   return ctx.exit_code;
 }

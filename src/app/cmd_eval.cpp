@@ -87,9 +87,11 @@ void add_eval_commands(CLI::App& root, CommandContext& ctx) {
   edges->add_option("--zone", edges_args->zone, "IANA time zone of the deployment (time-of-day bins)")
       ->capture_default_str();
   edges->add_option("--min-train", edges_args->min_train, "Attempts an edge needs before the split")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000000));
   edges->add_option("--min-test", edges_args->min_test, "Attempts an edge needs after the split")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000000));
   edges->add_flag("--json", edges_args->json, "Print JSON instead of a table");
   edges->callback([edges_args, &ctx] { run_eval_edges(*edges_args, ctx); });
 

@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "rondo/core/timezone.h"
+#include "rondo/core/utf8.h"
 #include "rondo/learn/edge_models.h"
 #include "rondo/map/map_loader.h"
 #include "rondo/plan/learned_edge_models.h"
@@ -51,7 +52,7 @@ void print_summary(const LearnArgs& args, const learn::EdgeModels& models, std::
   if (args.json) {
     ctx.out << Json{{"edges", models.size()},   {"edges_with_own_model", own},
                     {"traversals", traversals}, {"traversals_of_unknown_edges", unmatched},
-                    {"time_zone", args.zone},   {"output", args.output}}
+                    {"time_zone", args.zone},   {"output", printable_path(args.output)}}
                    .dump(2)
             << '\n';
     return;
@@ -66,7 +67,7 @@ void run_learn(const LearnArgs& args, CommandContext& ctx) {
   if (!zone) return (void)fail(ctx, zone.error().with_context("--zone"));
   auto from_map = map_edges(args);
   if (!from_map) return (void)fail(ctx, from_map.error());
-  auto db = store::Store::open(args.db, {.mode = store::OpenMode::kMustExist});
+  auto db = store::Store::open(args.db, {.mode = store::OpenMode::kReadOnly});
   if (!db) return (void)fail(ctx, db.error());
   auto log = store::find_traversals(*db);
   if (!log) return (void)fail(ctx, log.error());

@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "rondo/core/document.h"
+#include "rondo/core/utf8.h"
 #include "rondo/store/store.h"
 #include "rondo/store/traversal_stats.h"
 #include "rondo/store/witham_import.h"
@@ -24,6 +25,10 @@ struct StatsArgs {
   bool json = false;
 };
 
+struct MigrateArgs {
+  std::string db;
+};
+
 void run_import(const ImportArgs& args, CommandContext& ctx) {
   auto db = store::Store::open(args.db, {.mode = store::OpenMode::kCreateIfMissing});
   if (!db) {
@@ -37,8 +42,8 @@ void run_import(const ImportArgs& args, CommandContext& ctx) {
   }
   if (args.json) {
     Json j;
-    j["db"] = args.db;
-    j["source"] = args.witham_dir;
+    j["db"] = printable_path(args.db);
+    j["source"] = printable_path(args.witham_dir);
     j["attempts"] = report->attempts;
     j["successes"] = report->successes;
     j["edges"] = report->edges;
@@ -54,13 +59,13 @@ void run_import(const ImportArgs& args, CommandContext& ctx) {
       "  edges:           {}\n"
       "  inserted:        {}\n"
       "  already present: {}\n",
-      args.witham_dir, args.db, report->attempts, report->successes, report->edges, report->stored.inserted,
-      report->stored.already_present);
+      printable_path(args.witham_dir), printable_path(args.db), report->attempts, report->successes, report->edges,
+      report->stored.inserted, report->stored.already_present);
 }
 
 Json stats_json(const std::string& db_file, const store::TraversalSummary& summary) {
   Json j;
-  j["db"] = db_file;
+  j["db"] = printable_path(db_file);
   j["attempts"] = summary.attempts;
   j["successes"] = summary.successes;
   j["edges"] = summary.edges.size();
@@ -96,8 +101,9 @@ void print_stats_table(std::ostream& out, const store::TraversalSummary& summary
 }
 
 void run_stats(const StatsArgs& args, CommandContext& ctx) {
-  // A read command never creates a database: a mistyped path is an error, not an empty store.
-  auto db = store::Store::open(args.db, {.mode = store::OpenMode::kMustExist});
+  // A read command never writes: a mistyped path is an error, not an empty store, and an older
+  // schema is refused rather than migrated.
+  auto db = store::Store::open(args.db, {.mode = store::OpenMode::kReadOnly});
   if (!db) {
     fail(ctx, db.error());
     return;
@@ -108,10 +114,25 @@ void run_stats(const StatsArgs& args, CommandContext& ctx) {
     return;
   }
   if (args.json) {
-    ctx.out << stats_json(args.db, *summary).dump(2) << '\n';
+    // A store written before import checked names may hold an edge id that is not UTF-8: it is
+    // shown with U+FFFD in its place rather than failing the whole report.
+    ctx.out << stats_json(args.db, *summary).dump(2, ' ', false, Json::error_handler_t::replace) << '\n';
   } else {
     print_stats_table(ctx.out, *summary);
   }
+}
+
+void run_migrate(const MigrateArgs& args, CommandContext& ctx) {
+  auto before = store::Store::open(args.db, {.mode = store::OpenMode::kReadOnly});
+  const bool current = before.ok();
+  before = Error::internal("closed");  // close the read-only connection before writing
+  auto db = store::Store::open(args.db, {.mode = store::OpenMode::kMustExist});
+  if (!db) {
+    fail(ctx, db.error());
+    return;
+  }
+  ctx.out << fmt::format("{}: schema version {}{}\n", printable_path(args.db), store::Store::latest_schema_version(),
+                         current ? " (already current)" : "");
 }
 
 }  // namespace
@@ -134,6 +155,12 @@ void add_log_commands(CLI::App& root, CommandContext& ctx) {
   stats->add_option("--db", stats_args->db, "The SQLite database file (must exist)")->required();
   stats->add_flag("--json", stats_args->json, "Print JSON: totals 'attempts', 'successes', 'edges' and 'per_edge'");
   stats->callback([stats_args, &ctx] { run_stats(*stats_args, ctx); });
+
+  auto migrate_args = std::make_shared<MigrateArgs>();
+  CLI::App* migrate = log->add_subcommand(
+      "migrate", "Bring a database to this rondo's schema (the read-only commands refuse an older one)");
+  migrate->add_option("--db", migrate_args->db, "The SQLite database file (must exist)")->required();
+  migrate->callback([migrate_args, &ctx] { run_migrate(*migrate_args, ctx); });
 }
 
 }  // namespace rondo::app

@@ -1,10 +1,12 @@
 // `rondo map info|check|convert`: inspect, validate and convert topological maps.
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <memory>
 #include <string>
 
 #include "commands.h"
+#include "rondo/core/utf8.h"
 #include "rondo/map/map_loader.h"
 #include "rondo/map/map_summary.h"
 #include "rondo/map/map_validation.h"
@@ -125,6 +127,15 @@ void add_convert(CLI::App& group, CommandContext& ctx) {
   cmd->add_option("file", opts->file, "Map file: rondo .yaml, LCAS .tmap2, STRANDS .tmap, .yaml or .json")->required();
   cmd->add_option("-o,--output", opts->output, "Where to write the rondo .yaml ('-' for standard output)")->required();
   cmd->callback([&ctx, opts] {
+    // The output name says the format; rondo writes only its own, so refuse any other name
+    // before reading anything (a .json or .tmap name would otherwise get YAML inside).
+    const std::string ext = std::filesystem::path(opts->output).extension().string();
+    if (opts->output != "-" && ext != ".yaml" && ext != ".yml") {
+      fail(ctx, Error::invalid(fmt::format(
+                    "-o {}: map convert writes rondo's YAML map format only: give a .yaml or .yml name, or '-'",
+                    printable_path(opts->output))));
+      return;
+    }
     auto loaded = map::load_map_file(opts->file);
     if (!loaded) {
       fail(ctx, loaded.error());

@@ -3,6 +3,7 @@
 //   rondo schedule day.yaml --solver default --time-limit 2 --json
 //   rondo schedule --tsptw ../shared/data/trptw/dumas/n20w20.001.tsptw --time-limit 1 --json
 #include <chrono>
+#include <cmath>
 #include <iomanip>
 #include <memory>
 #include <optional>
@@ -26,13 +27,15 @@ double steady_seconds() {
   return duration<double>(steady_clock::now().time_since_epoch()).count();
 }
 
+constexpr double kMaxTimeLimitSeconds = 7 * 24 * 3600.0;  // a week
+
 struct ScheduleOptions {
   std::string file;
   std::string tsptw;
   std::string solver = "default";
   double time_limit = 10;
   bool json = false;
-  std::uint64_t seed = 1;
+  std::int64_t seed = 1;  // signed, so that '-1' is refused instead of wrapping to 2^64 - 1
 };
 
 void run_schedule(const ScheduleOptions& o, CommandContext& ctx) {
@@ -40,6 +43,17 @@ void run_schedule(const ScheduleOptions& o, CommandContext& ctx) {
   const bool tsptw = !o.tsptw.empty();
   if (tsptw == !o.file.empty()) {
     fail(ctx, Error::invalid("schedule: give either a problem FILE or --tsptw FILE"));
+    return;
+  }
+  // NaN passes CLI11's PositiveNumber (every comparison with it is false), and a solver told to
+  // stop at NaN never stops: the limit is checked here, bounds and all.
+  if (!(std::isfinite(o.time_limit) && o.time_limit > 0 && o.time_limit <= kMaxTimeLimitSeconds)) {
+    fail(ctx, Error::invalid(fmt::format("--time-limit: must be a number of seconds above 0 and at most {:g}, not {}",
+                                         kMaxTimeLimitSeconds, o.time_limit)));
+    return;
+  }
+  if (o.seed < 0) {
+    fail(ctx, Error::invalid(fmt::format("--seed: must not be negative, not {}", o.seed)));
     return;
   }
   Result<Problem> problem = tsptw ? load_tsptw(o.tsptw) : load_problem(o.file);
@@ -53,7 +67,7 @@ void run_schedule(const ScheduleOptions& o, CommandContext& ctx) {
   }
   std::unique_ptr<Scheduler> solver;
   if (o.solver == "default") {
-    solver = std::make_unique<DefaultScheduler>(DefaultSchedulerOptions{.seed = o.seed});
+    solver = std::make_unique<DefaultScheduler>(DefaultSchedulerOptions{.seed = static_cast<std::uint64_t>(o.seed)});
   } else if (o.solver == "mip" || o.solver == "mip-ia") {
     if (auto ok = MipScheduler::check_supported(*problem); !ok) {
       fail(ctx, ok.error());

@@ -8,6 +8,7 @@
 #include <functional>
 #include <ostream>
 
+#include "rondo/core/atomic_file.h"
 #include "rondo/core/task_codec.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
@@ -23,11 +24,7 @@ namespace rondo::app {
 namespace {
 
 Status write_file(const std::filesystem::path& file, const std::string& text) {
-  std::ofstream out(file, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) return Error::io(fmt::format("{}: cannot write", file.string()));
-  return Status{};
+  return write_file_atomically(file, text);
 }
 
 std::string date_text(std::chrono::year_month_day d) {

@@ -12,6 +12,7 @@
 
 #include "rondo/core/timezone.h"
 #include "rondo/core/utf8.h"
+#include "yaml_tree.h"
 
 namespace rondo {
 namespace {
@@ -22,84 +23,6 @@ std::string join_key(const std::string& parent, std::string_view key) {
 std::string join_index(const std::string& parent, std::size_t i) {
   return parent + "[" + std::to_string(i) + "]";
 }
-
-// YAML 1.2 core schema for plain (unquoted) scalars.
-Json plain_scalar(const std::string& s) {
-  if (s.empty() || s == "~" || s == "null" || s == "Null" || s == "NULL") return nullptr;
-  if (s == "true" || s == "True" || s == "TRUE") return true;
-  if (s == "false" || s == "False" || s == "FALSE") return false;
-  const char* first = s.data();
-  const char* last = s.data() + s.size();
-  if (*first == '+') ++first;
-  std::int64_t i = 0;
-  if (auto [p, ec] = std::from_chars(first, last, i); ec == std::errc{} && p == last) return i;
-  // Only text that looks like a number is tried as a float, so "1h30m" or "inf-ish" stay strings.
-  bool numeric = first != last;
-  for (const char* c = first; c != last && numeric; ++c) {
-    numeric = (std::isdigit(static_cast<unsigned char>(*c)) != 0) || *c == '.' || *c == 'e' || *c == 'E' ||
-              *c == '-' || *c == '+';
-  }
-  if (numeric) {
-    double d = 0;
-    if (auto [p, ec] = std::from_chars(first, last, d); ec == std::errc{} && p == last && std::isfinite(d)) {
-      return d;
-    }
-  }
-  return s;
-}
-
-class YamlConverter {
- public:
-  YamlConverter(std::map<std::string, int>& lines, const std::string& source) : lines_(lines), source_(source) {}
-
-  Result<Json> convert(const YAML::Node& node, const std::string& path, int depth) {
-    if (depth >= Document::kMaxDepth && (node.IsSequence() || node.IsMap())) {  // the root is level 1
-      return Error::invalid(where(node) + (path.empty() ? "" : path + ": ") + "nested deeper than " +
-                            std::to_string(Document::kMaxDepth) + " levels");
-    }
-    if (node.Mark().line >= 0) lines_[path] = node.Mark().line + 1;  // an empty document has no mark
-    switch (node.Type()) {
-      case YAML::NodeType::Undefined:
-      case YAML::NodeType::Null:
-        return Json(nullptr);
-      case YAML::NodeType::Scalar:
-        if (node.Tag() == "!" || node.Tag() == "tag:yaml.org,2002:str") return Json(node.Scalar());
-        return plain_scalar(node.Scalar());
-      case YAML::NodeType::Sequence: {
-        Json out = Json::array();
-        std::size_t i = 0;
-        for (const auto& item : node) {
-          auto v = convert(item, join_index(path, i++), depth + 1);
-          if (!v) return v.error();
-          out.push_back(std::move(*v));
-        }
-        return out;
-      }
-      case YAML::NodeType::Map: {
-        Json out = Json::object();
-        for (const auto& kv : node) {
-          if (!kv.first.IsScalar()) return Error::invalid(where(kv.first) + "keys must be plain text");
-          const std::string key = kv.first.Scalar();
-          if (out.contains(key)) {
-            return Error::invalid(where(kv.first) + join_key(path, key) + ": duplicate key '" + key + "'");
-          }
-          auto v = convert(kv.second, join_key(path, key), depth + 1);
-          if (!v) return v.error();
-          out[key] = std::move(*v);
-        }
-        return out;
-      }
-    }
-    return Json(nullptr);
-  }
-
- private:
-  std::string where(const YAML::Node& node) const {
-    return source_ + ":" + std::to_string(node.Mark().line + 1) + ": ";
-  }
-  std::map<std::string, int>& lines_;
-  const std::string& source_;
-};
 
 // Guards yaml-cpp's recursive parser: rejects YAML whose flow collections ('[', '{') open more
 // than kMaxFlowDepth levels deep before the parser sees it. A bracket counts only where YAML can
@@ -160,6 +83,7 @@ Status check_yaml_flow_depth(std::string_view text, const std::string& source) {
 struct TooDeep {
   int depth;
 };
+struct TooMany {};
 
 // The line of the first byte that is not part of well-formed UTF-8, if any. Text files are UTF-8;
 // rejecting anything else here means no string that reaches a decoder can fail to print.
@@ -175,56 +99,77 @@ Result<Document> Document::parse(std::string_view text, DocumentFormat format, s
   Document doc;
   doc.source_ = std::make_shared<std::string>(std::move(source));
   doc.lines_ = std::make_shared<std::map<std::string, int>>();
+  if (text.size() > kMaxBytes) {
+    return Error::invalid(*doc.source_ + ": " + std::to_string(text.size()) + " bytes, more than the limit of " +
+                          std::to_string(kMaxBytes) + " bytes");
+  }
   if (auto line = first_invalid_utf8_line(text)) {
     return Error::invalid(*doc.source_ + ":" + std::to_string(*line) + ": the text is not valid UTF-8");
   }
   if (format == DocumentFormat::kJson) {
     try {
-      const auto limit_depth = [](int depth, Json::parse_event_t, Json&) {
+      std::size_t values = 0;
+      const auto limit_depth = [&values](int depth, Json::parse_event_t event, Json&) {
         if (depth >= Document::kMaxDepth) throw TooDeep{depth};  // depth counts from 0
+        if (event == Json::parse_event_t::value || event == Json::parse_event_t::object_start ||
+            event == Json::parse_event_t::array_start) {
+          if (++values > Document::kMaxValues) throw TooMany{};
+        }
         return true;
       };
       doc.json_ = std::make_shared<Json>(Json::parse(text, limit_depth));
     } catch (const Json::exception& e) {
       // nlohmann's message names the byte and line: "parse error at line 3, column 5: ..."
-      return Error::invalid(*doc.source_ + ": " + e.what());
+      return Error::invalid(*doc.source_ + ": " + quote_for_message(e.what(), 400));
     } catch (const TooDeep&) {
       return Error::invalid(*doc.source_ + ": nested deeper than " + std::to_string(Document::kMaxDepth) + " levels");
+    } catch (const TooMany&) {
+      return Error::invalid(*doc.source_ + ": more than " + std::to_string(kMaxValues) + " values (the limit is " +
+                            std::to_string(kMaxValues) + ")");
     }
     return doc;
   }
   if (auto s = check_yaml_flow_depth(text, *doc.source_); !s) return s.error();
   try {
-    const YAML::Node node = YAML::Load(std::string(text));
-    YamlConverter conv(*doc.lines_, *doc.source_);
-    auto json = conv.convert(node, "", 0);
+    auto json = detail::yaml_to_json(text, *doc.source_, *doc.lines_);
     if (!json) return json.error();
     doc.json_ = std::make_shared<Json>(std::move(*json));
   } catch (const YAML::Exception& e) {
-    return Error::invalid(*doc.source_ + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
+    return Error::invalid(*doc.source_ + ":" + std::to_string(e.mark.line + 1) + ": " + quote_for_message(e.msg, 400));
   } catch (const std::exception& e) {
-    return Error::invalid(*doc.source_ + ": " + e.what());
+    return Error::invalid(*doc.source_ + ": " + quote_for_message(e.what(), 400));
   }
   return doc;
 }
 
-Result<std::string> read_text_file(const std::filesystem::path& file) {
+Result<std::string> read_text_file(const std::filesystem::path& file, std::size_t max_bytes) {
+  const std::string name = printable_path(file);
   std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) return Error::not_found(file.string() + ": no such file");
-  if (std::filesystem::is_directory(file, ec)) return Error::invalid(file.string() + ": is a folder, not a file");
+  if (!std::filesystem::exists(file, ec)) return Error::not_found(name + ": no such file");
+  if (std::filesystem::is_directory(file, ec)) return Error::invalid(name + ": is a folder, not a file");
+  const auto too_big = [&](std::uintmax_t size) {
+    return Error::invalid(name + ": " + (size == 0 ? "more" : std::to_string(size)) +
+                          " bytes, more than the limit of " + std::to_string(max_bytes) + " bytes");
+  };
+  if (const auto size = std::filesystem::file_size(file, ec); !ec && size > max_bytes) return too_big(size);
   std::ifstream in(file, std::ios::binary);
-  if (!in) return Error::io(file.string() + ": cannot open: " + std::strerror(errno));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) return Error::io(file.string() + ": read failed");
-  return ss.str();
+  if (!in) return Error::io(name + ": cannot open: " + std::strerror(errno));
+  // Read in pieces and stop past the limit, since a pipe or a device has no size to check first.
+  std::string text;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > max_bytes) return too_big(0);
+  }
+  if (in.bad()) return Error::io(name + ": read failed");
+  return text;
 }
 
 Result<Document> Document::load(const std::filesystem::path& file) {
-  auto text = read_text_file(file);
+  auto text = read_text_file(file, kMaxBytes);
   if (!text) return text.error();
   const auto format = file.extension() == ".json" ? DocumentFormat::kJson : DocumentFormat::kYaml;
-  return parse(*text, format, file.string());
+  return parse(*text, format, printable_path(file));
 }
 
 Field Document::root() const { return Field(*this, json_.get(), ""); }
@@ -403,7 +348,7 @@ void emit(YAML::Emitter& out, const Json& v) {
     case Json::value_t::string: {
       const auto& s = v.get_ref<const std::string&>();
       // Quote text that would read back as another type (a number, true, null...).
-      if (!plain_scalar(s).is_string() || s.empty()) {
+      if (!detail::plain_scalar(s).is_string() || s.empty()) {
         out << YAML::DoubleQuoted << s;
       } else {
         out << s;

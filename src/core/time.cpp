@@ -7,14 +7,17 @@
 
 #include <fmt/format.h>
 
+#include "rondo/core/utf8.h"
 #include "time_parsing.h"
 
 namespace rondo {
 
-namespace {
-// Beyond this many seconds (about 290 million years) a millisecond count overflows int64.
-constexpr double kMaxSeconds = 9.0e12;
-}  // namespace
+Result<Duration> checked_from_seconds(double s) {
+  if (!std::isfinite(s) || s > kMaxSeconds || s < -kMaxSeconds) {
+    return Error::invalid(fmt::format("{} seconds is out of range (at most {:g} either way)", s, kMaxSeconds));
+  }
+  return from_seconds(s);
+}
 
 Duration from_seconds(double s) {
   if (!std::isfinite(s)) return Duration{0};
@@ -121,8 +124,11 @@ Result<Duration> parse_duration(std::string_view text) {
       unit = text.front() == 'h' ? 3600.0 : text.front() == 'm' ? 60.0 : 1.0;
       text.remove_prefix(1);
     } else if (!text.empty() && !is_space(text.front())) {
+      // The whole character, not its first byte, so that the message stays UTF-8 (found by fuzz_problem).
+      std::size_t n = 1;
+      while (n < text.size() && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) ++n;
       return Error::invalid("duration '" + std::string(original) + "': unknown unit '" +
-                            std::string(1, text.front()) + "' (use h, m, s or ms)");
+                            quote_for_message(text.substr(0, n)) + "' (use h, m, s or ms)");
     } else if (any) {
       return Error::invalid("duration '" + std::string(original) + "': a number without a unit");
     }

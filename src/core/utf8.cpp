@@ -1,5 +1,7 @@
 #include "rondo/core/utf8.h"
 
+#include <algorithm>
+
 namespace rondo {
 namespace {
 
@@ -54,6 +56,30 @@ std::string replace_invalid_utf8(std::string_view text) {
     }
   }
   return out;
+}
+
+std::string quote_for_message(std::string_view text, std::size_t max_chars) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t len = sequence_length(text, i);
+    if (out.size() + std::max<std::size_t>(len, 1) > max_chars) {
+      out += "...";
+      break;
+    }
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (len == 0 || (len == 1 && (c < 0x20 || c == 0x7f))) {
+      out += '?';
+      i += 1;
+    } else {
+      out.append(text.substr(i, len));
+      i += len;
+    }
+  }
+  return out;
+}
+
+std::string printable_path(const std::filesystem::path& path) {
+  return replace_invalid_utf8(path.native());
 }
 
 }  // namespace rondo

@@ -5,6 +5,7 @@
 
 #include "rondo/core/document.h"
 #include "rondo/core/traversal.h"
+#include "rondo/core/utf8.h"
 
 namespace rondo {
 namespace {
@@ -12,6 +13,10 @@ namespace {
 // Splits "<From>_<To>" (node names in these logs have no underscore).
 Result<std::pair<std::string, std::string>> edge_nodes(const std::filesystem::path& file) {
   const std::string stem = file.stem().string();
+  // The name becomes the edge id, which reaches JSON output: it must be text.
+  if (first_invalid_utf8(file.filename().native())) {
+    return Error::invalid(printable_path(file) + ": the file name is not valid UTF-8");
+  }
   const auto sep = stem.find('_');
   if (sep == std::string::npos || sep == 0 || sep + 1 == stem.size() || stem.find('_', sep + 1) != std::string::npos) {
     return Error::invalid(file.string() + ": file name must be <From>_<To>.data");
@@ -46,19 +51,20 @@ Result<std::vector<Traversal>> read_witham_edge_log(const std::filesystem::path&
     words >> t >> d >> s;
     const auto where = file.string() + ":" + std::to_string(number) + ": ";
     if (s.empty() || (words >> extra)) {
-      return Error::invalid(where + "expected 'unix_time duration_seconds success(0|1)', found '" + line + "'");
+      return Error::invalid(where + "expected 'unix_time duration_seconds success(0|1)', found '" +
+                            quote_for_message(line) + "'");
     }
     double start = 0;
     double seconds_taken = 0;
     int ok = 0;
     if (!read_number(t, start) || !std::isfinite(start) || start < 0 || start > 1.0e11) {
-      return Error::invalid(where + "start time '" + t + "' is not a unix time in seconds");
+      return Error::invalid(where + "start time '" + quote_for_message(t) + "' is not a unix time in seconds");
     }
     if (!read_number(d, seconds_taken) || !std::isfinite(seconds_taken) || seconds_taken < 0 || seconds_taken > 1.0e9) {
-      return Error::invalid(where + "duration '" + d + "' is not a number of seconds >= 0");
+      return Error::invalid(where + "duration '" + quote_for_message(d) + "' is not a number of seconds >= 0");
     }
     if (!read_number(s, ok) || (ok != 0 && ok != 1)) {
-      return Error::invalid(where + "success flag '" + s + "' must be 0 or 1");
+      return Error::invalid(where + "success flag '" + quote_for_message(s) + "' must be 0 or 1");
     }
     out.push_back(Traversal{file.stem().string(), nodes->first, nodes->second, from_unix_seconds(start),
                             from_seconds(seconds_taken), ok == 1, "witham:" + name + ":" + std::to_string(number)});
@@ -68,7 +74,7 @@ Result<std::vector<Traversal>> read_witham_edge_log(const std::filesystem::path&
 
 Result<std::vector<Traversal>> read_witham_logs(const std::filesystem::path& dir) {
   std::error_code ec;
-  if (!std::filesystem::is_directory(dir, ec)) return Error::not_found(dir.string() + ": no such folder");
+  if (!std::filesystem::is_directory(dir, ec)) return Error::not_found(printable_path(dir) + ": no such folder");
   std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
     if (entry.path().extension() == ".data") files.push_back(entry.path());

@@ -6,6 +6,9 @@
 #include <fmt/format.h>
 
 #include "json_util.h"
+#include "rondo/core/atomic_file.h"
+#include "rondo/core/document.h"
+#include "rondo/core/utf8.h"
 
 namespace rondo::learn {
 namespace {
@@ -189,21 +192,24 @@ Result<std::shared_ptr<const EdgeModels>> EdgeModels::from_json(const Json& j) {
 }
 
 Status EdgeModels::save(const std::filesystem::path& file) const {
-  std::ofstream out(file, std::ios::binary | std::ios::trunc);
-  if (!out) return Error::io(file.string() + ": cannot open for writing");
-  out << to_json().dump() << '\n';
-  out.close();
-  if (!out) return Error::io(file.string() + ": write failed");
-  return {};
+  // The whole text is made before the file is touched: a failure leaves an existing file as it was.
+  std::string text;
+  try {
+    text = to_json().dump() + '\n';
+  } catch (const Json::type_error& e) {  // 316: a string that is not UTF-8 (an edge id)
+    return Error::invalid(printable_path(file) + ": cannot write the models: " + e.what());
+  }
+  return write_file_atomically(file, text);
 }
 
 Result<std::shared_ptr<const EdgeModels>> EdgeModels::load(const std::filesystem::path& file) {
-  auto text = read_text_file(file);
+  auto text = read_text_file(file, Document::kMaxBytes);
   if (!text) return text.error();
-  Json j = Json::parse(*text, nullptr, false);
-  if (j.is_discarded()) return Error::invalid(file.string() + ": not valid JSON");
-  auto models = from_json(j);
-  if (!models) return models.error().with_context(file.string());
+  // Through Document, so the models file gets the same limits (size, nesting, values) and UTF-8 check.
+  auto doc = Document::parse(*text, DocumentFormat::kJson, printable_path(file));
+  if (!doc) return doc.error();
+  auto models = from_json(doc->json());
+  if (!models) return models.error().with_context(printable_path(file));
   return models;
 }
 

@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 
 #include "contenders.h"
+#include "rondo/core/document.h"
+#include "rondo/core/utf8.h"
 #include "rondo/learn/metrics.h"
 
 namespace rondo::learn {
@@ -194,7 +196,7 @@ std::string evaluation_to_table(const BinaryEvaluation& e) {
 }
 
 Result<std::vector<BinarySample>> read_binary_series(const std::filesystem::path& file) {
-  auto text = read_text_file(file);
+  auto text = read_text_file(file, Document::kMaxBytes * 4);
   if (!text) return text.error();
   std::vector<BinarySample> out;
   std::istringstream lines(*text);
@@ -207,15 +209,15 @@ Result<std::vector<BinarySample>> read_binary_series(const std::filesystem::path
     std::string t, s, extra;
     if (!(words >> t)) continue;
     words >> s;
-    const auto where = fmt::format("{}:{}: ", file.string(), number);
+    const auto where = fmt::format("{}:{}: ", printable_path(file), number);
     if (s.empty() || (words >> extra))
-      return Error::invalid(where + "expected 'unix_time state', found '" + line + "'");
+      return Error::invalid(where + "expected 'unix_time state', found '" + quote_for_message(line) + "'");
     double seconds_since_epoch = 0;
     auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), seconds_since_epoch);
     if (ec != std::errc{} || p != t.data() + t.size() || !(seconds_since_epoch >= 0 && seconds_since_epoch < 1e11)) {
-      return Error::invalid(where + "time '" + t + "' is not a unix time in seconds");
+      return Error::invalid(where + "time '" + quote_for_message(t) + "' is not a unix time in seconds");
     }
-    if (s != "0" && s != "1") return Error::invalid(where + "state '" + s + "' must be 0 or 1");
+    if (s != "0" && s != "1") return Error::invalid(where + "state '" + quote_for_message(s) + "' must be 0 or 1");
     out.push_back({from_unix_seconds(seconds_since_epoch), s == "1"});
   }
   std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.time < b.time; });

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "rondo/core/atomic_file.h"
 #include "rondo/core/document.h"
 #include "rondo/map/map_yaml.h"
 #include "rondo/map/strands_import.h"
@@ -40,7 +41,7 @@ Result<LoadedMap> load_map_file(const std::filesystem::path& file) {
         ".tmap or .json (STRANDS)",
         file.string(), ext));
   }
-  auto text = read_text_file(file);
+  auto text = read_text_file(file, Document::kMaxBytes);
   if (!text) return text.error();
   if (is_tmap) {
     auto map = parse_strands_tmap(*text, file.string());
@@ -73,24 +74,7 @@ Result<TopoMap> load_map(const std::filesystem::path& file) {
 }
 
 Status save_map(const TopoMap& map, const std::filesystem::path& file) {
-  const std::string text = write_map_yaml(map);
-  std::filesystem::path partial = file;
-  partial += ".partial";
-  {
-    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-    if (!out) return Error::io(fmt::format("{}: cannot write: {}", partial.string(), std::strerror(errno)));
-    out << text;
-    out.flush();
-    if (!out) return Error::io(fmt::format("{}: write failed", partial.string()));
-  }
-  std::error_code ec;
-  std::filesystem::rename(partial, file, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(partial, ignored);
-    return Error::io(fmt::format("{}: cannot write: {}", file.string(), ec.message()));
-  }
-  return {};
+  return write_file_atomically(file, write_map_yaml(map));
 }
 
 }  // namespace rondo::map

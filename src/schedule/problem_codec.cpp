@@ -13,7 +13,9 @@ Result<Time> read_time(const Field& f, Time origin) {
   if (f.is_string()) return f.as_time(nullptr);
   auto s = f.as_number();
   if (!s) return s.error();
-  return origin + from_seconds(*s);
+  auto offset = checked_from_seconds(*s);
+  if (!offset) return f.error(offset.error().message);
+  return origin + *offset;
 }
 
 Result<LocationIndex> read_location(const Field& f, const std::map<std::string, LocationIndex>& names) {
@@ -166,7 +168,8 @@ Result<Problem> decode_problem(const Document& doc) {
                                       : "must not be before the release");
     if (auto pr = f.optional("priority")) {
       RONDO_TRY(priority, pr->as_int());
-      t.priority = static_cast<int>(std::clamp<std::int64_t>(priority, -1000000, 1000000));
+      if (priority < -1000000 || priority > 1000000) return pr->error("must be from -1000000 to 1000000");
+      t.priority = static_cast<int>(priority);
     }
     RONDO_TRY(start_field, f.required("start"));
     RONDO_TRY(start_loc, read_location(start_field, names));

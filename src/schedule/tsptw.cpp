@@ -6,10 +6,15 @@
 #include <fmt/format.h>
 
 #include "rondo/core/document.h"
+#include "rondo/core/utf8.h"
 
 namespace rondo::schedule {
 
 namespace {
+
+// Limits before work (docs/hardening.md): the file's size, and each time or weight in seconds.
+constexpr std::size_t kMaxTsptwBytes = 64u << 20;
+constexpr std::int64_t kMaxTsptwValue = 1'000'000'000;  // 10^9 s (31 years): a sum of 100000 fits in ms
 
 struct Token {
   std::string_view text;
@@ -47,6 +52,7 @@ class Reader {
  public:
   Reader(std::vector<Token> tokens, std::string source) : tokens_(std::move(tokens)), source_(std::move(source)) {}
   bool done() const { return at_ >= tokens_.size(); }
+  std::size_t remaining() const { return tokens_.size() - at_; }
   const Token& peek() const { return tokens_[at_]; }
   Token next() { return tokens_[at_++]; }
   int line() const { return done() ? (tokens_.empty() ? 1 : tokens_.back().line) : peek().line; }
@@ -60,7 +66,10 @@ class Reader {
     const char* end = t.text.data() + t.text.size();
     auto [ptr, ec] = std::from_chars(t.text.data(), end, v);
     if (ec != std::errc{} || ptr != end)
-      return error(t.line, fmt::format("{}: expected an integer, found '{}'", what, t.text));
+      return error(t.line, fmt::format("{}: expected an integer, found '{}'", what, quote_for_message(t.text)));
+    // Times and weights are whole seconds; past this their milliseconds, and sums of them, overflow.
+    if (v > kMaxTsptwValue || v < -kMaxTsptwValue)
+      return error(t.line, fmt::format("{}: {} is out of range (at most {} seconds)", what, v, kMaxTsptwValue));
     return v;
   }
 
@@ -88,6 +97,12 @@ Result<Problem> parse_tsptw(std::string_view text, const std::string& source) {
     if (key.text == "EDGE_WEIGHT_SECTION") {
       if (dimension < 0) return r.error(key.line, "EDGE_WEIGHT_SECTION before DIMENSION");
       const auto n = static_cast<std::size_t>(dimension);
+      // Each entry is a token of the file: a matrix larger than what is left is refused before
+      // anything is allocated for it.
+      if (n * n > r.remaining())
+        return r.error(key.line, fmt::format("EDGE_WEIGHT_SECTION: DIMENSION {} needs {} entries, the file has only {} "
+                                             "tokens left",
+                                             dimension, n * n, r.remaining()));
       matrix.resize(n * n);
       for (std::size_t k = 0; k < n * n; ++k) {
         auto v = r.integer(fmt::format("EDGE_WEIGHT_SECTION: entry ({}, {})", k / n + 1, k % n + 1));
@@ -101,6 +116,10 @@ Result<Problem> parse_tsptw(std::string_view text, const std::string& source) {
     if (key.text == "TIME_WINDOW_SECTION") {
       if (dimension < 0) return r.error(key.line, "TIME_WINDOW_SECTION before DIMENSION");
       const auto n = static_cast<std::size_t>(dimension);
+      if (3 * n > r.remaining())
+        return r.error(key.line, fmt::format("TIME_WINDOW_SECTION: DIMENSION {} needs {} entries, the file has only {} "
+                                             "tokens left",
+                                             dimension, 3 * n, r.remaining()));
       windows.assign(n, {0, 0});
       window_seen.assign(n, false);
       for (std::size_t k = 0; k < n; ++k) {
@@ -133,18 +152,21 @@ Result<Problem> parse_tsptw(std::string_view text, const std::string& source) {
       continue;
     }
     // "KEY : value" header lines.
-    if (r.done() || r.peek().text != ":") return r.error(key.line, fmt::format("unexpected '{}'", key.text));
+    if (r.done() || r.peek().text != ":")
+      return r.error(key.line, fmt::format("unexpected '{}'", quote_for_message(key.text)));
     r.next();
-    if (r.done()) return r.error(key.line, fmt::format("{}: missing value", key.text));
+    if (r.done()) return r.error(key.line, fmt::format("{}: missing value", quote_for_message(key.text)));
     const Token value = r.next();
     if (key.text == "DIMENSION") {
       std::int64_t v = 0;
       auto [ptr, ec] = std::from_chars(value.text.data(), value.text.data() + value.text.size(), v);
       if (ec != std::errc{} || ptr != value.text.data() + value.text.size() || v < 1 || v > 100000)
-        return r.error(value.line, fmt::format("DIMENSION: expected a positive integer, found '{}'", value.text));
+        return r.error(value.line, fmt::format("DIMENSION: expected an integer from 1 to 100000, found '{}'",
+                                               quote_for_message(value.text)));
       dimension = v;
     } else if (key.text == "TYPE") {
-      if (value.text != "TSPTW") return r.error(value.line, fmt::format("TYPE: expected TSPTW, found '{}'", value.text));
+      if (value.text != "TSPTW")
+        return r.error(value.line, fmt::format("TYPE: expected TSPTW, found '{}'", quote_for_message(value.text)));
     } else if (key.text == "EDGE_WEIGHT_TYPE") {
       if (value.text != "EXPLICIT") return r.error(value.line, "EDGE_WEIGHT_TYPE: only EXPLICIT is supported");
     } else if (key.text == "EDGE_WEIGHT_FORMAT") {
@@ -153,7 +175,7 @@ Result<Problem> parse_tsptw(std::string_view text, const std::string& source) {
       // Free text to the end of the line.
       while (!r.done() && r.peek().line == value.line) r.next();
     } else {
-      return r.error(key.line, fmt::format("unknown keyword '{}'", key.text));
+      return r.error(key.line, fmt::format("unknown keyword '{}'", quote_for_message(key.text)));
     }
   }
   if (dimension < 0) return r.error(r.line(), "missing DIMENSION");
@@ -188,9 +210,9 @@ Result<Problem> parse_tsptw(std::string_view text, const std::string& source) {
 }
 
 Result<Problem> load_tsptw(const std::filesystem::path& file) {
-  auto text = read_text_file(file);
+  auto text = read_text_file(file, kMaxTsptwBytes);
   if (!text) return text.error();
-  return parse_tsptw(*text, file.string());
+  return parse_tsptw(*text, printable_path(file));
 }
 
 }  // namespace rondo::schedule

@@ -37,7 +37,7 @@ Status check_path(const std::filesystem::path& file, OpenMode mode) {
     return Error::invalid(file.string() + ": is a folder, not a database file");
   }
   if (!std::filesystem::exists(status)) {
-    if (mode == OpenMode::kMustExist) return Error::not_found(file.string() + ": no such database file");
+    if (mode != OpenMode::kCreateIfMissing) return Error::not_found(file.string() + ": no such database file");
     return {};
   }
   // An empty file is a new database to SQLite, and to us.
@@ -71,6 +71,32 @@ Status configure(SQLite::Database& db, const std::filesystem::path& file, bool s
   });
 }
 
+// A read-only open takes the schema as it is: the current one, or a refusal that says how to get
+// it. Nothing is written, so an older file stays as it was.
+Status check_readable_schema(SQLite::Database& db, const std::filesystem::path& file) {
+  return guarded(file, "reading the schema version", [&]() -> Status {
+    const int found = db.execAndGet("PRAGMA user_version").getInt();
+    const int latest = Store::latest_schema_version();
+    if (found == 0) {
+      return Error::invalid(
+          fmt::format("{}: an empty database, not yet a rondo store (nothing to read; 'rondo log import' makes one)",
+                      file.string()));
+    }
+    if (found > latest) {
+      return Error{ErrorCode::kUnsupported,
+                   fmt::format("{}: schema version {} is newer than this rondo knows ({}); use a newer rondo",
+                               file.string(), found, latest)};
+    }
+    if (found < latest) {
+      return Error::invalid(fmt::format(
+          "{}: schema version {} is older than this rondo's {}, and read-only commands never change a store: "
+          "run 'rondo log migrate --db {}' first",
+          file.string(), found, latest, file.string()));
+    }
+    return {};
+  });
+}
+
 }  // namespace
 
 int Store::latest_schema_version() {
@@ -79,7 +105,10 @@ int Store::latest_schema_version() {
 
 Result<Store> Store::open(const std::filesystem::path& file, const StoreOptions& options) {
   if (auto ok = check_path(file, options.mode); !ok) return ok.error();
-  const int flags = SQLite::OPEN_READWRITE | (options.mode == OpenMode::kCreateIfMissing ? SQLite::OPEN_CREATE : 0);
+  const bool read_only = options.mode == OpenMode::kReadOnly;
+  const int flags =
+      read_only ? SQLite::OPEN_READONLY
+                : SQLite::OPEN_READWRITE | (options.mode == OpenMode::kCreateIfMissing ? SQLite::OPEN_CREATE : 0);
   std::unique_ptr<SQLite::Database> db;
   try {
     db = std::make_unique<SQLite::Database>(file, flags, busy_timeout_ms(options.busy_timeout));
@@ -88,6 +117,10 @@ Result<Store> Store::open(const std::filesystem::path& file, const StoreOptions&
   }
   // Before any setting is written: a foreign file is refused untouched (not even switched to WAL).
   if (auto ok = check_rondo_file(*db, file); !ok) return ok.error();
+  if (read_only) {
+    if (auto ok = check_readable_schema(*db, file); !ok) return ok.error();
+    return Store(file, std::move(db));
+  }
   if (auto ok = configure(*db, file, options.sync_commits); !ok) return ok.error();
   if (auto ok = migrate(*db, schema_migrations(), file); !ok) return ok.error();
   return Store(file, std::move(db));

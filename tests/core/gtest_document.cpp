@@ -2,6 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
+#include "core/alias_bomb.h"
+#include "rondo/core/utf8.h"
+
 namespace rondo {
 namespace {
 
@@ -72,6 +78,56 @@ TEST(Document, MalformedTextIsAnErrorNotACrash) {
   }
 }
 
+// Found by fuzz_problem and fuzz_models: the parsers' own messages quote the byte they stopped at,
+// which can be the first byte of a longer UTF-8 character; the message must still be text.
+TEST(Document, ParserMessagesAreValidUtf8) {
+  struct Case {
+    DocumentFormat format;
+    std::string text;
+  };
+  const Case cases[] = {
+      {DocumentFormat::kYaml, "a: \"\\\xc3\xa9\"\n"},       // an escape of a two-byte character
+      {DocumentFormat::kJson, "[17\xc3\xa9]"},              // an invalid literal ending in one
+      {DocumentFormat::kJson, "{\"a\": tru\xe2\x82\xac}"},  // a three-byte one
+      {DocumentFormat::kYaml, std::string("\x00 #n\x00r\r@b\x00\x00"
+                                          "e #n\x00r\r@b\x00\x00"
+                                          "etraveltravel[0][1]",
+                                          42)},
+  };
+  for (const auto& c : cases) {
+    auto doc = Document::parse(c.text, c.format, "t");
+    if (doc.ok()) continue;
+    EXPECT_EQ(doc.error().code, ErrorCode::kInvalidInput);
+    EXPECT_FALSE(first_invalid_utf8(doc.error().message).has_value()) << replace_invalid_utf8(doc.error().message);
+  }
+}
+
+// Found by fuzz_world and fuzz_requests: yaml-cpp turns some bytes of valid UTF-8 text (a NUL
+// inside a plain key) into a string that is not UTF-8; such a scalar is refused, not passed on.
+TEST(Document, EveryScalarThatComesBackIsUtf8) {
+  const std::string cases[] = {
+      std::string("wilogs      \x00_hour: 5.52\n", 26),
+      std::string("id\x07\x00_prefix: &eq\nday: 1\n", 26),
+      std::string("a: \"x\x00y\"\n", 10),
+      std::string("# Tml: every edgebattery.ompt s6t\000@`\000\000.\012kind: replay\012logs: ../. "
+                  "0.01\032\032\032\032\032\032\032h\032\032\032\032\032\032\032 ../. "
+                  "0.01\032\032\032\032\032\032\032h\032\032\032\032\032\032\032so Europe/London\012wilogs      "
+                  "\000_hour: 5.52}\012",
+                  151),
+      std::string("#office asking the robot for thi\012id\007\000_prefix: &eq\012day# Peopleffi2r t,h", 70),
+  };
+  for (const auto& text : cases) {
+    auto doc = Document::parse(text, DocumentFormat::kYaml, "t.yaml");
+    if (!doc.ok()) {
+      EXPECT_FALSE(first_invalid_utf8(doc.error().message).has_value()) << replace_invalid_utf8(doc.error().message);
+      continue;
+    }
+    const std::string dumped = doc->json().dump(-1, ' ', false, Json::error_handler_t::replace);
+    EXPECT_EQ(dumped.find("\xef\xbf\xbd"), std::string::npos) << dumped;  // nothing needed replacing
+    for (const auto& [key, value] : doc->json().items()) EXPECT_FALSE(first_invalid_utf8(key).has_value());
+  }
+}
+
 TEST(Document, SixtyFourLevelsAreAllowed) {
   for (auto format : {DocumentFormat::kYaml, DocumentFormat::kJson}) {
     auto doc = Document::parse(std::string(64, '[') + std::string(64, ']'), format, "t");
@@ -108,6 +164,91 @@ TEST(Document, YamlWriterQuotesWhatWouldChangeType) {
   auto back = Document::parse(to_yaml(j), DocumentFormat::kYaml, "w");
   ASSERT_TRUE(back.ok());
   EXPECT_EQ(back->json(), j);
+}
+
+TEST(Document, AnAliasBombIsRefusedByCountingValues) {
+  const std::string bomb = test::alias_bomb();
+  ASSERT_LT(bomb.size(), 1024u);
+  auto doc = Document::parse(bomb, DocumentFormat::kYaml, "bomb.yaml");
+  ASSERT_FALSE(doc.ok());
+  EXPECT_EQ(doc.error().code, ErrorCode::kInvalidInput);
+  EXPECT_NE(doc.error().message.find("bomb.yaml:"), std::string::npos) << doc.error().message;
+  EXPECT_NE(doc.error().message.find(test::kAliasBombLimit), std::string::npos) << doc.error().message;
+}
+
+TEST(Document, LimitsOnAliasesAreCountedAndNamed) {
+  struct Case {
+    std::string name;
+    std::string text;
+    std::string expect;
+  };
+  std::string many_aliases = "a: &a x\nl:\n";
+  for (std::size_t i = 0; i <= Document::kMaxAliases; ++i) many_aliases += "- *a\n";
+  std::string deep_aliases = "a0: &a0 [x]\n";
+  for (int i = 1; i <= Document::kMaxAliasDepth + 1; ++i) {
+    deep_aliases += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [*a" + std::to_string(i - 1) + "]\n";
+  }
+  std::string deep_by_alias = "a: &a " + std::string(40, '[') + std::string(40, ']') + "\nb: " + std::string(30, '[') +
+                              "*a" + std::string(30, ']') + "\n";
+  const Case cases[] = {
+      {"aliases", many_aliases, "more than 100000 aliases (the limit is 100000)"},
+      {"alias depth", deep_aliases, "aliases nest more than 16 deep (the limit is 16)"},
+      {"depth through an alias", deep_by_alias, "nested deeper than 64 levels"},
+      {"recursive alias", "a: &a [1, *a]\n", "an alias refers to a collection that contains it"},
+      {"too big", std::string(Document::kMaxBytes + 1, '#'), "more than the limit of 16777216 bytes"},
+  };
+  for (const auto& c : cases) {
+    auto doc = Document::parse(c.text, DocumentFormat::kYaml, "t.yaml");
+    ASSERT_FALSE(doc.ok()) << c.name;
+    EXPECT_EQ(doc.error().code, ErrorCode::kInvalidInput) << c.name;
+    EXPECT_NE(doc.error().message.find(c.expect), std::string::npos) << c.name << ": " << doc.error().message;
+  }
+}
+
+TEST(Document, JsonCountsValuesToo) {
+  std::string text = "[";
+  for (std::size_t i = 0; i <= Document::kMaxValues; ++i) text += i ? ",0" : "0";
+  text += "]";
+  auto doc = Document::parse(text, DocumentFormat::kJson, "t.json");
+  ASSERT_FALSE(doc.ok());
+  EXPECT_NE(doc.error().message.find("more than 2000000 values"), std::string::npos) << doc.error().message;
+}
+
+TEST(Document, OrdinaryAnchorsAndAliasesStillWork) {
+  const Document doc = yaml(
+      "meta: &meta {map: riseholme, pointset: x}\n"
+      "quoted: &q '12'\n"
+      "nodes:\n"
+      "  - {name: A, meta: *meta, n: *q}\n"
+      "  - name: B\n"
+      "    meta: *meta\n"
+      "    edges: &edges [{to: A}, {to: C}]\n"
+      "  - {name: C, edges: *edges}\n"
+      "&k key: 1\n"
+      "other: {*k : 2}\n");
+  const Json& j = doc.json();
+  EXPECT_EQ(j["nodes"][0]["meta"]["map"], "riseholme");
+  EXPECT_EQ(j["nodes"][0]["n"], "12");
+  EXPECT_EQ(j["nodes"][1]["meta"], j["meta"]);
+  EXPECT_EQ(j["nodes"][2]["edges"][1]["to"], "C");
+  EXPECT_EQ(j["other"]["key"], 2);
+  EXPECT_EQ(doc.line_of("nodes[1].edges"), 7);
+  EXPECT_EQ(doc.line_of("nodes[2]"), 8);
+}
+
+TEST(Document, LoadRefusesAFileLargerThanTheLimitBeforeReadingIt) {
+  const auto file = std::filesystem::temp_directory_path() / "rondo_document_big.yaml";
+  {
+    std::ofstream out(file, std::ios::binary);
+    out.seekp(static_cast<std::streamoff>(Document::kMaxBytes) + 10);
+    out << '\n';
+  }
+  auto doc = Document::load(file);
+  std::filesystem::remove(file);
+  ASSERT_FALSE(doc.ok());
+  EXPECT_EQ(doc.error().code, ErrorCode::kInvalidInput);
+  EXPECT_NE(doc.error().message.find("more than the limit of 16777216 bytes"), std::string::npos)
+      << doc.error().message;
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <limits>
+
 namespace rondo {
 namespace {
 
@@ -62,6 +64,48 @@ TEST(Duration, ParsesHumanForms) {
   }
   for (const char* text : {"", "-5s", "5x", "h", "1h30", "1:2:3:4", "00:61", "abc", "1e400"}) {
     EXPECT_FALSE(parse_duration(text).ok()) << text;
+  }
+}
+
+TEST(Duration, InputSecondsAreCheckedNotClamped) {
+  struct Case {
+    double seconds;
+    bool ok;
+  };
+  const Case cases[] = {
+      {0, true},
+      {1.5, true},
+      {-60, true},
+      {kMaxSeconds, true},
+      {kMaxSeconds * 1.0001, false},
+      {-kMaxSeconds * 1.0001, false},
+      {1e16, false},
+      {std::numeric_limits<double>::infinity(), false},
+      {-std::numeric_limits<double>::infinity(), false},
+      {std::numeric_limits<double>::quiet_NaN(), false},
+  };
+  for (const auto& c : cases) {
+    auto d = checked_from_seconds(c.seconds);
+    EXPECT_EQ(d.ok(), c.ok) << c.seconds;
+    if (d.ok()) {
+      EXPECT_EQ(*d, from_seconds(c.seconds));
+    } else {
+      EXPECT_NE(d.error().message.find("out of range"), std::string::npos) << d.error().message;
+    }
+  }
+}
+
+TEST(Duration, AnUnknownUnitIsQuotedWhole) {
+  auto d = parse_duration("6\xd0\x8ds");  // found by fuzz_problem: a two-byte character as the unit
+  ASSERT_FALSE(d.ok());
+  EXPECT_NE(d.error().message.find("unknown unit '\xd0\x8d'"), std::string::npos) << d.error().message;
+}
+
+TEST(Duration, TooLongTextIsRefused) {
+  for (const char* text : {"9999999999999999s", "99999999999999h", "3000000000h 1s", "2500000000000:00"}) {
+    auto d = parse_duration(text);
+    ASSERT_FALSE(d.ok()) << text;
+    EXPECT_NE(d.error().message.find("too long"), std::string::npos) << d.error().message;
   }
 }
 

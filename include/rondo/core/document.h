@@ -12,6 +12,11 @@
 //
 // YAML scalars are typed the YAML 1.2 core-schema way (true/false, null/~, integers, floats);
 // quoted scalars stay strings. Nesting deeper than kMaxDepth is rejected, not recursed into.
+//
+// Limits before work (docs/hardening.md lists them): a text longer than kMaxBytes is refused
+// before it is parsed, and a tree is built value by value, counting every value an alias repeats,
+// so that more than kMaxValues values, kMaxAliases aliases or aliases nested kMaxAliasDepth deep
+// stop the parse with an input error that names the limit. Ordinary anchors and aliases work.
 #pragma once
 
 #include <cstdint>
@@ -41,7 +46,11 @@ enum class DocumentFormat { kYaml, kJson };
 
 class Document {
  public:
-  static constexpr int kMaxDepth = 64;
+  static constexpr int kMaxDepth = 64;                       // levels of lists and mappings
+  static constexpr std::size_t kMaxBytes = 16u << 20;        // 16 MiB of text
+  static constexpr std::size_t kMaxValues = 2'000'000;       // values, once aliases are expanded
+  static constexpr std::size_t kMaxAliases = 100'000;        // alias uses (*name) in one document
+  static constexpr int kMaxAliasDepth = 16;                  // aliases to anchors holding aliases...
 
   // `source` names the text in messages (usually the file path).
   static Result<Document> parse(std::string_view text, DocumentFormat format, std::string source);
@@ -118,7 +127,8 @@ class Field {
 // The YAML text of a JSON value (block style, keys in the value's order), for writers.
 std::string to_yaml(const Json& value);
 
-// Reads a whole file; kNotFound or kIo naming the file on failure.
-Result<std::string> read_text_file(const std::filesystem::path& file);
+// Reads a whole file; kNotFound or kIo naming the file on failure, kInvalidInput past `max_bytes`.
+Result<std::string> read_text_file(const std::filesystem::path& file,
+                                   std::size_t max_bytes = std::size_t{1} << 30);
 
 }  // namespace rondo

@@ -28,7 +28,12 @@ using std::chrono::minutes;
 inline constexpr Duration seconds(std::int64_t s) { return std::chrono::seconds(s); }
 
 // Conversions to and from floating-point seconds, rounded to the nearest millisecond.
+// from_seconds clamps to +-kMaxSeconds and maps NaN to zero: use it on computed values only.
+// Input goes through checked_from_seconds, which refuses NaN, infinities and anything whose
+// milliseconds would not fit ("... seconds is out of range").
+inline constexpr double kMaxSeconds = 9.0e12;  // about 285,000 years; ms fit in int64 with room
 Duration from_seconds(double s);
+Result<Duration> checked_from_seconds(double s);
 double to_seconds(Duration d);
 Time from_unix_seconds(double s);
 double to_unix_seconds(Time t);

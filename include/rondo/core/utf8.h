@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -17,5 +18,12 @@ std::optional<std::size_t> first_invalid_utf8(std::string_view text);
 
 // `text` with every byte that is not part of well-formed UTF-8 replaced by '?'.
 std::string replace_invalid_utf8(std::string_view text);
+
+// `text` made safe to quote in a message: invalid UTF-8 and control characters become '?', and
+// text longer than `max_chars` bytes is cut (at a character boundary) and ends in "...".
+std::string quote_for_message(std::string_view text, std::size_t max_chars = 80);
+
+// A path as text for a message: its bytes, with what is not UTF-8 replaced by '?'.
+std::string printable_path(const std::filesystem::path& path);
 
 }  // namespace rondo

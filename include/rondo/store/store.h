@@ -24,7 +24,10 @@ namespace rondo::store {
 
 enum class OpenMode {
   kCreateIfMissing,  // make a new, empty store when the file does not exist (writers, importers)
-  kMustExist,        // the file must already exist: kNotFound otherwise (read commands)
+  kMustExist,        // the file must already exist: kNotFound otherwise (writers that need a store)
+  kReadOnly,         // must exist; opened SQLITE_OPEN_READONLY: nothing is created, migrated or
+                     // switched (journal mode, pragmas). A store without the current schema is
+                     // refused with kInvalidInput naming 'rondo log migrate' (read commands)
 };
 
 struct StoreOptions {
@@ -46,7 +49,8 @@ class Store {
   // The schema version this build writes (PRAGMA user_version); see docs/storage.md.
   static int latest_schema_version();
 
-  // Opens (or creates) `file`, then migrates an older schema, one committed step per version.
+  // Opens (or creates) `file`, then migrates an older schema, one committed step per version
+  // (kReadOnly: never writes; see OpenMode).
   // Errors: kNotFound (kMustExist and no file), kInvalidInput (a folder, not an SQLite file, or an
   // SQLite file that is not a rondo store), kUnsupported (a schema newer than this build),
   // kStorage (locked, corrupt, read-only, disk full).
