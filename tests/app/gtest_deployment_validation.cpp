@@ -14,26 +14,16 @@
 #include <string>
 
 #include "cli_runner.h"
+#include "test_files.h"
 #include "rondo/core/document.h"
 
 namespace rondo {
 namespace {
 
 using ::testing::HasSubstr;
+using test::slurp;
 
-std::filesystem::path fresh_dir(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() / ("rondo-validate-test-" + std::to_string(::getpid())) / name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
-std::string slurp(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+std::filesystem::path fresh_dir(const std::string& name) { return test::fresh_dir("rondo-validate-test", name); }
 
 // Every file below `dir` with its bytes.
 std::map<std::string, std::string> snapshot(const std::filesystem::path& dir) {

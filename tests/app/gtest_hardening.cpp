@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "cli_runner.h"
+#include "test_files.h"
 #include "core/alias_bomb.h"
 #include "store/child_process.h"
 
@@ -19,13 +20,9 @@ namespace rondo {
 namespace {
 
 using ::testing::HasSubstr;
+using test::slurp;
 
-std::filesystem::path fresh_dir(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() / ("rondo-hardening-" + std::to_string(::getpid())) / name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+std::filesystem::path fresh_dir(const std::string& name) { return test::fresh_dir("rondo-hardening", name); }
 
 void write(const std::filesystem::path& file, const std::string& text) {
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
@@ -138,13 +135,6 @@ TEST(Hardening, AnExceptionOnAnotherThreadExitsOneInsteadOfAborting) {
   });
   EXPECT_TRUE(end.exited_with(1)) << end.status;
   EXPECT_FALSE(end.killed_by(SIGABRT));
-}
-
-std::string slurp(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 // A TSPTW file with `n` nodes, `matrix` as its weight section and `windows` as its windows.

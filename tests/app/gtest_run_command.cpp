@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "cli_runner.h"
+#include "test_files.h"
 #include "rondo/core/document.h"
 #include "rondo/core/task.h"
 #include "rondo/store/store.h"
@@ -20,18 +21,10 @@ namespace rondo {
 namespace {
 
 using ::testing::HasSubstr;
+using test::slurp;
 
 std::filesystem::path fresh_dir(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() / ("rondo-run-test-" + std::to_string(::getpid())) / name;
-  std::filesystem::remove_all(dir);
-  return dir;
-}
-
-std::string slurp(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return test::fresh_dir("rondo-run-test", name, /*create=*/false);
 }
 
 TEST(RunCommand, TheExampleWritesItsRunFolder) {

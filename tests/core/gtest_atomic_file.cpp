@@ -1,5 +1,7 @@
 #include "rondo/core/atomic_file.h"
 
+#include "test_files.h"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -10,19 +12,9 @@
 namespace rondo {
 namespace {
 
-std::filesystem::path fresh_dir() {
-  auto dir = std::filesystem::temp_directory_path() / ("rondo-atomic-" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+using test::slurp;
 
-std::string slurp(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+std::filesystem::path fresh_dir() { return test::fresh_dir("rondo-atomic", "files"); }
 
 std::size_t files_in(const std::filesystem::path& dir) {
   std::size_t n = 0;

@@ -55,18 +55,10 @@ class Scripted {
   }
   std::string state(const std::string& id) const { return to_string(executor_->tasks().at(id).state); }
   std::string code_of(const std::string& id, const std::string& event) const {
-    std::string code;
-    const std::vector<store::Event> events = store::read_events_of(store_, id).value();
-    for (const store::Event& e : events)
-      if (e.event == event) code = e.code;
-    return code;
+    return last_event_field(store_, id, event, &store::Event::code);
   }
   std::string reason_of(const std::string& id, const std::string& event) const {
-    std::string reason;
-    const std::vector<store::Event> events = store::read_events_of(store_, id).value();
-    for (const store::Event& e : events)
-      if (e.event == event) reason = e.reason;
-    return reason;
+    return last_event_field(store_, id, event, &store::Event::reason);
   }
 
  private:

@@ -69,6 +69,16 @@ inline std::filesystem::path fresh_db_path() {
   return file;
 }
 
+// A field of the task's last event named `event` in the store; "" when there is none.
+inline std::string last_event_field(const store::Store& store, const std::string& id, const std::string& event,
+                                    std::string store::Event::*field) {
+  std::string value;
+  const std::vector<store::Event> events = store::read_events_of(store, id).value();
+  for (const store::Event& e : events)
+    if (e.event == event) value = e.*field;
+  return value;
+}
+
 class Scenario {
  public:
   explicit Scenario(const std::string& world_yaml, ExecutorOptions options = {},
@@ -108,19 +118,12 @@ class Scenario {
     auto it = executor_->tasks().find(id);
     return it == executor_->tasks().end() ? "unknown" : to_string(it->second.state);
   }
-  // The reason of the task's last event named `state`; "" when there is none.
-  std::string reason_of(const std::string& id, const std::string& state) const {
-    std::string reason;
-    for (const auto& e : events_of(id))
-      if (e.event == state) reason = e.reason;
-    return reason;
+  // The reason and the code of the task's last event named `event`; "" when there is none.
+  std::string reason_of(const std::string& id, const std::string& event) const {
+    return last_event_field(store_, id, event, &store::Event::reason);
   }
-  // The code of the task's last event named `event`; "" when there is none.
   std::string code_of(const std::string& id, const std::string& event) const {
-    std::string code;
-    for (const auto& e : events_of(id))
-      if (e.event == event) code = e.code;
-    return code;
+    return last_event_field(store_, id, event, &store::Event::code);
   }
   // The order in which tasks reached `state`, from the event log.
   std::vector<std::string> order_of(const std::string& state) const {
