@@ -15,6 +15,7 @@
 #include "rondo/sim/request_generator.h"
 #include "rondo/sim/sim_robot.h"
 #include "rondo/sim/sim_world.h"
+#include "rondo/store/robot_state.h"
 #include "rondo/store/store.h"
 #include "rondo/store/traversal_log.h"
 #include "deployment_parts.h"
@@ -57,6 +58,15 @@ Result<Session> open_session(const RunRequest& request) {
   std::filesystem::create_directories(request.out / "days", ec);
   if (ec) return Error::io(fmt::format("{}: cannot create the run folder: {}", request.out.string(), ec.message()));
   RONDO_ASSIGN_OR_RETURN(store::Store store, store::Store::open(db, {.sync_commits = request.realtime}));
+  // What run this store holds, so that a restart can tell its own store from another's.
+  const Deployment& d = request.deployment;
+  for (const auto& [key, value] : std::initializer_list<std::pair<const char*, std::string>>{
+           {"run.deployment", d.name},
+           {"run.deployment_file", std::filesystem::absolute(d.file).lexically_normal().string()},
+           {"run.seed", std::to_string(d.seed)},
+           {"run.days", std::to_string(d.days)},
+           {"run.realtime", request.realtime ? "true" : "false"}})
+    RONDO_RETURN_IF_ERROR(store::set_meta(store, key, value));
   return Session{std::move(parts), std::move(store)};
 }
 

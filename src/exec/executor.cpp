@@ -9,6 +9,7 @@
 #include "rondo/plan/distance_prior.h"
 #include "rondo/store/events.h"
 #include "rondo/store/observations.h"
+#include "rondo/store/robot_state.h"
 
 namespace rondo::exec {
 
@@ -149,6 +150,21 @@ void Executor::log_battery() {
   if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
 }
 
+void Executor::save_robot_state() {
+  const std::optional<map::Pose> pose = robot_.position();
+  store::RobotState st{.robot = options_.robot_name,
+                       .node = map_.node(robot_.location()).name,
+                       .battery = std::clamp(robot_.battery(), 0.0, 1.0),
+                       .updated = clock_.now()};
+  if (pose) {
+    st.x = pose->x;
+    st.y = pose->y;
+    st.yaw = pose->yaw;
+  }
+  if (fault_) st.fault = fault_->message;
+  if (auto ok = store::save_robot_state(store_, st); !ok) book_.write_error(ok.error().message);
+}
+
 void Executor::on_observation(const Observation& seen) {
   const store::Observation o{.what = seen.what, .where = seen.where, .when = seen.when, .value = seen.value,
                              .text = seen.text.empty() ? std::nullopt : std::optional<std::string>(seen.text)};
@@ -160,6 +176,7 @@ void Executor::on_fault(const RobotFault& fault) {
   fault_ = fault;
   if (!first) return;
   fault_since_ = clock_.now();
+  save_robot_state();
   book_.note_robot("fault", Outcome::kRobotFault, fmt::format("{}: {}; dispatch paused", to_string(fault.kind), fault.message));
   suspend_monitors();
   if (wait_timer_ != 0 && phase_ == Phase::kIdle) {  // an idle look-again timer: ready() kicks instead

@@ -89,6 +89,7 @@ void Executor::on_edge_finished(const EdgeAttempt& a) {
     else
       book_.note_robot("edge", a.outcome == EdgeOutcome::kCancelled ? Outcome::kCancelled : Outcome::kRobotFault, what);
   }
+  save_robot_state();
   if (a.outcome == EdgeOutcome::kCancelled) {
     handle_cancelled();
     return;

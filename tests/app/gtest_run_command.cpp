@@ -13,6 +13,7 @@
 #include "test_files.h"
 #include "rondo/core/document.h"
 #include "rondo/core/task.h"
+#include "rondo/store/robot_state.h"
 #include "rondo/store/store.h"
 #include "rondo/store/events.h"
 #include "rondo/store/task_table.h"
@@ -40,6 +41,15 @@ TEST(RunCommand, TheExampleWritesItsRunFolder) {
   EXPECT_GT(report["tasks"]["completed"].get<int>(), 20);
   EXPECT_GT(report["navigation"]["attempts"].get<int>(), 0);
   EXPECT_THAT(slurp(out / "days/2026-11-23.svg"), HasSubstr("<svg"));
+  // The store knows what run it holds and where the robot was last.
+  auto store = store::Store::open(out / "rondo.sqlite", {.mode = store::OpenMode::kMustExist}).value();
+  EXPECT_EQ(store::get_meta(store, "run.seed").value(), "1");
+  EXPECT_EQ(store::get_meta(store, "run.days").value(), "3");
+  EXPECT_EQ(store::get_meta(store, "run.deployment").value(), "g4s");
+  const auto robot = store::load_robot_state(store, "robot").value();
+  ASSERT_TRUE(robot.has_value());
+  EXPECT_FALSE(robot->node.empty());
+  EXPECT_TRUE(robot->battery.has_value());
   std::filesystem::remove_all(out.parent_path());
 }
 

@@ -67,6 +67,7 @@ struct ExecutorOptions {
   Duration slot_width = minutes(15);     // travel-time slots of the planner
   std::int64_t scheduler_polls = 20'000;  // deterministic budget of each scheduler call (docs/scheduling.md)
   std::uint64_t seed = 1;                // ties in dropping
+  std::string robot_name = "robot";      // the robot's row in the store's robot_state
 };
 
 // Figures of the run so far, for the report.
@@ -143,6 +144,8 @@ class Executor final : public RobotListener {
   // are queued).
   Result<std::vector<TaskId>> insert_tasks(std::vector<Task> tasks, std::string_view source);
   void log_battery();
+  // The robot's last known state in the store (its node, pose, battery, fault), for a restart.
+  void save_robot_state();
   bool interruptible_now() const;
   std::string fmt_time(Time t) const;
 
