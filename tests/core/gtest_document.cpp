@@ -105,16 +105,16 @@ TEST(Document, ParserMessagesAreValidUtf8) {
 // Found by fuzz_world and fuzz_requests: yaml-cpp turns some bytes of valid UTF-8 text (a NUL
 // inside a plain key) into a string that is not UTF-8; such a scalar is refused, not passed on.
 TEST(Document, EveryScalarThatComesBackIsUtf8) {
+  using namespace std::string_literals;  // the literals' own lengths, NULs included
   const std::string cases[] = {
-      std::string("wilogs      \x00_hour: 5.52\n", 26),
-      std::string("id\x07\x00_prefix: &eq\nday: 1\n", 26),
-      std::string("a: \"x\x00y\"\n", 10),
-      std::string("# Tml: every edgebattery.ompt s6t\000@`\000\000.\012kind: replay\012logs: ../. "
-                  "0.01\032\032\032\032\032\032\032h\032\032\032\032\032\032\032 ../. "
-                  "0.01\032\032\032\032\032\032\032h\032\032\032\032\032\032\032so Europe/London\012wilogs      "
-                  "\000_hour: 5.52}\012",
-                  151),
-      std::string("#office asking the robot for thi\012id\007\000_prefix: &eq\012day# Peopleffi2r t,h", 70),
+      "wilogs      \x00_hour: 5.52\n\0"s,  // the fuzzers' inputs end in a NUL
+      "id\x07\x00_prefix: &eq\nday: 1\n\0"s,
+      "a: \"x\x00y\"\n\0"s,
+      "# Tml: every edgebattery.ompt s6t\000@`\000\000.\012kind: replay\012logs: ../. "
+      "0.01\032\032\032\032\032\032\032h\032\032\032\032\032\032\032 ../. "
+      "0.01\032\032\032\032\032\032\032h\032\032\032\032\032\032\032so Europe/London\012wilogs      "
+      "\000_hour: 5.52}\012"s,
+      "#office asking the robot for thi\012id\007\000_prefix: &eq\012day# Peopleffi2r t,h"s,
   };
   for (const auto& text : cases) {
     auto doc = Document::parse(text, DocumentFormat::kYaml, "t.yaml");
