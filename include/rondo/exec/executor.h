@@ -3,19 +3,23 @@
 // wall clock, so the same code runs a simulated robot for weeks in seconds and a real one in real
 // time.
 //
-//   Executor ex(clock, robot, map, store, models, zone, {.dock = *map.find_node("ChargingPoint")});
+//   Executor ex(clock, robot, map, store, zone, {.dock = *map.find_node("ChargingPoint")});
 //   ex.add_routines(routines);                 // tasks for every day, created ahead of their windows
 //   ex.start();                                // posts the day's first events
 //   ex.add_task(task, "api");                  // standard: trySchedule; on-demand: runs at once
 //   clock.run_until(end);
 //
-// What it does (every task transition goes to the store's event log with a reason; every edge
-// attempt to the traversal log):
+// What it does (every task transition goes to the store's event log with an outcome code and a
+// reason, through the TaskBook; every succeeded or failed edge attempt to the traversal log):
 // - standard tasks: trySchedule old + new; when they do not all fit, drop the lowest-priority new
-//   ones (schedule::try_schedule), or preempt an interruptible running task that the dropped ones
-//   outrank: it ends "preempted" and comes back as a new task "<id>~N".
+//   ones for now (schedule::try_schedule; re-offered at every reschedule while their windows can be
+//   met), or preempt an interruptible running task that the dropped ones outrank: it keeps its id
+//   and goes back to the queue.
 // - on-demand tasks: preempt the running task if it is interruptible now (else run right after it),
 //   run at once, and reschedule the rest around it.
+// - cancel_task: at once when queued; through the robot when running and interruptible; at the
+//   next interruptible moment otherwise.
+// - robot faults: dispatch pauses and the monitors stand still until the robot is ready.
 // - before leaving for a task: too early -> wait (at the dock when the wait is long); too late to
 //   finish by the deadline -> the task fails and the rest is rescheduled.
 // - navigation follows the MDP policy edge by edge, re-planning after every edge (so after a failed
