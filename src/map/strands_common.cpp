@@ -109,4 +109,24 @@ std::string name_from_source(const std::string& source) {
   return replace_invalid_utf8(std::filesystem::path(source).stem().string());
 }
 
+Result<Edge> decode_ros_edge(const Field& f, const std::string& from, std::string_view expected) {
+  if (!f.is_object()) return f.error(expected);
+  Edge edge;
+  edge.from = from;
+  RONDO_ASSIGN_OR_RETURN(const Field target, f.required("node"));
+  RONDO_ASSIGN_OR_RETURN(edge.to, name_value(target));
+  edge.action = std::string(kDefaultAction);
+  if (auto action = f.optional("action")) {
+    RONDO_ASSIGN_OR_RETURN(edge.action, action->as_string());
+  }
+  if (auto id = f.optional("edge_id")) {
+    RONDO_ASSIGN_OR_RETURN(edge.id, name_value(*id));
+    if (edge.id.empty()) return id->error("an edge id must not be empty");
+  }
+  if (auto speed = f.optional("top_vel")) {
+    RONDO_ASSIGN_OR_RETURN(edge.top_speed, speed->as_number());
+  }
+  return edge;
+}
+
 }  // namespace rondo::map

@@ -38,6 +38,11 @@ Result<Pose> decode_ros_pose(const Field& node);
 // `node.verts`, a list of {x, y}; empty when absent.
 Result<std::vector<Point2>> decode_verts(const Field& node);
 
+// An edge as STRANDS and tmap2 nodes list them: `node` (the target), `action` (default
+// kDefaultAction), `edge_id` (empty when absent, completed later), `top_vel`. `expected` is what a
+// non-mapping is told it should be.
+Result<Edge> decode_ros_edge(const Field& f, const std::string& from, std::string_view expected);
+
 // The map name of a .tmap file: the stem of its path ("maps/g4s_y2.tmap" gives "g4s_y2").
 std::string name_from_source(const std::string& source);
 

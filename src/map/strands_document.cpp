@@ -35,25 +35,6 @@ Result<Json> decode_meta(const Field& entry, const Field& node) {
   return meta;
 }
 
-Result<Edge> decode_edge(const Field& f, const std::string& from) {
-  if (!f.is_object()) return f.error("expected an edge: a mapping with 'node' and 'action'");
-  Edge edge;
-  edge.from = from;
-  RONDO_ASSIGN_OR_RETURN(const Field target, f.required("node"));
-  RONDO_ASSIGN_OR_RETURN(edge.to, name_value(target));
-  edge.action = std::string(kDefaultAction);
-  if (auto action = f.optional("action")) {
-    RONDO_ASSIGN_OR_RETURN(edge.action, action->as_string());
-  }
-  if (auto id = f.optional("edge_id")) {
-    RONDO_ASSIGN_OR_RETURN(edge.id, name_value(*id));
-    if (edge.id.empty()) return id->error("an edge id must not be empty");
-  }
-  if (auto speed = f.optional("top_vel")) {
-    RONDO_ASSIGN_OR_RETURN(edge.top_speed, speed->as_number());
-  }
-  return edge;
-}
 
 // The node's name: node.name, or for older exports the entry's meta.node.
 Result<std::string> decode_name(const Field& entry, const Field& node) {
@@ -116,7 +97,7 @@ Result<TopoMap> strands_map_from_document(const Document& doc) {
     if (auto edge_list = node_field.optional("edges")) {
       RONDO_ASSIGN_OR_RETURN(const std::vector<Field> items, edge_list->items());
       for (const Field& f : items) {
-        RONDO_ASSIGN_OR_RETURN(Edge edge, decode_edge(f, node.name));
+        RONDO_ASSIGN_OR_RETURN(Edge edge, decode_ros_edge(f, node.name, "expected an edge: a mapping with 'node' and 'action'"));
         edges.push_back(std::move(edge));
         edge_fields.push_back(f);
       }

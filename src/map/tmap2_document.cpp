@@ -49,25 +49,13 @@ struct DecodedEdge {
 };
 
 Result<DecodedEdge> decode_edge(const Field& f, const std::string& from) {
-  if (!f.is_object()) return f.error("expected an edge: a mapping with 'edge_id', 'node' and 'action'");
-  DecodedEdge out{.edge = {}, .field = f};
-  Edge& edge = out.edge;
-  edge.from = from;
-  RONDO_ASSIGN_OR_RETURN(const Field target, f.required("node"));
-  RONDO_ASSIGN_OR_RETURN(edge.to, name_value(target));
-  edge.action = std::string(kDefaultAction);
-  if (auto action = f.optional("action")) {
-    RONDO_ASSIGN_OR_RETURN(edge.action, action->as_string());
-  }
-  if (auto id = f.optional("edge_id")) {
-    RONDO_ASSIGN_OR_RETURN(edge.id, name_value(*id));
-    if (edge.id.empty()) return id->error("an edge id must not be empty");
-  }
-  if (auto speed = f.optional("top_vel")) {
-    RONDO_ASSIGN_OR_RETURN(edge.top_speed, speed->as_number());
-  } else if (auto config = f.optional("config"); config && config->is_object()) {
+  RONDO_ASSIGN_OR_RETURN(Edge decoded,
+                         decode_ros_edge(f, from, "expected an edge: a mapping with 'edge_id', 'node' and 'action'"));
+  DecodedEdge out{.edge = std::move(decoded), .field = f};
+  // Without its own top_vel, an edge may keep it in a `config` mapping (the 2021 files).
+  if (auto config = f.optional("config"); !f.optional("top_vel") && config && config->is_object()) {
     if (auto in_config = config->optional("top_vel")) {
-      RONDO_ASSIGN_OR_RETURN(edge.top_speed, in_config->as_number());
+      RONDO_ASSIGN_OR_RETURN(out.edge.top_speed, in_config->as_number());
       out.top_speed_in_config = true;
     }
   }
