@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "rondo/schedule/default_scheduler.h"
 #include "rondo/store/traversal_log.h"
 #include "scenario.h"
 #include "scripted_robot.h"
@@ -20,7 +21,7 @@ using ::testing::HasSubstr;
 // The scenario map with the executor on a ScriptedRobot at the dock, at 08:00 on a Monday.
 class Scripted {
  public:
-  explicit Scripted(ExecutorOptions options = {}, map::TopoMap map = scenario_map())
+  explicit Scripted(ExecutorOptions options = {}, map::TopoMap map = scenario_map(), ExecutorParts parts = {})
       : map_(std::move(map)),
         zone_(TimeZone::named("Europe/London").value()),
         clock_(zone_.parse_time("2026-11-23T08:00").value()),
@@ -29,7 +30,7 @@ class Scripted {
         robot_(clock_, map_, *map_.find_node("Dock")) {
     options.dock = *map_.find_node("Dock");
     options.refit_at.reset();
-    executor_ = std::make_unique<Executor>(clock_, robot_, map_, store_, zone_, options);
+    executor_ = std::make_unique<Executor>(clock_, robot_, map_, store_, zone_, options, std::move(parts));
   }
   ~Scripted() {
     executor_.reset();
@@ -238,6 +239,56 @@ TEST(ScriptedRobot, CancellingARunningTaskThatCannotBeInterruptedWaitsForTheRobo
   s.settle();
   EXPECT_TRUE(s.robot().asked("cancel"));
   EXPECT_EQ(s.state("A"), "cancelled");
+}
+
+TEST(ScriptedRobot, ATaskThatEndsElsewhereIsDrivenThereAfterItsActions) {
+  Scripted s;
+  Task a = task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5));
+  a.end_node = "Kitchen";
+  ASSERT_TRUE(s.executor().add_task(a, "test").ok());
+  s.executor().start();
+  EXPECT_EQ(s.executor().phase(), ExecutorPhase::kIdle);
+  s.settle();
+  EXPECT_EQ(s.executor().phase(), ExecutorPhase::kNavigating);
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
+  EXPECT_EQ(s.executor().phase(), ExecutorPhase::kActing);
+  s.robot().finish_action(ActionOutcome::kSucceeded);
+  s.settle();
+  EXPECT_EQ(s.state("A"), "navigating");  // its actions are done, but it ends at the Kitchen
+  EXPECT_EQ(s.executor().phase(), ExecutorPhase::kNavigating);
+  EXPECT_EQ(s.robot().calls.back(), "drive Office_Hall +1");
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Kitchen"));
+  EXPECT_EQ(s.state("A"), "succeeded");
+  EXPECT_THAT(s.reason_of("A", "succeeded"), HasSubstr("done: "));
+  EXPECT_EQ(s.executor().current_task(), std::nullopt);
+}
+
+// A scheduler that counts its calls and asks the default one.
+class CountingScheduler final : public schedule::Scheduler {
+ public:
+  explicit CountingScheduler(int& calls) : calls_(calls) {}
+  std::string_view name() const override { return "counting"; }
+  schedule::Schedule solve(const schedule::Problem& problem, const schedule::StopCondition& stop) override {
+    ++calls_;
+    return inner_.solve(problem, stop);
+  }
+
+ private:
+  int& calls_;
+  schedule::DefaultScheduler inner_;
+};
+
+TEST(ScriptedRobot, TheSchedulerAndTheModelsAreInjected) {
+  int calls = 0;
+  const map::TopoMap map = scenario_map();
+  auto models = std::make_shared<plan::LearnedEdgeModels>(map, nullptr);
+  Scripted s({}, map, ExecutorParts{.models = models, .scheduler = std::make_unique<CountingScheduler>(calls)});
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:30"), s.at("09:00"), minutes(5)), "test").ok());
+  ASSERT_TRUE(s.executor().add_task(task("B", "Lab", s.at("08:00"), s.at("10:00"), minutes(5)), "test").ok());
+  s.executor().start();
+  EXPECT_GE(calls, 1);
+  EXPECT_EQ(&s.executor().models(), models.get());
+  EXPECT_EQ(s.executor().stats().schedules, calls);
 }
 
 }  // namespace

@@ -1,0 +1,65 @@
+#include "scheduling.h"
+
+#include <map>
+#include <memory>
+
+#include "rondo/schedule/stop_condition.h"
+
+namespace rondo::exec {
+
+Outcome drop_outcome(schedule::DropCause cause) {
+  switch (cause) {
+    case schedule::DropCause::kUnreachable: return Outcome::kOutOfReach;
+    case schedule::DropCause::kHigherPriority: return Outcome::kDroppedForHigherPriority;
+    case schedule::DropCause::kLowestPriority: return Outcome::kDroppedLowestPriority;
+    case schedule::DropCause::kDoesNotFit: break;
+  }
+  return Outcome::kDoesNotFit;
+}
+
+schedule::TryScheduleResult schedule_pending(const ScheduleInputs& in, const PendingTasks& pending,
+                                             map::NodeIndex here, Time free,
+                                             std::optional<schedule::RunningTask> running) {
+  schedule::Problem problem;
+  std::vector<map::NodeIndex> nodes{here};
+  std::map<map::NodeIndex, schedule::LocationIndex> location{{here, 0}};
+  const auto location_of = [&](const std::string& name) {
+    const map::NodeIndex n = *in.map.find_node(name);
+    auto [it, inserted] = location.emplace(n, nodes.size());
+    if (inserted) nodes.push_back(n);
+    return it->second;
+  };
+  for (const TaskId& id : pending.ids) {
+    const Task& t = in.book.at(id).task;
+    const schedule::LocationIndex start = location_of(t.start_node);
+    problem.tasks.push_back({.id = id,
+                             .release = t.window->release,
+                             .deadline = t.window->deadline,
+                             .duration = t.duration,
+                             .priority = t.priority,
+                             .start_location = start,
+                             .end_location = t.end_node.empty() ? start : location_of(t.end_node)});
+  }
+  for (map::NodeIndex n : nodes) problem.location_names.push_back(in.map.node(n).name);
+  problem.robot = {.location = 0, .time = free};
+  problem.travel = std::make_shared<MapTravel>(in.travel, nodes);
+
+  schedule::TryScheduleRequest request{.problem = std::move(problem), .new_tasks = {}, .zone = in.zone};
+  for (std::size_t i = pending.old_count; i < pending.ids.size(); ++i) request.new_tasks.push_back(i);
+  for (std::size_t i = pending.first_reoffered; i < pending.ids.size(); ++i) request.cannot_preempt.push_back(i);
+  request.running = std::move(running);
+  schedule::PollBudgetStop stop(in.polls);
+  schedule::TryScheduleResult result = schedule::try_schedule(request, in.scheduler, stop, in.rng);
+  if (result.outcome != schedule::TryScheduleOutcome::kOldTasksInfeasible) return result;
+  // What was planned no longer fits (a task overran, an on-demand task came first): every task
+  // competes again, and the lowest priorities give way.
+  const int attempts = result.attempts;
+  request.new_tasks.clear();
+  for (std::size_t i = 0; i < pending.ids.size(); ++i) request.new_tasks.push_back(i);
+  schedule::PollBudgetStop again(in.polls);
+  result = schedule::try_schedule(request, in.scheduler, again, in.rng);
+  result.attempts += attempts;
+  return result;
+}
+
+}  // namespace rondo::exec
