@@ -12,15 +12,16 @@ ActStep::ActStep(StepContext& ctx, StepHooks hooks, TaskId task, const NavigateS
 
 void ActStep::start() {
   const Time now = ctx_.clock.now();
-  const Task& task = ctx_.book.at(task_).task;
+  const TaskRecord& r = ctx_.book.at(task_);
   since_ = now;
-  index_ = 0;
+  expected_ = r.remaining();
+  index_ = r.actions_done;  // a task that was preempted goes on after the actions it did
   ctx_.book.transition(task_, TaskState::kActing, Outcome::kArrived,
                        fmt::format("arrived at {} after {} (expected {}); expected processing {}",
                                    ctx_.map.node(arrival_.target()).name, duration_text(now - arrival_.started()),
-                                   duration_text(arrival_.expected()), duration_text(task.duration)));
+                                   duration_text(arrival_.expected()), duration_text(r.remaining())));
   const ExecutorOptions& o = ctx_.options;
-  monitor_.arm(Monitor::limit("action overrun: still acting", "the processing time", task.duration, o.action_overrun,
+  monitor_.arm(Monitor::limit("action overrun: still acting", "the processing time", r.remaining(), o.action_overrun,
                               o.action_slack),
                [this](const std::string& why) { hooks_.overrun(Outcome::kActionOverrun, why); });
   if (ctx_.in_fault) monitor_.suspend();
@@ -29,14 +30,15 @@ void ActStep::start() {
 
 void ActStep::run_next() {
   if (hooks_.stop_here()) return end({.status = StepEnd::Status::kHalted});  // between two actions
-  const Task& task = ctx_.book.at(task_).task;
-  const std::size_t n = std::max<std::size_t>(1, task.actions.size());
+  const TaskRecord& r = ctx_.book.at(task_);
+  const Task& task = r.task;
+  const std::size_t n = r.action_count();
   if (index_ >= n) {
     monitor_.cancel();
     return end({.status = StepEnd::Status::kDone,
                 .outcome = Outcome::kDone,
                 .reason = fmt::format("done: {} of actions (expected {})", duration_text(ctx_.clock.now() - since_),
-                                      duration_text(task.duration))});
+                                      duration_text(expected_))});
   }
   if (ctx_.in_fault) return;  // resume() runs it
   // A task without actions is its processing time spent at the place: one action named after it.
@@ -60,7 +62,7 @@ void ActStep::on_action_finished(const ActionResult& r) {
                 .outcome = Outcome::kActionFailed,
                 .reason = fmt::format("action {} failed{}{}", r.name, r.message.empty() ? "" : ": ", r.message)});
   }
-  ++index_;
+  ctx_.book.set_progress(task_, ++index_);
   run_next();
 }
 

@@ -16,9 +16,10 @@ Decision Dispatcher::next(map::NodeIndex here, Time now) {
   }
   if (planned.empty()) return {.kind = here == options_.dock ? Decision::Kind::kStay : Decision::Kind::kDock};
   const TaskId id = planned.front();
-  const Task& task = book_.at(id).task;
+  const TaskRecord& r = book_.at(id);
+  const Task& task = r.task;
   const Duration travel = travel_.travel(here, *map_.find_node(task.start_node), now);
-  const Time latest_start = task.window->deadline - task.duration;
+  const Time latest_start = task.window->deadline - r.remaining();
   if (travel >= kUnreachable || now + travel > latest_start) {
     planned.erase(planned.begin());
     const std::string& from = map_.node(here).name;

@@ -118,8 +118,8 @@ void Executor::preempt_for(Outcome outcome, const std::string& reason, std::vect
 }
 
 void Executor::requeue_preempted(const TaskId& id, Outcome outcome, const std::string& reason) {
-  const Task& task = book_.at(id).task;
-  if (task.kind == TaskKind::kStandard && clock_.now() + task.duration <= task.window->deadline) {
+  const TaskRecord& r = book_.at(id);
+  if (r.task.kind == TaskKind::kStandard && clock_.now() + r.remaining() <= r.task.window->deadline) {
     book_.transition(id, TaskState::kQueued, outcome, reason + "; back in the queue");
     return;
   }

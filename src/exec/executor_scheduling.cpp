@@ -15,21 +15,22 @@ std::pair<map::NodeIndex, Time> Executor::free_at() const {
   const Time now = clock_.now();
   map::NodeIndex here = robot_.location();
   Time t = now;
-  // Runs `task` after what is already planned: from `here` at `t`, or, when it is acting since
-  // `acting_since`, until its processing time is over.
-  const auto run = [&](const Task& task, std::optional<Time> acting_since) {
+  // Runs a task after what is already planned: from `here` at `t`, or, when it is acting, until
+  // its actions are expected to end (`acting_until`).
+  const auto run = [&](const TaskRecord& r, std::optional<Time> acting_until) {
+    const Task& task = r.task;
     const map::NodeIndex start = task.start_node.empty() ? here : *map_.find_node(task.start_node);
-    if (acting_since) {
-      t = std::max(now, *acting_since + task.duration);
+    if (acting_until) {
+      t = std::max(now, *acting_until);
     } else {
       Time s = t + travel_->travel(here, start, t);
       if (task.window) s = std::max(s, task.window->release);
-      t = s + task.duration;
+      t = s + r.remaining();
     }
     here = task.end_node.empty() ? start : *map_.find_node(task.end_node);
   };
-  if (run_ && !run_->waiting()) run(run_->task(), run_->acting_since());
-  for (const TaskId& id : dispatcher_->on_demand) run(book_.at(id).task, std::nullopt);
+  if (run_ && !run_->waiting()) run(book_.at(run_->id()), run_->acting_until());
+  for (const TaskId& id : dispatcher_->on_demand) run(book_.at(id), std::nullopt);
   return {here, t};
 }
 
@@ -39,7 +40,7 @@ std::vector<TaskId> Executor::reoffer_deferred() {
   for (const TaskId& id : dispatcher_->deferred) {
     TaskRecord& r = book_.at(id);
     if (r.state != TaskState::kQueued || !r.dropped_for_now) continue;
-    if (now + r.task.duration <= r.task.window->deadline) {
+    if (now + r.remaining() <= r.task.window->deadline) {
       still.push_back(id);
       continue;
     }
@@ -119,7 +120,7 @@ void Executor::apply_schedule(const std::vector<TaskId>& ids, const schedule::Sc
     if (!r.dropped_for_now) {
       book_.note(id, "dropped for now", outcome, d.reason);
       // When its window can no longer be met it is dropped for good, whatever else happens.
-      clock_.schedule_at(r.task.window->deadline - r.task.duration + milliseconds(1),
+      clock_.schedule_at(r.task.window->deadline - r.remaining() + milliseconds(1),
                          [this] { (void)reoffer_deferred(); });
     }
     r.dropped_for_now = std::make_pair(outcome, d.reason);

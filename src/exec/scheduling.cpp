@@ -30,12 +30,13 @@ schedule::TryScheduleResult schedule_pending(const ScheduleInputs& in, const Pen
     return it->second;
   };
   for (const TaskId& id : pending.ids) {
-    const Task& t = in.book.at(id).task;
+    const TaskRecord& r = in.book.at(id);
+    const Task& t = r.task;
     const schedule::LocationIndex start = location_of(t.start_node);
     problem.tasks.push_back({.id = id,
                              .release = t.window->release,
                              .deadline = t.window->deadline,
-                             .duration = t.duration,
+                             .duration = r.remaining(),
                              .priority = t.priority,
                              .start_location = start,
                              .end_location = t.end_node.empty() ? start : location_of(t.end_node)});

@@ -89,6 +89,7 @@ class ActStep final : public RobotStep {
   void on_action_finished(const ActionResult& result) override;
 
   Time since() const { return since_; }
+  Time expected_end() const { return since_ + expected_; }  // of its actions, as planned
 
  private:
   void go_on() override { run_next(); }
@@ -97,6 +98,7 @@ class ActStep final : public RobotStep {
   TaskId task_;
   const NavigateStep& arrival_;
   Time since_{};
+  Duration expected_{0};  // the processing time still to spend when it began
   std::size_t index_ = 0;
 };
 

@@ -57,6 +57,12 @@ void TaskBook::transition(const TaskId& id, TaskState state, Outcome outcome, co
     write_errors_.push_back(ok.error().message);
 }
 
+void TaskBook::set_progress(const TaskId& id, std::size_t actions_done) {
+  records_.at(id).actions_done = actions_done;
+  if (auto ok = store::set_task_progress(store_, id, Json{{"actions_done", actions_done}}); !ok)
+    write_errors_.push_back(ok.error().message);
+}
+
 void TaskBook::note(const TaskId& id, const std::string& event, Outcome outcome, const std::string& reason) {
   append({.time = clock_.now(), .task_id = id, .event = event, .code = std::string(to_string(outcome)), .reason = reason});
 }

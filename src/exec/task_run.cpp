@@ -43,6 +43,11 @@ std::optional<Time> TaskRun::acting_since() const {
   return std::nullopt;
 }
 
+std::optional<Time> TaskRun::acting_until() const {
+  if (current() == act_) return act_->expected_end();
+  return std::nullopt;
+}
+
 void TaskRun::next_step() {
   overrun_held_.reset();  // a monitor held back for the step that ended is moot now
   ++index_;

@@ -34,8 +34,9 @@ class TaskRun {
   const Task& task() const { return ctx_.book.at(id_).task; }
   // Still waiting for its window: to the scheduler it is a pending task, not a running one.
   bool waiting() const { return current() == wait_; }
-  // Since when it acts at its place, while it does.
+  // Since when it acts at its place, and when its actions are expected to end, while it does.
   std::optional<Time> acting_since() const;
+  std::optional<Time> acting_until() const;
   // The task allows it, and the robot says it may be interrupted now.
   bool interruptible() const { return task().interruptible && robot_interruptible_; }
   Step* current() const { return index_ < steps_.size() ? steps_[index_].get() : nullptr; }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rondo/schedule/default_scheduler.h"
+#include "rondo/store/task_table.h"
 #include "rondo/store/traversal_log.h"
 #include "scenario.h"
 #include "scripted_robot.h"
@@ -289,6 +290,38 @@ TEST(ScriptedRobot, TheSchedulerAndTheModelsAreInjected) {
   EXPECT_GE(calls, 1);
   EXPECT_EQ(&s.executor().models(), models.get());
   EXPECT_EQ(s.executor().stats().schedules, calls);
+}
+
+TEST(ScriptedRobot, APreemptedTaskKeepsItsProgressAndGoesOnAfterTheActionsItDid) {
+  Scripted s;
+  Task a = task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(6));
+  a.actions = {Action{.name = "one", .args = {}}, Action{.name = "two", .args = {}}, Action{.name = "three", .args = {}}};
+  ASSERT_TRUE(s.executor().add_task(a, "test").ok());
+  s.executor().start();
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
+  EXPECT_EQ(s.robot().calls.back(), "act one");
+  s.robot().finish_action(ActionOutcome::kSucceeded);
+  s.settle();
+  EXPECT_EQ(s.robot().calls.back(), "act two");
+  EXPECT_EQ(store::get_task(s.store(), "A").value().progress, (Json{{"actions_done", 1}}));
+  ASSERT_TRUE(s.executor().add_task(on_demand("OD", "Lab", minutes(5)), "request").ok());
+  s.settle();  // the robot answers the preemption's cancel
+  EXPECT_TRUE(s.robot().asked("cancel"));
+  EXPECT_EQ(s.state("A"), "queued");
+  EXPECT_EQ(s.executor().tasks().at("A").actions_done, 1u);
+  EXPECT_EQ(s.executor().tasks().at("A").remaining(), minutes(4));
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Lab"));
+  s.robot().finish_action(ActionOutcome::kSucceeded);
+  s.settle();
+  EXPECT_EQ(s.state("OD"), "succeeded");
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
+  EXPECT_EQ(s.robot().calls.back(), "act two");  // not "one" again
+  s.robot().finish_action(ActionOutcome::kSucceeded);
+  s.settle();
+  s.robot().finish_action(ActionOutcome::kSucceeded);
+  s.settle();
+  EXPECT_EQ(s.state("A"), "succeeded");
+  EXPECT_EQ(store::get_task(s.store(), "A").value().progress, (Json{{"actions_done", 3}}));
 }
 
 }  // namespace
