@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "deliveries.h"
 #include "dispatcher.h"
 #include "rondo/schedule/default_scheduler.h"
 #include "task_run.h"
@@ -39,6 +40,7 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
       rng_(options.seed),
       book_(store, clock),
       dispatcher_(std::make_unique<Dispatcher>(map_, *travel_, book_, options_, zone_)),
+      deliveries_(std::make_unique<Deliveries>()),
       steps_{clock_, robot_, map_, book_, *travel_, *planner_, options_, zone_, stats_, navigations_, in_fault_} {
   robot_.set_listener(this);
 }
@@ -67,6 +69,7 @@ Result<std::vector<TaskId>> Executor::insert_tasks(std::vector<Task> tasks, std:
   RONDO_RETURN_IF_ERROR(book_.add(std::move(tasks), source));
   std::vector<TaskId> standard;
   for (const TaskId& id : ids) {
+    deliveries_->add(book_.at(id).task);
     if (book_.at(id).task.kind == TaskKind::kOnDemand)
       dispatcher_->on_demand.push_back(id);
     else
@@ -124,6 +127,7 @@ Status Executor::cancel_task(const TaskId& id, const std::string& reason) {
   book_.at(id).planned_start.reset();
   book_.at(id).planned_end.reset();
   book_.transition(id, TaskState::kCancelled, Outcome::kCancelled, why);
+  cancel_job_of(id, why);
   if (started_) {
     reschedule({}, "task " + id + " cancelled");  // its room may let a dropped task back in
     kick();

@@ -72,6 +72,7 @@ void Executor::run_ended(TaskEnd e) {
   }
   book_.transition(id, e.state, e.outcome, e.reason);
   log_battery();
+  if (e.state == TaskState::kCancelled) cancel_job_of(id, e.reason);
   if (e.state == TaskState::kFailed || e.state == TaskState::kCancelled || !again.empty())
     reschedule(std::move(again), "task " + id + " " + to_string(e.state));
   next();

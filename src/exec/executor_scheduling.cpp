@@ -53,6 +53,7 @@ std::vector<TaskId> Executor::reoffer_deferred() {
 
 void Executor::reschedule(std::vector<TaskId> new_ids, const std::string& why) {
   const std::vector<TaskId> offered_again = reoffer_deferred();
+  for (TaskId& back : settle_jobs()) new_ids.push_back(std::move(back));
   PendingTasks pending;
   std::vector<TaskId>& ids = pending.ids;
   const auto add = [&ids](const TaskId& id) {
@@ -76,8 +77,14 @@ void Executor::reschedule(std::vector<TaskId> new_ids, const std::string& why) {
     running = schedule::RunningTask{run_->id(), t.priority, t.kind == TaskKind::kStandard && interruptible_now()};
   }
   const ScheduleInputs in{.map = map_, .travel = *travel_, .book = book_, .zone = zone_, .scheduler = *scheduler_,
-                          .polls = options_.scheduler_polls, .rng = rng_};
-  const schedule::TryScheduleResult result = schedule_pending(in, pending, here, free, running);
+                          .polls = options_.scheduler_polls, .rng = rng_, .capacity = options_.capacity,
+                          .on_board = on_board_when_free()};
+  auto solved = schedule_pending(in, pending, here, free, running);
+  if (!solved) {  // the pending tasks do not make a well-formed problem: keep the plan as it is
+    book_.note_schedule("not rescheduled", Outcome::kNone, fmt::format("{}: {}", why, solved.error().message));
+    return;
+  }
+  const schedule::TryScheduleResult& result = *solved;
   stats_.schedules += result.attempts;
   if (result.outcome == schedule::TryScheduleOutcome::kPreemptRunning) {
     preempt_for(Outcome::kOutranked, "outranked by new tasks: " + result.preempt_reason, std::move(new_ids));

@@ -17,7 +17,7 @@ Outcome drop_outcome(schedule::DropCause cause) {
   return Outcome::kDoesNotFit;
 }
 
-schedule::TryScheduleResult schedule_pending(const ScheduleInputs& in, const PendingTasks& pending,
+Result<schedule::TryScheduleResult> schedule_pending(const ScheduleInputs& in, const PendingTasks& pending,
                                              map::NodeIndex here, Time free,
                                              std::optional<schedule::RunningTask> running) {
   schedule::Problem problem;
@@ -29,6 +29,8 @@ schedule::TryScheduleResult schedule_pending(const ScheduleInputs& in, const Pen
     if (inserted) nodes.push_back(n);
     return it->second;
   };
+  std::map<TaskId, std::size_t> index;
+  for (std::size_t i = 0; i < pending.ids.size(); ++i) index.emplace(pending.ids[i], i);
   for (const TaskId& id : pending.ids) {
     const TaskRecord& r = in.book.at(id);
     const Task& t = r.task;
@@ -40,11 +42,26 @@ schedule::TryScheduleResult schedule_pending(const ScheduleInputs& in, const Pen
                              .priority = t.priority,
                              .start_location = start,
                              .end_location = t.end_node.empty() ? start : location_of(t.end_node)});
+    schedule::ProblemTask& pt = problem.tasks.back();
+    if (t.delivery)
+      pt.transfer = schedule::ItemTransfer{
+          .job = t.delivery->job,
+          .action = t.delivery->role == DeliveryRole::kPickup ? schedule::ItemAction::kPickup
+                                                              : schedule::ItemAction::kDrop,
+          .appearance = t.delivery->appearance,
+          .load = t.delivery->load};
+    for (const TaskId& a : t.after)
+      if (const auto it = index.find(a); it != index.end()) pt.after.push_back(it->second);
   }
+  problem.robot.capacity = in.capacity;
+  for (const OnBoard& o : in.on_board)
+    problem.robot.on_board.push_back({.job = o.job, .appearance = o.appearance, .load = o.load});
   for (map::NodeIndex n : nodes) problem.location_names.push_back(in.map.node(n).name);
-  problem.robot = {.location = 0, .time = free};
+  problem.robot.location = 0;
+  problem.robot.time = free;
   problem.travel = std::make_shared<MapTravel>(in.travel, nodes);
 
+  RONDO_RETURN_IF_ERROR(schedule::validate(problem));
   schedule::TryScheduleRequest request{.problem = std::move(problem), .new_tasks = {}, .zone = in.zone};
   for (std::size_t i = pending.old_count; i < pending.ids.size(); ++i) request.new_tasks.push_back(i);
   for (std::size_t i = pending.first_reoffered; i < pending.ids.size(); ++i) request.cannot_preempt.push_back(i);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "rondo/core/timezone.h"
+#include "deliveries.h"
 #include "rondo/exec/map_travel.h"
 #include "rondo/exec/outcome.h"
 #include "rondo/exec/task_book.h"
@@ -35,10 +36,15 @@ struct ScheduleInputs {
   schedule::Scheduler& scheduler;
   std::int64_t polls;  // budget of each solver call
   std::mt19937_64& rng;
+  std::int64_t capacity = 0;              // 0 = unlimited
+  std::vector<OnBoard> on_board{};        // when the robot is next free
 };
 
+// Delivery tasks carry their transfer (precedence, load, look-alike rule), `after` the tasks among
+// `pending` (the others have ended or run now), and the robot its capacity and what is on board.
 // Precondition: every id is a standard task of the book with a window and a start node.
-schedule::TryScheduleResult schedule_pending(const ScheduleInputs& in, const PendingTasks& pending,
+// kInvalidInput when the problem is not well formed (schedule::validate's message).
+Result<schedule::TryScheduleResult> schedule_pending(const ScheduleInputs& in, const PendingTasks& pending,
                                              map::NodeIndex here, Time free,
                                              std::optional<schedule::RunningTask> running);
 

@@ -76,6 +76,15 @@ void TaskBook::note_robot(const std::string& event, Outcome outcome, const std::
           .reason = reason});
 }
 
+void TaskBook::note_schedule(const std::string& event, Outcome outcome, const std::string& reason) {
+  append({.time = clock_.now(),
+          .subject = store::Subject::kSchedule,
+          .about = "schedule",
+          .event = event,
+          .code = std::string(to_string(outcome)),
+          .reason = reason});
+}
+
 void TaskBook::note_request(const std::string& about, const std::string& event, Outcome outcome,
                             const std::string& reason) {
   append({.time = clock_.now(),

@@ -63,6 +63,7 @@
 
 namespace rondo::exec {
 
+class Deliveries;
 class Dispatcher;
 class NavigateStep;
 class TaskRun;
@@ -112,6 +113,8 @@ class Executor final : public RobotListener {
   const std::vector<std::string>& write_errors() const { return book_.write_errors(); }
   const plan::LearnedEdgeModels& models() const { return *models_; }
   ExecutorPhase phase() const;
+  // The objects on board now (delivery jobs picked up and not yet dropped).
+  std::vector<OnBoard> on_board() const;
   std::optional<TaskId> current_task() const;
   bool paused() const { return in_fault_; }
 
@@ -161,6 +164,14 @@ class Executor final : public RobotListener {
   // The deferred tasks that can still meet their windows (the others end dropped, for good).
   std::vector<TaskId> reoffer_deferred();
 
+  // deliveries (executor_deliveries.cpp)
+  // Drops whose pickup ended without the object fail too, and an object on board with no drop
+  // pending gets a return task (once per job).
+  std::vector<TaskId> settle_jobs();  // the returns it made: new tasks to schedule
+  std::vector<OnBoard> on_board_when_free() const;  // after the running task
+  // A cancelled delivery task whose object is not on board takes the rest of its job with it.
+  void cancel_job_of(const TaskId& id, const std::string& why);
+
   // daily (executor_daily.cpp)
   void create_routine_tasks(std::chrono::year_month_day day);
   void schedule_midnight();
@@ -181,6 +192,7 @@ class Executor final : public RobotListener {
 
   TaskBook book_;
   std::unique_ptr<Dispatcher> dispatcher_;
+  std::unique_ptr<Deliveries> deliveries_;
   std::vector<Routine> routines_;
   ExecutorStats stats_;
   std::vector<NavigationRecord> navigations_;

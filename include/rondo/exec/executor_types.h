@@ -25,6 +25,11 @@ struct ExecutorOptions {
   std::int64_t scheduler_polls = 20'000;  // deterministic budget of each scheduler call (docs/scheduling.md)
   std::uint64_t seed = 1;                // ties in dropping
   std::string robot_name = "robot";      // the robot's row in the store's robot_state
+  int capacity = 0;                      // load units the robot carries (0 = unlimited)
+  // Where an object goes back to when its delivery is cancelled or fails with it on board: a node
+  // name, or empty for the object's pickup place; the return must be done within `return_within`.
+  std::string return_to{};
+  Duration return_within = hours(4);
 };
 
 // Figures of the run so far, for the report.
@@ -47,6 +52,15 @@ struct NavigationRecord {
   Duration expected{0};
   Duration actual{0};
   bool arrived = false;
+};
+
+// An object on board: a delivery job picked up and not yet dropped.
+struct OnBoard {
+  std::string job;
+  std::string object;
+  std::string appearance;
+  int load = 1;
+  TaskId picked_up_by;  // the pickup task
 };
 
 }  // namespace rondo::exec

@@ -77,6 +77,7 @@ class TaskBook {
   void note(const TaskId& id, const std::string& event, Outcome outcome, const std::string& reason);
   // Events about the robot, a request (`about`: its id) or the schedule.
   void note_robot(const std::string& event, Outcome outcome, const std::string& reason);
+  void note_schedule(const std::string& event, Outcome outcome, const std::string& reason);
   void note_request(const std::string& about, const std::string& event, Outcome outcome, const std::string& reason);
 
   // How many events were written that are not final states, by event name and code (for the
