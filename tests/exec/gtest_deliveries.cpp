@@ -8,8 +8,7 @@
 #include <string>
 
 #include "rondo/exec/executor.h"
-#include "scenario.h"
-#include "scripted_robot.h"
+#include "scripted_executor.h"
 
 namespace rondo::exec::testing {
 namespace {
@@ -24,69 +23,29 @@ Task half(const std::string& id, const std::string& job, DeliveryRole role, cons
   return t;
 }
 
-class Courier {
+class Courier : public ScriptedExecutor {
  public:
-  explicit Courier(ExecutorOptions options = {})
-      : map_(scenario_map()),
-        zone_(TimeZone::named("Europe/London").value()),
-        clock_(zone_.parse_time("2026-11-23T08:00").value()),
-        db_(fresh_db_path()),
-        store_(store::Store::open(db_, {.sync_commits = false}).value()),
-        robot_(clock_, map_, *map_.find_node("Dock")) {
-    options.dock = *map_.find_node("Dock");
-    options.refit_at.reset();
-    executor_ = std::make_unique<Executor>(clock_, robot_, map_, store_, zone_, options);
-  }
-  ~Courier() {
-    executor_.reset();
-    std::error_code ec;
-    std::filesystem::remove(db_, ec);
-  }
-  Time at(const std::string& local) const { return zone_.parse_time("2026-11-23T" + local).value(); }
+  using ScriptedExecutor::ScriptedExecutor;
   // Both halves of a job, open all morning.
   void job(const std::string& name, const std::string& from, const std::string& to, const std::string& object,
            const std::string& looks = "") {
-    ASSERT_TRUE(executor_
-                    ->add_tasks({half(name + "-pickup", name, DeliveryRole::kPickup, from, object, looks, at("08:00"),
-                                      at("12:00")),
-                                 half(name + "-drop", name, DeliveryRole::kDrop, to, object, looks, at("08:00"),
-                                      at("12:00"))},
-                                "test")
+    ASSERT_TRUE(executor()
+                    .add_tasks({half(name + "-pickup", name, DeliveryRole::kPickup, from, object, looks, at("08:00"),
+                                     at("12:00")),
+                                half(name + "-drop", name, DeliveryRole::kDrop, to, object, looks, at("08:00"),
+                                     at("12:00"))},
+                               "test")
                     .ok());
   }
-  Time planned(const std::string& id) const { return executor_->tasks().at(id).planned_start.value(); }
-  std::string state(const std::string& id) const { return to_string(executor_->tasks().at(id).state); }
-  void settle() { clock_.run_until(clock_.now()); }
-  void drive_to(const std::string& node) {
-    const map::NodeIndex target = *map_.find_node(node);
-    for (int guard = 0; robot_.location() != target && guard < 50; ++guard) {
-      settle();
-      ASSERT_TRUE(robot_.driving()) << "no edge asked on the way to " << node;
-      clock_.run_until(clock_.now() + seconds(20));
-      robot_.finish_edge(EdgeOutcome::kSucceeded, seconds(20));
-      settle();
-    }
-  }
+  Time planned(const std::string& id) { return executor().tasks().at(id).planned_start.value(); }
   // Drives to `node` and answers its one action.
   void serve(const std::string& node, ActionOutcome outcome = ActionOutcome::kSucceeded) {
     ASSERT_NO_FATAL_FAILURE(drive_to(node));
     settle();
-    ASSERT_TRUE(robot_.acting()) << "no action at " << node;
-    robot_.finish_action(outcome);
+    ASSERT_TRUE(robot().acting()) << "no action at " << node;
+    robot().finish_action(outcome);
     settle();
   }
-  Executor& executor() { return *executor_; }
-  store::Store& store() { return store_; }
-  ScriptedRobot& robot() { return robot_; }
-
- private:
-  map::TopoMap map_;
-  TimeZone zone_;
-  SimClock clock_;
-  std::filesystem::path db_;
-  store::Store store_;
-  ScriptedRobot robot_;
-  std::unique_ptr<Executor> executor_;
 };
 
 TEST(Deliveries, PickupsComeBeforeTheirDropsAndInterleaveWhenThatIsFaster) {
