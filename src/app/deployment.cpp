@@ -35,7 +35,7 @@ Result<Duration> non_negative_duration(const Field& f) {
 Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
   RONDO_RETURN_IF_ERROR(f.expect_keys({"navigation_overrun", "navigation_slack", "action_overrun", "action_slack",
                                        "dock_when_waiting_over", "max_failed_edges", "refit_at", "slot_width",
-                                       "scheduler_polls"}));
+                                       "scheduler_polls", "capacity", "return_to", "return_within"}));
   if (auto v = f.optional("navigation_overrun")) { RONDO_ASSIGN_OR_RETURN(o.navigation_overrun, positive(*v)); }
   if (auto v = f.optional("navigation_slack")) { RONDO_ASSIGN_OR_RETURN(o.navigation_slack, non_negative_duration(*v)); }
   if (auto v = f.optional("action_overrun")) { RONDO_ASSIGN_OR_RETURN(o.action_overrun, positive(*v)); }
@@ -62,6 +62,16 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
   if (auto v = f.optional("scheduler_polls")) {
     RONDO_ASSIGN_OR_RETURN(o.scheduler_polls, v->as_int());
     if (o.scheduler_polls < 1) return v->error("must be at least 1");
+  }
+  if (auto v = f.optional("capacity")) {
+    RONDO_ASSIGN_OR_RETURN(const std::int64_t n, v->as_int());
+    if (n < 0 || n > 1000000) return v->error("must be between 0 (unlimited) and 1000000");
+    o.capacity = static_cast<int>(n);
+  }
+  if (auto v = f.optional("return_to")) { RONDO_ASSIGN_OR_RETURN(o.return_to, v->as_string()); }
+  if (auto v = f.optional("return_within")) {
+    RONDO_ASSIGN_OR_RETURN(o.return_within, v->as_duration());
+    if (o.return_within < minutes(1)) return v->error("must be at least 1m");
   }
   return Status{};
 }

@@ -13,6 +13,9 @@ Result<DeploymentParts> load_parts(const Deployment& d) {
     return Error::invalid(fmt::format("{}: node '{}' is not on the map '{}' ({})", d.dock_where, d.dock, map.name(),
                                       d.map.string()));
   }
+  if (!d.executor.return_to.empty() && !map.find_node(d.executor.return_to))
+    return Error::invalid(fmt::format("{}: executor.return_to: node '{}' is not on the map '{}'", d.file.string(),
+                                      d.executor.return_to, map.name()));
   TaskFile plan;
   if (d.routines) {
     const PlaceCheck places{.known = [&map](std::string_view node) { return map.find_node(node).has_value(); },

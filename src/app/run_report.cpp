@@ -122,6 +122,14 @@ Json run_report(const exec::Executor& executor, const RunFigures& figures) {
   j["tasks"] = task_summary(executor);
   j["events"] = event_summary(executor);
   if (std::optional<Json> d = delivery_summary(executor)) j["deliveries"] = *d;
+  const std::vector<exec::LearnedActionTime> learned = executor.loading_times();
+  if (!learned.empty()) {
+    Json times = Json::array();
+    for (const exec::LearnedActionTime& t : learned)
+      times.push_back(Json{{"action", t.action}, {"place", t.place}, {"samples", t.samples},
+                           {"learned_s", std::round(t.expected_seconds * 10) / 10}});
+    j["loading_times"] = times;
+  }
   j["navigation"] = Json{{"attempts", s.navigation_attempts},
                          {"successes", s.navigation_successes},
                          {"distance_m", std::round(figures.distance_m * 10) / 10}};

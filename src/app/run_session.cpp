@@ -143,6 +143,11 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   RunResult result;
   result.report = run_report(executor, {.from = start, .to = end, .distance_m = robot.distance_m(),
                                         .charging = robot.charging_time()});
+  // The simulated truth beside what was learned of it.
+  if (result.report.contains("loading_times"))
+    for (Json& t : result.report["loading_times"])
+      if (auto truth = s.parts.world.confirmation.at(t["action"].get<std::string>(), t["place"].get<std::string>()))
+        t["truth_s"] = to_seconds(*truth);
   result.report["deployment"] = d.name;
   result.report["seed"] = d.seed;
   result.report["days"] = d.days;

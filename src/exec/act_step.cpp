@@ -44,7 +44,7 @@ void ActStep::run_next() {
   // A task without actions is its processing time spent at the place: one action named after it.
   const Action action = task.actions.empty() ? Action{.name = task.activity.empty() ? "task" : task.activity, .args = {}}
                                              : task.actions[index_];
-  ctx_.robot.run_action(action, task.duration / static_cast<std::int64_t>(n));
+  ctx_.robot.run_action(action, r.expected_duration() / static_cast<std::int64_t>(n));
 }
 
 void ActStep::on_action_finished(const ActionResult& r) {

@@ -8,6 +8,7 @@
 
 #include "deliveries.h"
 #include "dispatcher.h"
+#include "loading_times.h"
 #include "rondo/schedule/default_scheduler.h"
 #include "task_run.h"
 
@@ -41,6 +42,7 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
       book_(store, clock),
       dispatcher_(std::make_unique<Dispatcher>(map_, *travel_, book_, options_, zone_)),
       deliveries_(std::make_unique<Deliveries>()),
+      loading_(std::make_unique<LoadingTimes>()),
       steps_{clock_, robot_, map_, book_, *travel_, *planner_, options_, zone_, stats_, navigations_, in_fault_} {
   robot_.set_listener(this);
 }

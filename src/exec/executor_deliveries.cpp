@@ -11,6 +11,11 @@
 #include "task_run.h"
 
 namespace rondo::exec {
+namespace {
+
+constexpr std::size_t kMaxReturns = 3;  // tries to take an object back before it is left on board
+
+}  // namespace
 
 std::vector<OnBoard> Executor::on_board() const { return deliveries_->on_board(book_); }
 
@@ -64,18 +69,19 @@ std::vector<TaskId> Executor::settle_jobs() {
       continue;
     }
     if (!on || !pending.empty()) continue;
-    // On board, and no drop of it is pending: take it back, once.
+    // On board, and no drop of it is pending: take it back (again, up to kMaxReturns times).
     const TaskRecord& last = book_.at(job.drops.back());
     const Delivery& what = *last.task.delivery;
-    if (job.drops.size() >= 2) {
+    if (job.drops.size() > kMaxReturns) {
       book_.note(last.task.id, "stays on board", Outcome::kReturnPlanned,
-                 fmt::format("the {} stays on board: its return ended {}", what.object, to_string(last.state)));
+                 fmt::format("the {} stays on board: {} returns ended without it", what.object, kMaxReturns));
       deliveries_->close(name);
       continue;
     }
     Task back;
-    back.id = last.task.id + "-return";
-    for (int n = 2; book_.contains(back.id); ++n) back.id = fmt::format("{}-return{}", last.task.id, n);
+    const TaskId& own = job.drops.front();
+    back.id = own + "-return";
+    for (int n = 2; book_.contains(back.id); ++n) back.id = fmt::format("{}-return{}", own, n);
     back.start_node = options_.return_to.empty() ? book_.at(*job.pickup).task.start_node : options_.return_to;
     back.activity = fmt::format("take the {} back to {}", what.object, back.start_node);
     const Time now = clock_.now();

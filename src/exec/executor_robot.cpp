@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "dispatcher.h"
+#include "loading_times.h"
 #include "rondo/exec/executor.h"
 #include "rondo/store/observations.h"
 #include "rondo/store/robot_state.h"
@@ -51,10 +52,56 @@ void Executor::on_edge_finished(const EdgeAttempt& a) {
   }
 }
 
+// A loading or unloading time is experience of the person at that place: learned, and kept in the
+// store's observations (what "<action> time", where the place, the seconds).
+// An action the overrun monitor stopped is a lower bound of how long the person takes: learned as
+// a sample of that length (so the expectation, and with it the monitor's limit, grows until the
+// person can finish); one stopped for any other reason says nothing.
+void Executor::learn_from(const ActionResult& result) {
+  if (!run_ || !loading_->learns(result.name)) return;
+  const bool overran = result.outcome == ActionOutcome::kCancelled && run_->stop_kind() == TaskRun::Stop::kOverrun;
+  const bool done = result.outcome == ActionOutcome::kSucceeded || result.outcome == ActionOutcome::kFailed;
+  if (!done && !overran) return;
+  const TaskRecord& r = book_.at(run_->id());
+  const std::string& place = map_.node(robot_.location()).name;
+  const Duration declared = r.task.duration / static_cast<std::int64_t>(r.action_count());
+  loading_->observe(result.name, place, declared, result.duration, result.outcome != ActionOutcome::kFailed,
+                    result.start);
+  if (result.outcome != ActionOutcome::kSucceeded) return;
+  const store::Observation o{.what = result.name + " time", .where = place, .when = clock_.now(),
+                             .value = to_seconds(result.duration), .text = r.task.id};
+  if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
+}
+
+std::vector<LearnedActionTime> Executor::loading_times() const { return loading_->entries(); }
+
+void Executor::refresh_learned_durations(const std::vector<TaskId>& ids) {
+  for (const TaskId& id : ids) {
+    TaskRecord& r = book_.at(id);
+    if (r.task.actions.empty() || r.task.start_node.empty()) continue;
+    const Duration share = r.task.duration / static_cast<std::int64_t>(r.action_count());
+    Duration total{0};
+    bool learned = false;
+    for (const Action& a : r.task.actions) {
+      if (!loading_->learns(a.name)) {
+        total += share;
+        continue;
+      }
+      const Duration e = loading_->expected(a.name, r.task.start_node, share);
+      learned = learned || e != share;
+      total += e;
+    }
+    // Never past its window: a task that fits as declared is not made impossible by a guess.
+    if (learned && r.task.window) total = std::min(total, r.task.window->deadline - r.task.window->release);
+    r.learned_duration = learned ? std::optional<Duration>(total) : std::nullopt;
+  }
+}
+
 void Executor::on_action_finished(const ActionResult& result) {
   retired_runs_.clear();
   retired_steps_.clear();
   stats_.acting += result.duration;
+  learn_from(result);
   if (run_) {
     if (Step* s = run_->current()) s->on_action_finished(result);
   } else if (result.outcome == ActionOutcome::kCancelled) {

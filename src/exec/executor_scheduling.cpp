@@ -69,6 +69,7 @@ void Executor::reschedule(std::vector<TaskId> new_ids, const std::string& why) {
     dispatcher_->planned.clear();
     return;
   }
+  refresh_learned_durations(ids);
   const auto [here, free] = free_at();
   std::optional<schedule::RunningTask> running;
   if (run_ && !run_->waiting()) {

@@ -47,6 +47,7 @@ class TaskRun {
   // A cancel while the task cannot be interrupted: done at its next interruptible moment, or
   // between two actions.
   bool stopping() const { return stop_ != Stop::kNone; }
+  Stop stop_kind() const { return stop_; }
   void cancel_when_possible(std::string reason) { cancel_pending_ = std::move(reason); }
   // Precondition: waiting(). Stops waiting with no end reported; the executor decides the rest.
   void abandon_wait();

@@ -132,7 +132,9 @@ void SimRobot::run_action(const Action& action, Duration expected) {
     job.end = End::kFault;
     job.message = fault_->message;
   } else if (battery_ > 0) {
-    s = world_.actions.sample(action, expected, rng_);
+    // A person's confirmation takes its own time, whatever the executor expects.
+    const Duration mean = world_.confirmation.at(action.name, map_.node(location_).name).value_or(expected);
+    s = world_.actions.sample(action, mean, rng_);
     if (!s.success) job.message = "simulated failure of '" + action.name + "'";
   } else {
     job.message = "battery empty";

@@ -1,5 +1,7 @@
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "decode_util.h"
 #include "parametric_decode.h"
 #include "rondo/core/traversal.h"
@@ -56,9 +58,41 @@ Result<DoorSensor> decode_door_sensor(const Field& f) {
   return d;
 }
 
+Result<Confirmation> decode_confirmation(const Field& f, const map::TopoMap& map) {
+  RONDO_RETURN_IF_ERROR(f.expect_keys({"actions", "default", "places"}));
+  Confirmation c;
+  if (auto actions = f.optional("actions")) {
+    c.actions.clear();
+    RONDO_ASSIGN_OR_RETURN(auto items, actions->items());
+    for (const auto& item : items) {
+      RONDO_ASSIGN_OR_RETURN(auto name, item.as_string());
+      if (name.empty()) return item.error("an action needs a name");
+      c.actions.push_back(std::move(name));
+    }
+  }
+  if (f.optional("default")) {
+    Duration d{0};
+    RONDO_RETURN_IF_ERROR(detail::read_duration(f, "default", d));
+    if (d <= Duration{0}) return f.error_at("default", "must be positive");
+    c.fallback = d;
+  }
+  if (auto places = f.optional("places")) {
+    RONDO_ASSIGN_OR_RETURN(auto entries, places->members());
+    for (const auto& [name, value] : entries) {
+      if (!map.find_node(name)) return value.error(fmt::format("map '{}' has no node '{}'", map.name(), name));
+      Duration d{0};
+      RONDO_RETURN_IF_ERROR(detail::read_duration(*places, name, d));
+      if (d <= Duration{0}) return value.error("must be positive");
+      c.places[name] = d;
+    }
+  }
+  return c;
+}
+
 Result<std::unique_ptr<EdgeWorld>> decode_parametric(const Field& root, const map::TopoMap& map, const TimeZone& zone) {
   RONDO_RETURN_IF_ERROR(root.expect_keys({"kind", "speed", "failure_probability", "noise", "failed_duration",
-                                          "bursts", "effects", "actions", "battery", "door_sensor"}));
+                                          "bursts", "effects", "actions", "battery", "door_sensor",
+                                          "confirmation"}));
   ParametricSpec spec;
   RONDO_RETURN_IF_ERROR(detail::decode_edge_settings(root, true, spec));
   if (auto effects = root.optional("effects")) {
@@ -74,7 +108,7 @@ Result<std::unique_ptr<EdgeWorld>> decode_parametric(const Field& root, const ma
 Result<std::unique_ptr<EdgeWorld>> decode_replay(const Field& root, const std::filesystem::path& base,
                                                  const map::TopoMap& map, const TimeZone& zone) {
   RONDO_RETURN_IF_ERROR(root.expect_keys({"kind", "logs", "log_timezone", "window", "prior", "actions", "battery",
-                                          "door_sensor"}));
+                                          "door_sensor", "confirmation"}));
   ReplayOptions options;
   RONDO_ASSIGN_OR_RETURN(auto logs_field, root.required("logs"));
   RONDO_ASSIGN_OR_RETURN(auto logs, logs_field.as_string());
@@ -125,7 +159,16 @@ Result<SimWorld> decode_world(const Document& doc, const std::filesystem::path& 
   if (auto sensor = root.optional("door_sensor")) {
     RONDO_ASSIGN_OR_RETURN(world.door_sensor, decode_door_sensor(*sensor));
   }
+  if (auto confirmation = root.optional("confirmation")) {
+    RONDO_ASSIGN_OR_RETURN(world.confirmation, decode_confirmation(*confirmation, map));
+  }
   return world;
+}
+
+std::optional<Duration> Confirmation::at(const std::string& action, const std::string& place) const {
+  if (std::find(actions.begin(), actions.end(), action) == actions.end()) return std::nullopt;
+  if (const auto it = places.find(place); it != places.end()) return it->second;
+  return fallback;
 }
 
 Result<SimWorld> load_world(const std::filesystem::path& file, const map::TopoMap& map, const TimeZone& zone) {

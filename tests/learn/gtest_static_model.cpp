@@ -1,4 +1,7 @@
 #include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <numeric>
 
 #include "rondo/learn/model_json.h"
 #include "rondo/learn/quantile_table.h"
@@ -67,6 +70,37 @@ TEST(QuantileTable, FromJsonRejectsBadTables) {
   Json decreasing = QuantileTable::from_samples({1.0, 2.0}).to_json();
   decreasing[3] = -1.0;
   EXPECT_FALSE(QuantileTable::from_json(decreasing).ok());
+}
+
+TEST(OnlineStaticDuration, StartsAtThePriorAndMovesToTheSamples) {
+  OnlineStaticDuration d(60, 2);
+  EXPECT_DOUBLE_EQ(d.expected_seconds(monday()), 60);
+  EXPECT_DOUBLE_EQ(d.quantile_seconds(monday(), 0.9), 60);  // the prior alone before a sample
+  d.observe(monday(), 300, true);
+  EXPECT_DOUBLE_EQ(d.expected_seconds(monday()), (2 * 60 + 300) / 3.0);
+  d.observe(monday(), 900, false);  // a failure says nothing of how long a success takes
+  EXPECT_DOUBLE_EQ(d.expected_seconds(monday()), (2 * 60 + 300) / 3.0);
+  EXPECT_EQ(d.samples(), 1u);
+  for (int i = 0; i < 200; ++i) d.observe(monday(), 300, true);
+  EXPECT_NEAR(d.expected_seconds(monday()), (2 * 60 + 201 * 300) / 203.0, 1e-9);
+  EXPECT_DOUBLE_EQ(d.quantile_seconds(monday(), 0.5), 300);
+}
+
+// The running mean with a prior equals the obviously correct sum over everything seen, and the
+// quantiles are those of the last `window` successes.
+RC_GTEST_PROP(OnlineStaticDuration, IsTheMeanWithItsPriorAndTheQuantilesOfTheWindow, ()) {
+  const auto values = *rc::gen::container<std::vector<int>>(rc::gen::inRange(0, 5000));
+  const std::size_t window = *rc::gen::inRange<std::size_t>(1, 20);
+  OnlineStaticDuration d(100, 3, window);
+  for (int v : values) d.observe(monday(), v, true);
+  const double sum = std::accumulate(values.begin(), values.end(), 0.0);
+  RC_ASSERT(std::abs(d.expected_seconds(monday()) - (300 + sum) / (3.0 + static_cast<double>(values.size()))) < 1e-6);
+  if (values.empty()) return;
+  std::vector<double> last;
+  for (std::size_t i = values.size() > window ? values.size() - window : 0; i < values.size(); ++i)
+    last.push_back(values[i]);
+  const QuantileTable q = QuantileTable::from_samples(last);
+  for (double level : {0.1, 0.5, 0.9}) RC_ASSERT(std::abs(d.quantile_seconds(monday(), level) - q.at(level)) < 1e-9);
 }
 
 }  // namespace

@@ -93,6 +93,12 @@ struct Fixture {
     robot.run_action(Action{name, {}}, expected);
     rec.inside_call = false;
   }
+  // Waits until the robot is free, then runs the action and waits for it.
+  void act_after_idle(const char* name, Duration expected) {
+    clock.run_until(clock.now() + hours(1));
+    act(name, expected);
+    clock.run_until(clock.now() + hours(1));
+  }
   void cancel() {
     rec.inside_call = true;
     robot.cancel();
@@ -283,6 +289,17 @@ TEST(SimRobot, ANonInterruptibleActionSaysSoAtItsStartAndWhenTheSpanEnds) {
   ASSERT_EQ(f.rec.actions.size(), 1u);
   EXPECT_EQ(f.rec.actions[0].name, "talk");
   EXPECT_EQ(f.rec.actions[0].duration, minutes(5));
+}
+
+TEST(SimRobot, APersonsConfirmationTakesThePlacesTimeWhateverTheExecutorExpects) {
+  Fixture f;
+  f.world.confirmation = {.actions = {"load"}, .fallback = std::nullopt, .places = {{"Dock", minutes(3)}}};
+  f.act("load", minutes(1));      // at the Dock: its person takes 3 minutes
+  f.act_after_idle("talk", minutes(1));  // not a confirmed action: as expected
+  ASSERT_EQ(f.rec.actions.size(), 2u);
+  EXPECT_EQ(f.rec.actions[0].duration, minutes(3));
+  EXPECT_EQ(f.rec.actions[1].duration, minutes(1));
+  EXPECT_EQ(f.world.confirmation.at("load", "Hall"), std::nullopt);  // no default: the executor's
 }
 
 TEST(SimRobot, CancellingDuringTheSpanEndsItBeforeTheCancelledResult) {

@@ -77,6 +77,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadWorld{"kind: parametric\nbursts: {mean_blocked: soon}\n", "world.yaml:2: bursts.mean_blocked"},
         BadWorld{"kind: parametric\nactions:\n  talk: {non_interruptible: -1}\n", "world.yaml:3: actions.talk.non_interruptible"},
         BadWorld{"kind: parametric\nbattery: {charging_per_hour: -2}\n", "world.yaml:2: battery.charging_per_hour: must be from 0"},
+        BadWorld{"kind: parametric\nconfirmation: {places: {Attic: 2m}}\n", "world.yaml:2: confirmation.places.Attic: map 'small' has no node 'Attic'"},
+        BadWorld{"kind: parametric\nconfirmation: {default: 0s}\n", "world.yaml:2: confirmation.default: must be positive"},
+        BadWorld{"kind: parametric\nconfirmation: {by: 2m}\n", "by"},
         BadWorld{"kind: replay\n", "logs"},
         BadWorld{"kind: replay\nlogs: no/such/folder\n", "world.yaml:2: logs: './no/such/folder' is not a folder"},
         BadWorld{"kind: replay\nlogs: .\nlog_timezone: Mars/Olympus\n", "world.yaml:3: log_timezone"}));

@@ -64,6 +64,7 @@
 namespace rondo::exec {
 
 class Deliveries;
+class LoadingTimes;
 class Dispatcher;
 class NavigateStep;
 class TaskRun;
@@ -113,6 +114,8 @@ class Executor final : public RobotListener {
   const std::vector<std::string>& write_errors() const { return book_.write_errors(); }
   const plan::LearnedEdgeModels& models() const { return *models_; }
   ExecutorPhase phase() const;
+  // The loading and unloading times learned so far, per action and place.
+  std::vector<LearnedActionTime> loading_times() const;
   // The objects on board now (delivery jobs picked up and not yet dropped).
   std::vector<OnBoard> on_board() const;
   std::optional<TaskId> current_task() const;
@@ -141,6 +144,9 @@ class Executor final : public RobotListener {
   // The robot's last known state in the store (its node, pose, battery, fault), for a restart.
   void save_robot_state();
   void learn_from(const EdgeAttempt& attempt);
+  void learn_from(const ActionResult& result);
+  // The pending tasks' processing times from the loading times learned so far.
+  void refresh_learned_durations(const std::vector<TaskId>& ids);
 
   // running (executor_running.cpp)
   void kick();  // reconsider what to do now
@@ -193,6 +199,7 @@ class Executor final : public RobotListener {
   TaskBook book_;
   std::unique_ptr<Dispatcher> dispatcher_;
   std::unique_ptr<Deliveries> deliveries_;
+  std::unique_ptr<LoadingTimes> loading_;
   std::vector<Routine> routines_;
   ExecutorStats stats_;
   std::vector<NavigationRecord> navigations_;

@@ -54,6 +54,14 @@ struct NavigationRecord {
   bool arrived = false;
 };
 
+// A loading or unloading time learned at a place (the person there).
+struct LearnedActionTime {
+  std::string action;
+  std::string place;
+  double expected_seconds = 0;
+  std::size_t samples = 0;
+};
+
 // An object on board: a delivery job picked up and not yet dropped.
 struct OnBoard {
   std::string job;

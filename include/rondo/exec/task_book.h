@@ -45,12 +45,17 @@ struct TaskRecord {
   // Progress, kept when the task is preempted or interrupted: a re-run starts after the actions
   // already done (stored as the task's progress, {"actions_done": n}).
   std::size_t actions_done = 0;
+  // The processing time learned from experience (loading and unloading times), when the executor
+  // knows better than the task's declared duration.
+  std::optional<Duration> learned_duration{};
 
   std::size_t action_count() const { return std::max<std::size_t>(1, task.actions.size()); }
+  Duration expected_duration() const { return learned_duration.value_or(task.duration); }
   // The processing time still to spend: the share of the actions not done yet.
   Duration remaining() const {
     const std::size_t n = action_count();
-    return task.duration * static_cast<std::int64_t>(n - std::min(actions_done, n)) / static_cast<std::int64_t>(n);
+    return expected_duration() * static_cast<std::int64_t>(n - std::min(actions_done, n)) /
+           static_cast<std::int64_t>(n);
   }
 };
 

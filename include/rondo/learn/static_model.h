@@ -59,4 +59,27 @@ class OnlineStaticBinary final : public OnlineBinaryModel {
   double count_;
 };
 
+// Online static durations: the running mean of the successful samples, starting from
+// `prior_count` pseudo-observations of `prior_seconds` (so a handful of samples move it, and a
+// single odd one does not take it over); quantiles of the last `window` successful samples, or
+// the prior's value alone before the first. Failed attempts say nothing of how long a success
+// takes and are ignored. What the executor learns loading and unloading times with.
+class OnlineStaticDuration final : public OnlineDurationModel {
+ public:
+  OnlineStaticDuration(double prior_seconds, double prior_count, std::size_t window = 200);
+  void observe(Time start, double seconds, bool success) override;
+  double expected_seconds(Time) const override { return count_ > 0 ? sum_ / count_ : 0.0; }
+  double quantile_seconds(Time, double q) const override;
+  std::size_t samples() const { return seen_; }  // successful ones observed
+
+ private:
+  double sum_;
+  double count_;
+  double prior_;
+  std::size_t window_;
+  std::size_t seen_ = 0;
+  std::vector<double> recent_;  // a ring of the last `window_` samples
+  QuantileTable quantiles_;
+};
+
 }  // namespace rondo::learn

@@ -12,7 +12,11 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "rondo/core/document.h"
 #include "rondo/core/result.h"
@@ -34,11 +38,25 @@ struct DoorSensor {
   bool operator==(const DoorSensor&) const = default;
 };
 
+// How long people take to confirm that they have loaded or unloaded the robot, per place (the
+// person who works there): the true mean of the named actions' durations at that place, whatever
+// the executor expects. The action's profile (ActionModel) spreads it. Off unless the world file
+// has `confirmation`.
+struct Confirmation {
+  std::vector<std::string> actions{"load", "unload"};
+  std::optional<Duration> fallback{};    // places not listed; absent: the executor's expectation
+  std::map<std::string, Duration> places{};  // node name -> mean time to confirm
+  // The true mean at `place` for `action`, if the world decides it.
+  std::optional<Duration> at(const std::string& action, const std::string& place) const;
+  bool operator==(const Confirmation&) const = default;
+};
+
 struct SimWorld {
   std::unique_ptr<EdgeWorld> edges;
   ActionModel actions;
   BatteryModel battery;
   DoorSensor door_sensor;
+  Confirmation confirmation;
 };
 
 Result<SimWorld> load_world(const std::filesystem::path& file, const map::TopoMap& map, const TimeZone& zone);

@@ -1,0 +1,43 @@
+// Loading and unloading times, learned per action and place (the person who works there) from the
+// executor's own experience, with the learning module's online duration model
+// (learn::OnlineStaticDuration), as travel times are learned per edge. The person's confirmation
+// ends the action, so its duration is how long that person takes.
+//
+//   LoadingTimes times;
+//   times.observe("load", "A-110-Desk", minutes(1), seconds(95), /*success=*/true, now);
+//   Duration d = times.expected("load", "A-110-Desk", minutes(1));   // between 1 min and 95 s
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rondo/core/time.h"
+#include "rondo/exec/executor_types.h"
+#include "rondo/learn/static_model.h"
+
+namespace rondo::exec {
+
+class LoadingTimes {
+ public:
+  static constexpr double kPriorCount = 2;  // the declared duration counts as this many samples
+
+  explicit LoadingTimes(std::vector<std::string> actions = {"load", "unload"}) : actions_(std::move(actions)) {}
+  bool learns(const std::string& action) const;
+  // One run of `action` at `place` that took `took`; `declared` is what the task said it would
+  // take (the prior, the first time this action is seen at this place).
+  void observe(const std::string& action, const std::string& place, Duration declared, Duration took, bool success,
+               Time at);
+  // The expected duration of `action` at `place`; `declared` when nothing is known there.
+  Duration expected(const std::string& action, const std::string& place, Duration declared) const;
+
+  std::vector<LearnedActionTime> entries() const;  // by action, then place
+
+ private:
+  std::vector<std::string> actions_;
+  std::map<std::pair<std::string, std::string>, learn::OnlineStaticDuration> models_;
+};
+
+}  // namespace rondo::exec
