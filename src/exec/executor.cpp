@@ -136,6 +136,7 @@ void Executor::start() {
   std::vector<TaskId> pending;
   for (const TaskId& id : book_.order())
     if (book_.at(id).task.kind == TaskKind::kStandard && book_.at(id).state == TaskState::kQueued &&
+        !book_.at(id).dropped_for_now &&  // deferred (restore): reschedule() offers them again
         std::find(schedule_.begin(), schedule_.end(), id) == schedule_.end())
       pending.push_back(id);
   if (!pending.empty()) reschedule(std::move(pending), "start");

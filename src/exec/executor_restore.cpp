@@ -1,0 +1,95 @@
+// The executor rebuilt from its store after a restart (a crash, a reboot, an upgrade): every task
+// comes back in its state, a task that was running comes back interrupted and goes back to the
+// queue, the drops for now are offered again, and the book's counts cover the whole run.
+#include <fmt/format.h>
+
+#include <utility>
+
+#include "rondo/core/document.h"
+#include "rondo/core/task_codec.h"
+#include "rondo/exec/executor.h"
+#include "rondo/store/read_back.h"
+
+namespace rondo::exec {
+namespace {
+
+constexpr const char* kInterruptedReason = "interrupted: the executive restarted while it ran";
+
+Result<Task> decode_stored(const store::TaskRecord& row, const TimeZone& zone) {
+  RONDO_ASSIGN_OR_RETURN(Document doc, Document::parse(row.task.dump(), DocumentFormat::kJson,
+                                                       fmt::format("stored task {}", row.id)));
+  return decode_task(doc.root(), &zone);
+}
+
+Outcome stored_outcome(const std::optional<store::Event>& e) {
+  if (!e) return Outcome::kNone;
+  return parse_outcome(e->code).value_or(Outcome::kNone);
+}
+
+// The task as the book knew it when it was stored.
+Result<TaskRecord> record_of(const store::StoredTask& stored, const TimeZone& zone) {
+  const store::TaskRecord& row = stored.row;
+  auto task = decode_stored(row, zone);
+  if (!task) return Error::storage(fmt::format("stored task {}: {}", row.id, task.error().message));
+  if (task->id != row.id)
+    return Error::storage(fmt::format("stored task {}: its JSON names the id '{}'", row.id, task->id));
+  auto state = parse_task_state(row.state);
+  if (!state) return Error::storage(fmt::format("stored task {}: {}", row.id, state.error().message));
+  TaskRecord r{.task = std::move(*task), .state = *state, .outcome = stored_outcome(stored.last_transition),
+               .reason = stored.last_transition ? stored.last_transition->reason : std::string(),
+               .source = row.source, .added = row.created};
+  if (is_final(r.state)) r.ended = stored.last_transition ? stored.last_transition->time : row.updated;
+  if (r.state == TaskState::kQueued && stored.dropped_for_now)
+    r.dropped_for_now = std::make_pair(stored_outcome(stored.dropped_for_now), stored.dropped_for_now->reason);
+  return r;
+}
+
+}  // namespace
+
+Status Executor::restore() {
+  if (started_ || !book_.order().empty())
+    return Error::internal("Executor::restore() runs once, before start() and before any task is added");
+  RONDO_ASSIGN_OR_RETURN(store::StoredRun run, store::read_back(store_, options_.robot_name));
+  // Everything is decoded before anything is recorded: a store that cannot be read back leaves
+  // the executor empty.
+  std::vector<TaskRecord> records;
+  records.reserve(run.tasks.size());
+  for (const store::StoredTask& t : run.tasks) {
+    RONDO_ASSIGN_OR_RETURN(TaskRecord r, record_of(t, zone_));
+    records.push_back(std::move(r));
+  }
+  book_.restore_counts(run.events);
+  for (TaskRecord& r : records) book_.restore(std::move(r));
+
+  const Time now = clock_.now();
+  for (const TaskId& id : book_.order()) {
+    TaskRecord& r = book_.at(id);
+    if (is_final(r.state)) continue;
+    const bool on_demand = r.task.kind == TaskKind::kOnDemand;
+    if (r.state != TaskState::kQueued) {
+      // It was waiting for, driving to or acting on this task when the executive stopped.
+      if (on_demand || now + r.task.duration <= r.task.window->deadline) {
+        book_.transition(id, TaskState::kQueued, Outcome::kInterrupted,
+                         fmt::format("{}; back in the queue", kInterruptedReason));
+      } else {
+        book_.transition(id, TaskState::kFailed, Outcome::kInterrupted,
+                         fmt::format("{}; its window no longer allows it", kInterruptedReason));
+        continue;
+      }
+    }
+    if (on_demand) {
+      on_demand_.push_back(id);
+    } else if (r.dropped_for_now) {
+      // Offered again at every reschedule, and dropped for good once its window cannot be met.
+      deferred_.push_back(id);
+      clock_.schedule_at(r.task.window->deadline - r.task.duration + milliseconds(1),
+                         [this] { (void)reoffer_deferred(); });
+    }
+    // A queued standard task: start() schedules it.
+  }
+  // The models learnt so far, at once rather than at the next nightly refit.
+  if (run.traversals_end) refit();
+  return Status{};
+}
+
+}  // namespace rondo::exec
