@@ -106,9 +106,6 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   const Time resume_at =
       request.realtime ? std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now())
                        : std::max(start, stored_until.value_or(start));
-  if (resumed && !request.progress)
-    progress_to << fmt::format("rondo run: resuming the run in {} at {}\n", request.out.string(),
-                               d.zone.format_clock(resume_at));
   map::NodeIndex robot_at = dock;
   if (stored.robot)
     if (const auto n = map.find_node(stored.robot->node)) robot_at = *n;
@@ -137,6 +134,10 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
     if (!executor.book().contains(t.id)) one_off.push_back(t);
   if (!one_off.empty()) RONDO_RETURN_IF_ERROR(executor.add_tasks(std::move(one_off), "deployment"));
   executor.start();
+  if (resumed && !request.progress)
+    progress_to << fmt::format("rondo run: resumed the run in {} at {}\n", request.out.string(),
+                               format_time(resume_at))
+                << std::flush;
 
   // Spans on the charger for the day pictures, sampled once a minute (reads only: the run is the
   // same with or without it).
