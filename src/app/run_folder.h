@@ -20,7 +20,7 @@
 namespace rondo::app {
 
 struct RunFolder {
-  store::Store store;
+  std::optional<store::Store> store;  // open for writing; none for a finished run
   bool existed = false;             // the folder held a run (of this request) before
   bool finished = false;            // ... and it was finished: meta run.finished
   Time start{};                     // when the run began: meta run.start
@@ -33,7 +33,7 @@ std::vector<std::pair<std::string, std::string>> run_identity(const RunRequest& 
 // one must hold a run of the same deployment, file, seed, days and clock, else kInvalidInput
 // naming what differs, with the folder left as it was. Identity keys an interrupted first start
 // did not write yet are written now; `start` is the run's start when the store does not have one.
-// A finished run's store comes back read-only. Errors: kInvalidInput, kIo, kStorage.
+// A finished run's store is not kept open. Errors: kInvalidInput, kIo, kStorage.
 Result<RunFolder> open_run_folder(const RunRequest& request, Time start);
 
 // The run is over and its report written: a later `rondo run` on the folder says so.

@@ -95,7 +95,7 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   if (s.folder.finished) return finished_run(request);
   const map::TopoMap& map = s.parts.map;
   const map::NodeIndex dock = s.parts.dock;
-  store::Store& db = s.folder.store;
+  store::Store& db = *s.folder.store;
 
   // A run that was stopped (killed, a power cut) goes on from the latest thing its store holds,
   // up to the same end.
