@@ -134,9 +134,10 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
     if (!executor.book().contains(t.id)) one_off.push_back(t);
   if (!one_off.empty()) RONDO_RETURN_IF_ERROR(executor.add_tasks(std::move(one_off), "deployment"));
   executor.start();
-  if (resumed && !request.progress)
-    progress_to << fmt::format("rondo run: resumed the run in {} at {}\n", request.out.string(),
-                               format_time(resume_at))
+  // Said once the executor is running (scripts/crash-test waits for it before it aims a kill).
+  if (!request.progress)
+    progress_to << fmt::format("rondo run: {} the run in {} at {}\n", resumed ? "resumed" : "started",
+                               request.out.string(), format_time(resume_at))
                 << std::flush;
 
   // Spans on the charger for the day pictures, sampled once a minute (reads only: the run is the
