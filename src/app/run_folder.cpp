@@ -82,9 +82,10 @@ Result<RunFolder> open_run_folder(const RunRequest& request, Time start) {
     if (!diffs.empty()) {
       std::string list;
       for (const std::string& s : diffs) list += (list.empty() ? "" : "; ") + s;
-      return Error::invalid(fmt::format("{} holds a run of {}: give the same deployment and options to resume it, or "
-                                        "another --out folder",
-                                        request.out.string(), list));
+      return Error::invalid(
+          fmt::format("{} holds a run of {}: give the same deployment and options to resume it, or "
+                      "another --out folder",
+                      request.out.string(), list));
     }
   } else {
     std::error_code ec;
@@ -96,7 +97,8 @@ Result<RunFolder> open_run_folder(const RunRequest& request, Time start) {
     if (!t) return Error::storage(fmt::format("{}: meta {}: {}", db.string(), kStart, t.error().message));
     start = *t;
   }
-  if (meta.contains(kFinished)) return RunFolder{.store = std::nullopt, .existed = true, .finished = true, .start = start};
+  if (meta.contains(kFinished))
+    return RunFolder{.store = std::nullopt, .existed = true, .finished = true, .start = start};
   RONDO_ASSIGN_OR_RETURN(store::Store store, store::Store::open(db, {.sync_commits = request.realtime}));
   // What run this store holds (in one transaction), so that a restart can tell its own store
   // from another's; keys that an interrupted first start did not write yet are written now.
@@ -105,9 +107,12 @@ Result<RunFolder> open_run_folder(const RunRequest& request, Time start) {
     if (!meta.contains(entry.first)) missing.push_back(entry);
   if (!meta.contains(kStart)) missing.emplace_back(kStart, format_time(start));
   if (!missing.empty()) RONDO_RETURN_IF_ERROR(store::set_meta(store, missing));
-  return RunFolder{.store = std::optional<store::Store>(std::move(store)), .existed = existed, .finished = false, .start = start};
+  return RunFolder{
+      .store = std::optional<store::Store>(std::move(store)), .existed = existed, .finished = false, .start = start};
 }
 
-Status mark_finished(store::Store& store) { return store::set_meta(store, kFinished, "true"); }
+Status mark_finished(store::Store& store) {
+  return store::set_meta(store, kFinished, "true");
+}
 
 }  // namespace rondo::app

@@ -21,9 +21,9 @@ namespace rondo::app {
 
 struct RunFolder {
   std::optional<store::Store> store;  // open for writing; none for a finished run
-  bool existed = false;             // the folder held a run (of this request) before
-  bool finished = false;            // ... and it was finished: meta run.finished
-  Time start{};                     // when the run began: meta run.start
+  bool existed = false;               // the folder held a run (of this request) before
+  bool finished = false;              // ... and it was finished: meta run.finished
+  Time start{};                       // when the run began: meta run.start
 };
 
 // The store's identity entries for `request` (what must match to resume).

@@ -6,23 +6,23 @@
 #include <chrono>
 #include <fstream>
 #include <functional>
-#include <span>
 #include <ostream>
+#include <span>
 
+#include "deployment_parts.h"
 #include "rondo/core/atomic_file.h"
 #include "rondo/core/task_codec.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
+#include "rondo/map/map_geometry.h"
 #include "rondo/sim/request_generator.h"
 #include "rondo/sim/rng.h"
 #include "rondo/sim/sim_robot.h"
 #include "rondo/sim/sim_world.h"
-#include "rondo/map/map_geometry.h"
 #include "rondo/store/read_back.h"
 #include "rondo/store/robot_state.h"
 #include "rondo/store/store.h"
 #include "rondo/store/traversal_log.h"
-#include "deployment_parts.h"
 #include "run_folder.h"
 #include "run_report.h"
 
@@ -88,9 +88,8 @@ Result<RunResult> finished_run(const RunRequest& request) {
 Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progress_to) {
   const auto wall_start = std::chrono::steady_clock::now();
   const Deployment& d = request.deployment;
-  const Time first_start = request.realtime
-                               ? std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now())
-                               : d.zone.at(d.start, Duration{0});
+  const Time first_start = request.realtime ? std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now())
+                                            : d.zone.at(d.start, Duration{0});
   RONDO_ASSIGN_OR_RETURN(Session s, open_session(request, first_start));
   if (s.folder.finished) return finished_run(request);
   const map::TopoMap& map = s.parts.map;
@@ -103,9 +102,8 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   RONDO_ASSIGN_OR_RETURN(const store::StoredRun stored, store::read_back(db, "robot"));
   const std::optional<Time> stored_until = stored.latest();
   const bool resumed = stored_until.has_value();
-  const Time resume_at =
-      request.realtime ? std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now())
-                       : std::max(start, stored_until.value_or(start));
+  const Time resume_at = request.realtime ? std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now())
+                                          : std::max(start, stored_until.value_or(start));
   map::NodeIndex robot_at = dock;
   if (stored.robot)
     if (const auto n = map.find_node(stored.robot->node)) robot_at = *n;

@@ -16,8 +16,8 @@ namespace {
 constexpr const char* kInterruptedReason = "interrupted: the executive restarted while it ran";
 
 Result<Task> decode_stored(const store::TaskRecord& row, const TimeZone& zone) {
-  RONDO_ASSIGN_OR_RETURN(Document doc, Document::parse(row.task.dump(), DocumentFormat::kJson,
-                                                       fmt::format("stored task {}", row.id)));
+  RONDO_ASSIGN_OR_RETURN(
+      Document doc, Document::parse(row.task.dump(), DocumentFormat::kJson, fmt::format("stored task {}", row.id)));
   return decode_task(doc.root(), &zone);
 }
 
@@ -35,9 +35,12 @@ Result<TaskRecord> record_of(const store::StoredTask& stored, const TimeZone& zo
     return Error::storage(fmt::format("stored task {}: its JSON names the id '{}'", row.id, task->id));
   auto state = parse_task_state(row.state);
   if (!state) return Error::storage(fmt::format("stored task {}: {}", row.id, state.error().message));
-  TaskRecord r{.task = std::move(*task), .state = *state, .outcome = stored_outcome(stored.last_transition),
+  TaskRecord r{.task = std::move(*task),
+               .state = *state,
+               .outcome = stored_outcome(stored.last_transition),
                .reason = stored.last_transition ? stored.last_transition->reason : std::string(),
-               .source = row.source, .added = row.created};
+               .source = row.source,
+               .added = row.created};
   if (is_final(r.state)) r.ended = stored.last_transition ? stored.last_transition->time : row.updated;
   if (r.state == TaskState::kQueued && stored.dropped_for_now)
     r.dropped_for_now = std::make_pair(stored_outcome(stored.dropped_for_now), stored.dropped_for_now->reason);

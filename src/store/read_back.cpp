@@ -64,8 +64,8 @@ Result<StoredRun> read_back(const Store& store, std::string_view robot) {
   run.tasks.reserve(rows.size());
   for (TaskRecord& r : rows) {
     index.emplace(r.id, run.tasks.size());
-    run.tasks.push_back(StoredTask{.row = std::move(r), .last_transition = std::nullopt,
-                                   .dropped_for_now = std::nullopt, .added_events = 0});
+    run.tasks.push_back(StoredTask{
+        .row = std::move(r), .last_transition = std::nullopt, .dropped_for_now = std::nullopt, .added_events = 0});
   }
   for (const Event& e : run.events) {
     if (e.subject != Subject::kTask) continue;

@@ -105,8 +105,9 @@ Result<std::optional<std::string>> get_meta(const Store& store, std::string_view
 Status set_meta(Store& store, const std::vector<std::pair<std::string, std::string>>& entries) {
   return guarded(store, "setting the store's identity", [&]() -> Status {
     SQLite::Transaction tx(connection(store), SQLite::TransactionBehavior::IMMEDIATE);
-    SQLite::Statement put(connection(store),
-                          "INSERT INTO meta (key, value) VALUES (?, ?) ON CONFLICT (key) DO UPDATE SET value = excluded.value");
+    SQLite::Statement put(
+        connection(store),
+        "INSERT INTO meta (key, value) VALUES (?, ?) ON CONFLICT (key) DO UPDATE SET value = excluded.value");
     for (const auto& [key, value] : entries) {
       put.bind(1, key);
       put.bind(2, value);

@@ -24,8 +24,8 @@
 namespace rondo {
 namespace {
 
-using ::testing::HasSubstr;
 using test::slurp;
+using ::testing::HasSubstr;
 
 std::filesystem::path fresh_dir(const std::string& name) {
   return test::fresh_dir("rondo-resume-test", name, /*create=*/false);

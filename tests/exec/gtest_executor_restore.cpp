@@ -79,7 +79,8 @@ TEST(ExecutorRestore, ARunningTaskComesBackInterruptedThenQueuedAndIsCompleted) 
   {
     Life first(db, start);
     first.executor().start();
-    ASSERT_TRUE(first.executor().add_task(task("A", "Office", first.at("09:00"), first.at("10:00"), minutes(20)), "test"));
+    ASSERT_TRUE(
+        first.executor().add_task(task("A", "Office", first.at("09:00"), first.at("10:00"), minutes(20)), "test"));
     first.run_until("09:05");
     ASSERT_EQ(first.state("A"), "acting");
   }  // the crash
@@ -117,7 +118,8 @@ TEST(ExecutorRestore, AnInterruptedTaskWhoseWindowIsGoneFailsWithThatReason) {
   {
     Life first(db, start);
     first.executor().start();
-    ASSERT_TRUE(first.executor().add_task(task("A", "Office", first.at("09:00"), first.at("09:30"), minutes(20)), "test"));
+    ASSERT_TRUE(
+        first.executor().add_task(task("A", "Office", first.at("09:00"), first.at("09:30"), minutes(20)), "test"));
     first.run_until("09:05");
     ASSERT_EQ(first.state("A"), "acting");
   }
@@ -138,9 +140,10 @@ TEST(ExecutorRestore, ADroppedForNowTaskStaysDroppedForNowAndComesBackWhenACance
   {
     Life first(db, start);
     first.executor().start();
-    ASSERT_TRUE(first.executor().add_tasks({task("Big", "Office", first.at("09:00"), first.at("10:00"), minutes(50), 5),
-                                            task("Small", "Kitchen", first.at("09:00"), first.at("10:00"), minutes(30), 1)},
-                                           "test"));
+    ASSERT_TRUE(
+        first.executor().add_tasks({task("Big", "Office", first.at("09:00"), first.at("10:00"), minutes(50), 5),
+                                    task("Small", "Kitchen", first.at("09:00"), first.at("10:00"), minutes(30), 1)},
+                                   "test"));
     first.run_until("08:30");
     ASSERT_TRUE(first.executor().tasks().at("Small").dropped_for_now.has_value());
     counts_before = first.executor().book().event_counts();
@@ -168,9 +171,10 @@ TEST(ExecutorRestore, ADroppedForNowTaskIsDroppedForGoodWhenItsWindowPassesAfter
   {
     Life first(db, start);
     first.executor().start();
-    ASSERT_TRUE(first.executor().add_tasks({task("Big", "Office", first.at("09:00"), first.at("10:00"), minutes(50), 5),
-                                            task("Small", "Kitchen", first.at("09:00"), first.at("10:00"), minutes(30), 1)},
-                                           "test"));
+    ASSERT_TRUE(
+        first.executor().add_tasks({task("Big", "Office", first.at("09:00"), first.at("10:00"), minutes(50), 5),
+                                    task("Small", "Kitchen", first.at("09:00"), first.at("10:00"), minutes(30), 1)},
+                                   "test"));
     first.run_until("08:30");
   }
   const Resume r = resume_point(db);
@@ -203,7 +207,7 @@ TEST(ExecutorRestore, RoutineTasksAlreadyStoredAreNotMadeAgain) {
   Life second(db, r.at, r.node);
   second.executor().add_routines({patrol});
   ASSERT_TRUE(second.executor().restore());
-  second.executor().start();  // makes today's routine tasks: the stored one is not made again
+  second.executor().start();                    // makes today's routine tasks: the stored one is not made again
   second.clock().run_until(start + hours(30));  // and tomorrow's, at midnight
   EXPECT_TRUE(second.executor().write_errors().empty());
   const auto tasks = store::list_tasks(second.store()).value();
@@ -225,10 +229,11 @@ TEST(ExecutorRestore, FinalTasksComeBackFinalAndAQueuedOnDemandTaskRunsFirst) {
   {
     Life first(db, start);
     first.executor().start();
-    ASSERT_TRUE(first.executor().add_task(task("Early", "Office", first.at("08:05"), first.at("08:30"), minutes(5)), "test"));
+    ASSERT_TRUE(
+        first.executor().add_task(task("Early", "Office", first.at("08:05"), first.at("08:30"), minutes(5)), "test"));
     ASSERT_TRUE(first.executor().add_task(task("Late", "Office", first.at("09:00"), first.at("12:00"), minutes(30), 1,
-                                                /*interruptible=*/false),
-                                           "test"));
+                                               /*interruptible=*/false),
+                                          "test"));
     first.run_until("09:10");
     ASSERT_EQ(first.state("Early"), "succeeded");
     ASSERT_EQ(first.state("Late"), "acting");

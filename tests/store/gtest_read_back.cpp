@@ -11,10 +11,16 @@ namespace {
 
 using testing::TempDb;
 
-Time at(int s) { return Time{seconds(s)}; }
+Time at(int s) {
+  return Time{seconds(s)};
+}
 
 TaskRecord row(const std::string& id, int created_s) {
-  return {.id = id, .task = Json{{"id", id}}, .state = "queued", .created = at(created_s), .updated = at(created_s),
+  return {.id = id,
+          .task = Json{{"id", id}},
+          .state = "queued",
+          .created = at(created_s),
+          .updated = at(created_s),
           .source = "test"};
 }
 
@@ -44,7 +50,8 @@ TEST(ReadBack, EachTaskComesWithTheChangeThatPutItInItsStateAndItsDropForNow) {
     ASSERT_TRUE(add_tasks(db, batch, "added by test", "added"));
     // zeta: ran, was preempted back to the queue, then dropped for now.
     ASSERT_TRUE(set_task_state(db, "zeta", "navigating", at(20), "to Office", "departed"));
-    ASSERT_TRUE(set_task_state(db, "zeta", "queued", at(30), "preempted by X; back in the queue", "preempted on demand"));
+    ASSERT_TRUE(
+        set_task_state(db, "zeta", "queued", at(30), "preempted by X; back in the queue", "preempted on demand"));
     note(db, "zeta", 30, "dropped for now", "does not fit", "no room before 10:00");
     // alpha: dropped for now, then offered again and scheduled: no longer dropped.
     note(db, "alpha", 11, "dropped for now", "dropped lowest priority", "lowest");
@@ -56,8 +63,8 @@ TEST(ReadBack, EachTaskComesWithTheChangeThatPutItInItsStateAndItsDropForNow) {
     note(db, "gone", 13, "dropped for now", "does not fit", "y");
     ASSERT_TRUE(set_task_state(db, "gone", "dropped", at(60), "y", "does not fit"));
     ASSERT_TRUE(set_task_progress(db, "mid", Json{{"actions_done", 1}}));
-    ASSERT_TRUE(add_traversal(db, {.edge_id = "A_B", .from = "A", .to = "B", .start = at(70),
-                                   .duration = seconds(15), .success = true}));
+    ASSERT_TRUE(add_traversal(
+        db, {.edge_id = "A_B", .from = "A", .to = "B", .start = at(70), .duration = seconds(15), .success = true}));
     ASSERT_TRUE(save_robot_state(db, {.robot = "robot", .node = "B", .updated = at(80)}));
     ASSERT_TRUE(set_meta(db, {{"run.seed", "7"}, {"run.days", "3"}}));
   }
