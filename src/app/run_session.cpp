@@ -83,6 +83,36 @@ Result<RunResult> finished_run(const RunRequest& request) {
   return result;
 }
 
+// Where and when a run goes on. A run that was stopped (killed, a power cut) goes on from the
+// latest thing its store holds, with the robot at its last known node, up to the same end.
+struct Resume {
+  bool resumed = false;  // the store held something of this run
+  Time at{};
+  map::NodeIndex robot_at = 0;
+  std::uint64_t robot_seed = 0;
+};
+
+Result<Resume> resume_point(const RunRequest& request, const store::Store& db, Time start, const map::TopoMap& map,
+                            map::NodeIndex dock) {
+  const Deployment& d = request.deployment;
+  RONDO_ASSIGN_OR_RETURN(const store::StoredRun stored, store::read_back(db, "robot"));
+  const std::optional<Time> stored_until = stored.latest();
+  Resume r{.resumed = stored_until.has_value(),
+           .at = request.realtime ? std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now())
+                                  : std::max(start, stored_until.value_or(start)),
+           .robot_at = dock,
+           .robot_seed = d.seed};
+  if (stored.robot)
+    if (const auto n = map.find_node(stored.robot->node)) r.robot_at = *n;
+  // A resumed world is seeded from the seed and the time it resumes at: its draws from then on are
+  // its own, but the same for the same kill.
+  if (r.resumed) {
+    std::uint64_t mix = d.seed ^ static_cast<std::uint64_t>(r.at.time_since_epoch().count());
+    r.robot_seed = sim::splitmix64(mix);
+  }
+  return r;
+}
+
 }  // namespace
 
 Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progress_to) {
@@ -96,29 +126,15 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   const map::NodeIndex dock = s.parts.dock;
   store::Store& db = *s.folder.store;
 
-  // A run that was stopped (killed, a power cut) goes on from the latest thing its store holds,
-  // up to the same end.
   const Time start = s.folder.start;
-  RONDO_ASSIGN_OR_RETURN(const store::StoredRun stored, store::read_back(db, "robot"));
-  const std::optional<Time> stored_until = stored.latest();
-  const bool resumed = stored_until.has_value();
-  const Time resume_at = request.realtime ? std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now())
-                                          : std::max(start, stored_until.value_or(start));
-  map::NodeIndex robot_at = dock;
-  if (stored.robot)
-    if (const auto n = map.find_node(stored.robot->node)) robot_at = *n;
-  // A resumed world is seeded from the seed and the time it resumes at: its draws from then on are
-  // its own, but the same for the same kill.
-  std::uint64_t robot_seed = d.seed;
-  if (resumed) {
-    std::uint64_t mix = d.seed ^ static_cast<std::uint64_t>(resume_at.time_since_epoch().count());
-    robot_seed = sim::splitmix64(mix);
-  }
+  RONDO_ASSIGN_OR_RETURN(const Resume resume, resume_point(request, db, start, map, dock));
+  const bool resumed = resume.resumed;
+  const Time resume_at = resume.at;
 
   exec::SimClock sim_clock(resume_at);
   exec::SystemClock system_clock;
   exec::Clock& clock = request.realtime ? static_cast<exec::Clock&>(system_clock) : sim_clock;
-  sim::SimRobot robot(clock, map, s.parts.world, {.start = robot_at, .dock = dock, .seed = robot_seed});
+  sim::SimRobot robot(clock, map, s.parts.world, {.start = resume.robot_at, .dock = dock, .seed = resume.robot_seed});
   exec::ExecutorOptions options = d.executor;
   options.dock = dock;
   options.seed = d.seed;
