@@ -71,7 +71,7 @@ Status Executor::restore() {
     const bool on_demand = r.task.kind == TaskKind::kOnDemand;
     if (r.state != TaskState::kQueued) {
       // It was waiting for, driving to or acting on this task when the executive stopped.
-      if (on_demand || now + r.task.duration <= r.task.window->deadline) {
+      if (on_demand || !r.task.window || now + r.task.duration <= r.task.window->deadline) {
         book_.transition(id, TaskState::kQueued, Outcome::kInterrupted,
                          fmt::format("{}; back in the queue", kInterruptedReason));
       } else {
@@ -82,7 +82,7 @@ Status Executor::restore() {
     }
     if (on_demand) {
       on_demand_.push_back(id);
-    } else if (r.dropped_for_now) {
+    } else if (r.dropped_for_now && r.task.window) {
       // Offered again at every reschedule, and dropped for good once its window cannot be met.
       deferred_.push_back(id);
       clock_.schedule_at(r.task.window->deadline - r.task.duration + milliseconds(1),
