@@ -54,6 +54,14 @@ void run_run(const RunArgs& args, CommandContext& ctx) {
   auto result = run_deployment(request, ctx.err);
   if (!result) return (void)fail(ctx, result.error());
   const Json& r = result->report;
+  if (result->already_finished) {
+    // Nothing to do: the same command again on a finished run is not an error.
+    if (args.json) ctx.out << r.dump(2) << '\n';
+    ctx.err << fmt::format("rondo run: {} is a finished run ({} for {} days, seed {}); its report is {}\n",
+                           request.out.string(), request.deployment.name, request.deployment.days,
+                           request.deployment.seed, (request.out / "report.json").string());
+    return;
+  }
   if (args.json) {
     ctx.out << r.dump(2) << '\n';
     return;
@@ -89,7 +97,8 @@ void add_run_commands(CLI::App& root, CommandContext& ctx) {
   run->add_option("deployment", args->deployment, "The deployment file (examples/g4s/deployment.yaml)");
   run->add_option("--days", args->days, "Days to run (default: the deployment's)");
   run->add_option("--seed", args->seed, "Random seed of the simulated world (default: the deployment's)");
-  run->add_option("--out", args->out, "The run folder (default: a fresh runs/<time> folder)");
+  run->add_option("--out", args->out,
+                  "The run folder (default: a fresh runs/<time> folder); a folder holding this run resumes it");
   run->add_flag("--realtime", args->realtime, "Run on the system clock instead of simulated time");
   run->add_flag("--json", args->json, "Print report.json instead of a summary");
   run->callback([args, &ctx] { run_run(*args, ctx); });

@@ -88,6 +88,7 @@ Json event_summary(const exec::Executor& executor) {
     return j;
   };
   return Json{{"preempted", by_code("queued", {exec::Outcome::kPreemptedOnDemand, exec::Outcome::kOutranked})},
+              {"interrupted", by_code("queued", {exec::Outcome::kInterrupted})},
               {"dropped_for_now", by_code("dropped for now")},
               {"re_offered", by_code("re-offered")},
               {"cancel_pending", by_code("cancel pending")},
@@ -130,8 +131,8 @@ Json run_report(const exec::Executor& executor, const RunFigures& figures) {
                            {"learned_s", std::round(t.expected_seconds * 10) / 10}});
     j["loading_times"] = times;
   }
-  j["navigation"] = Json{{"attempts", s.navigation_attempts},
-                         {"successes", s.navigation_successes},
+  j["navigation"] = Json{{"attempts", figures.navigation_attempts},
+                         {"successes", figures.navigation_successes},
                          {"distance_m", std::round(figures.distance_m * 10) / 10}};
   j["time_s"] = Json{{"busy", to_seconds(s.busy)},
                      {"travelling", to_seconds(s.travelling)},

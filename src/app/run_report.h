@@ -18,6 +18,9 @@ namespace rondo::app {
 struct RunFigures {
   Time from{};
   Time to{};
+  // From the traversal log, so that they cover a resumed run from its start.
+  int navigation_attempts = 0;
+  int navigation_successes = 0;
   double distance_m = 0;
   Duration charging{0};
 };

@@ -7,18 +7,23 @@
 #include <fstream>
 #include <functional>
 #include <ostream>
+#include <span>
 
+#include "deployment_parts.h"
 #include "rondo/core/atomic_file.h"
 #include "rondo/core/task_codec.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
+#include "rondo/map/map_geometry.h"
 #include "rondo/sim/request_generator.h"
+#include "rondo/sim/rng.h"
 #include "rondo/sim/sim_robot.h"
 #include "rondo/sim/sim_world.h"
+#include "rondo/store/read_back.h"
 #include "rondo/store/robot_state.h"
 #include "rondo/store/store.h"
 #include "rondo/store/traversal_log.h"
-#include "deployment_parts.h"
+#include "run_folder.h"
 #include "run_report.h"
 
 namespace rondo::app {
@@ -44,30 +49,68 @@ void draw_progress(std::ostream& out, int done, int total) {
 // Everything one run needs, alive for the whole run.
 struct Session {
   DeploymentParts parts;
-  store::Store store;
+  RunFolder folder;
 };
 
 // The whole deployment is loaded and checked before the run folder is touched: a deployment that
 // fails validation leaves --out as it was.
-Result<Session> open_session(const RunRequest& request) {
+Result<Session> open_session(const RunRequest& request, Time start) {
   RONDO_ASSIGN_OR_RETURN(DeploymentParts parts, load_parts(request.deployment));
-  const std::filesystem::path db = request.out / "rondo.sqlite";
-  if (std::filesystem::exists(db))
-    return Error::invalid(fmt::format("{}: already exists; give a fresh --out folder", db.string()));
-  std::error_code ec;
-  std::filesystem::create_directories(request.out / "days", ec);
-  if (ec) return Error::io(fmt::format("{}: cannot create the run folder: {}", request.out.string(), ec.message()));
-  RONDO_ASSIGN_OR_RETURN(store::Store store, store::Store::open(db, {.sync_commits = request.realtime}));
-  // What run this store holds, so that a restart can tell its own store from another's.
+  RONDO_ASSIGN_OR_RETURN(RunFolder folder, open_run_folder(request, start));
+  return Session{std::move(parts), std::move(folder)};
+}
+
+// The figures that a restart would lose if they came from the executor (it only knows what
+// happened since it started): the edge attempts and the distance, from the traversal log.
+void navigation_from_log(const map::TopoMap& map, std::span<const Traversal> log, Time from, Time to,
+                         RunFigures& figures) {
+  for (const Traversal& t : log) {
+    if (t.start < from || t.start >= to) continue;
+    ++figures.navigation_attempts;
+    if (!t.success) continue;
+    ++figures.navigation_successes;
+    if (const auto e = map.find_edge(t.edge_id)) figures.distance_m += map::edge_length(map, *e);
+  }
+}
+
+// A finished run is not run again: its report is read back.
+Result<RunResult> finished_run(const RunRequest& request) {
+  RunResult result;
+  result.already_finished = true;
+  std::ifstream in(request.out / "report.json");
+  if (in) result.report = Json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (result.report.is_discarded()) result.report = Json::object();
+  return result;
+}
+
+// Where and when a run goes on. A run that was stopped (killed, a power cut) goes on from the
+// latest thing its store holds, with the robot at its last known node, up to the same end.
+struct Resume {
+  bool resumed = false;  // the store held something of this run
+  Time at{};
+  map::NodeIndex robot_at = 0;
+  std::uint64_t robot_seed = 0;
+};
+
+Result<Resume> resume_point(const RunRequest& request, const store::Store& db, Time start, const map::TopoMap& map,
+                            map::NodeIndex dock) {
   const Deployment& d = request.deployment;
-  for (const auto& [key, value] : std::initializer_list<std::pair<const char*, std::string>>{
-           {"run.deployment", d.name},
-           {"run.deployment_file", std::filesystem::absolute(d.file).lexically_normal().string()},
-           {"run.seed", std::to_string(d.seed)},
-           {"run.days", std::to_string(d.days)},
-           {"run.realtime", request.realtime ? "true" : "false"}})
-    RONDO_RETURN_IF_ERROR(store::set_meta(store, key, value));
-  return Session{std::move(parts), std::move(store)};
+  RONDO_ASSIGN_OR_RETURN(const store::StoredRun stored, store::read_back(db, "robot"));
+  const std::optional<Time> stored_until = stored.latest();
+  Resume r{.resumed = stored_until.has_value(),
+           .at = request.realtime ? std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now())
+                                  : std::max(start, stored_until.value_or(start)),
+           .robot_at = dock,
+           .robot_seed = d.seed};
+  if (stored.robot)
+    if (const auto n = map.find_node(stored.robot->node)) r.robot_at = *n;
+  // A resumed world is seeded from the seed and the time it resumes at: its draws from then on are
+  // its own, but the same for the same kill.
+  if (r.resumed) {
+    std::uint64_t mix = d.seed ^ static_cast<std::uint64_t>(r.at.time_since_epoch().count());
+    r.robot_seed = sim::splitmix64(mix);
+  }
+  return r;
 }
 
 }  // namespace
@@ -75,23 +118,41 @@ Result<Session> open_session(const RunRequest& request) {
 Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progress_to) {
   const auto wall_start = std::chrono::steady_clock::now();
   const Deployment& d = request.deployment;
-  RONDO_ASSIGN_OR_RETURN(Session s, open_session(request));
+  const Time first_start = request.realtime ? std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now())
+                                            : d.zone.at(d.start, Duration{0});
+  RONDO_ASSIGN_OR_RETURN(Session s, open_session(request, first_start));
+  if (s.folder.finished) return finished_run(request);
   const map::TopoMap& map = s.parts.map;
   const map::NodeIndex dock = s.parts.dock;
+  store::Store& db = *s.folder.store;
 
-  const Time start = request.realtime ? std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now())
-                                      : d.zone.at(d.start, Duration{0});
-  exec::SimClock sim_clock(start);
+  const Time start = s.folder.start;
+  RONDO_ASSIGN_OR_RETURN(const Resume resume, resume_point(request, db, start, map, dock));
+  const bool resumed = resume.resumed;
+  const Time resume_at = resume.at;
+
+  exec::SimClock sim_clock(resume_at);
   exec::SystemClock system_clock;
   exec::Clock& clock = request.realtime ? static_cast<exec::Clock&>(system_clock) : sim_clock;
-  sim::SimRobot robot(clock, map, s.parts.world, {.start = dock, .dock = dock, .seed = d.seed});
+  sim::SimRobot robot(clock, map, s.parts.world, {.start = resume.robot_at, .dock = dock, .seed = resume.robot_seed});
   exec::ExecutorOptions options = d.executor;
   options.dock = dock;
   options.seed = d.seed;
-  exec::Executor executor(clock, robot, map, s.store, d.zone, options);
+  options.robot_name = "robot";
+  exec::Executor executor(clock, robot, map, db, d.zone, options);
   executor.add_routines(s.parts.plan.routines);
-  if (!s.parts.plan.tasks.empty()) RONDO_RETURN_IF_ERROR(executor.add_tasks(s.parts.plan.tasks, "deployment"));
+  if (resumed) RONDO_RETURN_IF_ERROR(executor.restore());
+  // The deployment's one-off tasks, unless a previous start already stored them.
+  std::vector<Task> one_off;
+  for (const Task& t : s.parts.plan.tasks)
+    if (!executor.book().contains(t.id)) one_off.push_back(t);
+  if (!one_off.empty()) RONDO_RETURN_IF_ERROR(executor.add_tasks(std::move(one_off), "deployment"));
   executor.start();
+  // Said once the executor is running (scripts/crash-test waits for it before it aims a kill).
+  if (!request.progress)
+    progress_to << fmt::format("rondo run: {} the run in {} at {}\n", resumed ? "resumed" : "started",
+                               request.out.string(), format_time(resume_at))
+                << std::flush;
 
   // Spans on the charger for the day pictures, sampled once a minute (reads only: the run is the
   // same with or without it).
@@ -106,8 +167,10 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
     }
     clock.schedule_after(minutes(1), sample_charger);
   };
-  clock.schedule_at(start, sample_charger);
+  clock.schedule_at(resume_at, sample_charger);
 
+  // People's requests come from their own stream, drawn day by day from the start as in an
+  // uninterrupted run; a resumed run posts those after it resumes that are not stored yet.
   sim::Rng people_rng(d.seed * 0x9E3779B97F4A7C15ULL + 17);
   const auto run_until = [&](Time t) {
     if (request.realtime)
@@ -120,29 +183,37 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
     const auto tomorrow = std::chrono::year_month_day{std::chrono::sys_days{today} + std::chrono::days{1}};
     const Time day_from = std::max(start, d.zone.at(today, Duration{0}));
     const Time day_to = d.zone.at(tomorrow, Duration{0});
+    const bool done_before = resumed && day_to <= resume_at;  // its picture is already drawn
     if (s.parts.people) {
-      for (sim::Request& r : s.parts.people->between(day_from, day_to, people_rng))
+      for (sim::Request& r : s.parts.people->between(day_from, day_to, people_rng)) {
+        if (resumed && (r.at < resume_at || executor.book().contains(r.task.id))) continue;
         clock.schedule_at(r.at, [&executor, tasks = r.tasks()]() mutable {
           (void)executor.add_tasks(std::move(tasks), "request");
         });
+      }
     }
-    run_until(day_to);
-    const std::string date = date_text(today);
-    DayPicture picture =
-        day_picture(executor, fmt::format("{} — {} (day {})", d.name, date, day + 1), day_from, day_to, d.zone);
-    for (const auto& [a, b] : charging)
-      if (b > day_from && a < day_to) picture.charging.emplace_back(a, b);
-    if (charging_since) picture.charging.emplace_back(*charging_since, day_to);
-    RONDO_RETURN_IF_ERROR(write_file(request.out / "days" / (date + ".svg"), render_day_svg(picture)));
+    if (!done_before) {
+      run_until(day_to);
+      const std::string date = date_text(today);
+      DayPicture picture =
+          day_picture(executor, fmt::format("{} — {} (day {})", d.name, date, day + 1), day_from, day_to, d.zone);
+      for (const auto& [a, b] : charging)
+        if (b > day_from && a < day_to) picture.charging.emplace_back(a, b);
+      if (charging_since) picture.charging.emplace_back(*charging_since, day_to);
+      RONDO_RETURN_IF_ERROR(write_file(request.out / "days" / (date + ".svg"), render_day_svg(picture)));
+    }
     if (request.progress) draw_progress(progress_to, day + 1, d.days);
     today = tomorrow;
   }
   if (request.progress) progress_to << "\n";
-  const Time end = clock.now();
+  const Time end = request.realtime ? clock.now() : d.zone.at(today, Duration{0});
 
   RunResult result;
-  result.report = run_report(executor, {.from = start, .to = end, .distance_m = robot.distance_m(),
-                                        .charging = robot.charging_time()});
+  result.resumed = resumed;
+  RONDO_ASSIGN_OR_RETURN(const std::vector<Traversal> log, store::find_traversals(db));
+  RunFigures figures{.from = start, .to = end, .charging = robot.charging_time()};
+  navigation_from_log(map, log, start, end, figures);
+  result.report = run_report(executor, figures);
   // The simulated truth beside what was learned of it.
   if (result.report.contains("loading_times"))
     for (Json& t : result.report["loading_times"])
@@ -151,7 +222,6 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   result.report["deployment"] = d.name;
   result.report["seed"] = d.seed;
   result.report["days"] = d.days;
-  RONDO_ASSIGN_OR_RETURN(const std::vector<Traversal> log, store::find_traversals(s.store));
   result.report["travel_table"] = travel_table(map, log, start, d.days);
   result.write_errors = static_cast<int>(executor.write_errors().size());
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -159,8 +229,10 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   Json run{{"wall_seconds", result.wall_seconds},
            {"simulated_days", d.days},
            {"realtime", request.realtime},
+           {"resumed", resumed},
            {"store_write_errors", executor.write_errors()}};
   RONDO_RETURN_IF_ERROR(write_file(request.out / "run.json", run.dump(2) + "\n"));
+  RONDO_RETURN_IF_ERROR(mark_finished(db));
   return result;
 }
 

@@ -6,6 +6,10 @@
 // The run folder holds report.json (deterministic for a seed: no wall-clock figures), run.json
 // (wall-clock figures of this run), days/<date>.svg (planned against actual), and rondo.sqlite
 // (tasks, the event log, the traversal log).
+//
+// The same request on the same folder again resumes the run there, up to the same end (a run that
+// was killed goes on from the latest thing its store holds); a folder holding another run is
+// refused (kInvalidInput, naming what differs) and a finished one is not run again.
 #pragma once
 
 #include <filesystem>
@@ -27,6 +31,8 @@ struct RunRequest {
 
 struct RunResult {
   Json report;           // what report.json holds
+  bool already_finished = false;  // the folder held this run, finished: nothing ran
+  bool resumed = false;           // the folder held this run, stopped before its end: it went on
   double wall_seconds = 0;
   int write_errors = 0;  // store writes that failed during the run
 };

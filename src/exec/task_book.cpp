@@ -41,6 +41,27 @@ Status TaskBook::add(std::vector<Task> tasks, std::string_view source) {
   return {};
 }
 
+void TaskBook::restore(TaskRecord record) {
+  const TaskId id = record.task.id;
+  records_.emplace(id, std::move(record));
+  order_.push_back(id);
+}
+
+void TaskBook::restore_counts(const std::vector<store::Event>& events) {
+  for (const store::Event& e : events) {
+    const std::optional<Outcome> code = parse_outcome(e.code);
+    if (e.subject == store::Subject::kTask && code == Outcome::kAdded) continue;  // add() counts nothing
+    const auto state = parse_task_state(e.event);
+    if (e.subject == store::Subject::kTask && state) {
+      // A transition: counted when it is not final (transition()); a note named like a state
+      // (an on-demand task's "waiting") is counted the same way by append().
+      if (!is_final(*state)) ++event_counts_[e.event][code.value_or(Outcome::kNone)];
+      continue;
+    }
+    if (code) ++event_counts_[e.event][*code];
+  }
+}
+
 void TaskBook::transition(const TaskId& id, TaskState state, Outcome outcome, const std::string& reason) {
   TaskRecord& r = records_.at(id);
   r.state = state;

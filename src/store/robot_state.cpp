@@ -1,6 +1,7 @@
 #include "rondo/store/robot_state.h"
 
 #include <SQLiteCpp/Statement.h>
+#include <SQLiteCpp/Transaction.h>
 
 #include <fmt/format.h>
 
@@ -98,6 +99,32 @@ Result<std::optional<std::string>> get_meta(const Store& store, std::string_view
     q.bind(1, std::string(key));
     if (!q.executeStep()) return std::optional<std::string>{};
     return std::optional<std::string>(q.getColumn(0).getString());
+  });
+}
+
+Status set_meta(Store& store, const std::vector<std::pair<std::string, std::string>>& entries) {
+  return guarded(store, "setting the store's identity", [&]() -> Status {
+    SQLite::Transaction tx(connection(store), SQLite::TransactionBehavior::IMMEDIATE);
+    SQLite::Statement put(
+        connection(store),
+        "INSERT INTO meta (key, value) VALUES (?, ?) ON CONFLICT (key) DO UPDATE SET value = excluded.value");
+    for (const auto& [key, value] : entries) {
+      put.bind(1, key);
+      put.bind(2, value);
+      put.exec();
+      put.reset();
+    }
+    tx.commit();
+    return {};
+  });
+}
+
+Result<std::map<std::string, std::string>> read_meta(const Store& store) {
+  return guarded(store, "reading the store's identity", [&]() -> Result<std::map<std::string, std::string>> {
+    SQLite::Statement q(connection(store), "SELECT key, value FROM meta");
+    std::map<std::string, std::string> out;
+    while (q.executeStep()) out.emplace(q.getColumn(0).getString(), q.getColumn(1).getString());
+    return out;
   });
 }
 

@@ -102,6 +102,14 @@ class Executor final : public RobotListener {
   Status cancel_task(const TaskId& id, const std::string& reason);
   // Routines become tasks every day at local midnight (and at start() for the current day).
   void add_routines(std::vector<Routine> routines);
+  // Rebuilds the book from the store after a restart (executor_restore.cpp): call it after
+  // construction and add_routines(), before start() and before any add_tasks(). Final tasks come
+  // back final; queued ones queued (on-demand ones in the on-demand queue, drops for now deferred);
+  // a task that was running comes back `queued` with an `interrupted` event (or `failed` when its
+  // window no longer allows it). The robot is wherever it reports (the caller starts a simulated
+  // one at the stored robot_state). Errors: kStorage (a store that cannot be read back; nothing is
+  // restored), kInternal (called late).
+  Status restore();
   // Posts the first events: today's routine tasks, the nightly refit, and the first dispatch.
   void start();
 
@@ -147,6 +155,7 @@ class Executor final : public RobotListener {
   void learn_from(const ActionResult& result);
   // The pending tasks' processing times from the loading times learned so far.
   void refresh_learned_durations(const std::vector<TaskId>& ids);
+  Status restore_loading_times();  // executor_restore.cpp
 
   // running (executor_running.cpp)
   void kick();  // reconsider what to do now

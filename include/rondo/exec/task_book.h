@@ -68,6 +68,13 @@ class TaskBook {
   // repeated id or one already in the book or the store; kStorage when the store cannot write.
   Status add(std::vector<Task> tasks, std::string_view source);
 
+  // Restore after a restart (exec/executor_restore.cpp): records a task read back from the store
+  // as it is, without writing anything (precondition: its id is not in the book yet), and counts
+  // the stored events as the book counted them when they were written, so that the report covers
+  // the whole run.
+  void restore(TaskRecord record);
+  void restore_counts(const std::vector<store::Event>& events);
+
   bool contains(const TaskId& id) const { return records_.contains(id); }
   const TaskRecord& at(const TaskId& id) const { return records_.at(id); }
   TaskRecord& at(const TaskId& id) { return records_.at(id); }

@@ -8,9 +8,11 @@
 //   Result<std::optional<std::string>> seed = get_meta(db, "run.seed");
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "rondo/core/document.h"
@@ -40,5 +42,9 @@ Result<std::optional<RobotState>> load_robot_state(const Store& store, std::stri
 // The store's identity: small key/value facts (what run it holds). Errors: kStorage.
 Status set_meta(Store& store, std::string_view key, std::string_view value);
 Result<std::optional<std::string>> get_meta(const Store& store, std::string_view key);
+// Sets several keys in one transaction: all of them or, on an error or a crash, none.
+Status set_meta(Store& store, const std::vector<std::pair<std::string, std::string>>& entries);
+// Every key and its value.
+Result<std::map<std::string, std::string>> read_meta(const Store& store);
 
 }  // namespace rondo::store

@@ -1,0 +1,125 @@
+// The executor rebuilt from its store after a restart (a crash, a reboot, an upgrade): every task
+// comes back in its state, a task that was running comes back interrupted and goes back to the
+// queue, the drops for now are offered again, and the book's counts cover the whole run.
+#include <fmt/format.h>
+
+#include <utility>
+
+#include "rondo/core/document.h"
+#include "rondo/core/task_codec.h"
+#include "rondo/exec/executor.h"
+#include "deliveries.h"
+#include "dispatcher.h"
+#include "loading_times.h"
+#include "rondo/store/observations.h"
+#include "rondo/store/read_back.h"
+
+namespace rondo::exec {
+namespace {
+
+constexpr const char* kInterruptedReason = "interrupted: the executive restarted while it ran";
+
+Result<Task> decode_stored(const store::TaskRecord& row, const TimeZone& zone) {
+  RONDO_ASSIGN_OR_RETURN(
+      Document doc, Document::parse(row.task.dump(), DocumentFormat::kJson, fmt::format("stored task {}", row.id)));
+  return decode_task(doc.root(), &zone);
+}
+
+Outcome stored_outcome(const std::optional<store::Event>& e) {
+  if (!e) return Outcome::kNone;
+  return parse_outcome(e->code).value_or(Outcome::kNone);
+}
+
+// The task as the book knew it when it was stored.
+Result<TaskRecord> record_of(const store::StoredTask& stored, const TimeZone& zone) {
+  const store::TaskRecord& row = stored.row;
+  auto task = decode_stored(row, zone);
+  if (!task) return Error::storage(fmt::format("stored task {}: {}", row.id, task.error().message));
+  if (task->id != row.id)
+    return Error::storage(fmt::format("stored task {}: its JSON names the id '{}'", row.id, task->id));
+  auto state = parse_task_state(row.state);
+  if (!state) return Error::storage(fmt::format("stored task {}: {}", row.id, state.error().message));
+  TaskRecord r{.task = std::move(*task),
+               .state = *state,
+               .outcome = stored_outcome(stored.last_transition),
+               .reason = stored.last_transition ? stored.last_transition->reason : std::string(),
+               .source = row.source,
+               .added = row.created};
+  if (is_final(r.state)) r.ended = stored.last_transition ? stored.last_transition->time : row.updated;
+  // Its progress: a re-run goes on after the actions already done.
+  if (row.progress.is_object() && row.progress.contains("actions_done") && row.progress["actions_done"].is_number_unsigned())
+    r.actions_done = row.progress["actions_done"].get<std::size_t>();
+  if (r.state == TaskState::kQueued && stored.dropped_for_now)
+    r.dropped_for_now = std::make_pair(stored_outcome(stored.dropped_for_now), stored.dropped_for_now->reason);
+  return r;
+}
+
+}  // namespace
+
+Status Executor::restore() {
+  if (started_ || !book_.order().empty())
+    return Error::internal("Executor::restore() runs once, before start() and before any task is added");
+  RONDO_ASSIGN_OR_RETURN(store::StoredRun run, store::read_back(store_, options_.robot_name));
+  // Everything is decoded before anything is recorded: a store that cannot be read back leaves
+  // the executor empty.
+  std::vector<TaskRecord> records;
+  records.reserve(run.tasks.size());
+  for (const store::StoredTask& t : run.tasks) {
+    RONDO_ASSIGN_OR_RETURN(TaskRecord r, record_of(t, zone_));
+    records.push_back(std::move(r));
+  }
+  book_.restore_counts(run.events);
+  for (TaskRecord& r : records) {
+    deliveries_->add(r.task);  // what is on board follows from the restored states
+    book_.restore(std::move(r));
+  }
+  RONDO_RETURN_IF_ERROR(restore_loading_times());
+
+  const Time now = clock_.now();
+  for (const TaskId& id : book_.order()) {
+    TaskRecord& r = book_.at(id);
+    if (is_final(r.state)) continue;
+    const bool on_demand = r.task.kind == TaskKind::kOnDemand;
+    if (r.state != TaskState::kQueued) {
+      // It was waiting for, driving to or acting on this task when the executive stopped.
+      if (on_demand || !r.task.window || now + r.remaining() <= r.task.window->deadline) {
+        book_.transition(id, TaskState::kQueued, Outcome::kInterrupted,
+                         fmt::format("{}; back in the queue", kInterruptedReason));
+      } else {
+        book_.transition(id, TaskState::kFailed, Outcome::kInterrupted,
+                         fmt::format("{}; its window no longer allows it", kInterruptedReason));
+        continue;
+      }
+    }
+    if (on_demand) {
+      dispatcher_->on_demand.push_back(id);
+    } else if (r.dropped_for_now && r.task.window) {
+      // Offered again at every reschedule, and dropped for good once its window cannot be met.
+      dispatcher_->deferred.push_back(id);
+      clock_.schedule_at(r.task.window->deadline - r.remaining() + milliseconds(1),
+                         [this] { (void)reoffer_deferred(); });
+    }
+    // A queued standard task: start() schedules it.
+  }
+  // The models learnt so far, at once rather than at the next nightly refit.
+  if (run.traversals_end) refit();
+  return Status{};
+}
+
+// The loading times learnt so far, from the store's observations ("load time" at a place, with
+// the task that took it): the declared prior of each comes from that task.
+Status Executor::restore_loading_times() {
+  RONDO_ASSIGN_OR_RETURN(const std::vector<store::Observation> seen, store::find_observations(store_));
+  for (const store::Observation& o : seen) {
+    const std::string suffix = " time";
+    if (o.what.size() <= suffix.size() || !o.what.ends_with(suffix) || !o.text) continue;
+    const std::string action = o.what.substr(0, o.what.size() - suffix.size());
+    if (!loading_->learns(action) || !book_.contains(*o.text)) continue;
+    const TaskRecord& r = book_.at(*o.text);
+    const Duration declared = r.task.duration / static_cast<std::int64_t>(r.action_count());
+    loading_->observe(action, o.where, declared, from_seconds(o.value), true, o.when);
+  }
+  return Status{};
+}
+
+}  // namespace rondo::exec

@@ -1,0 +1,93 @@
+#include "rondo/store/read_back.h"
+
+#include <SQLiteCpp/Statement.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "sqlite_error.h"
+
+namespace rondo::store {
+namespace {
+
+// Rowid order is the order the tasks were accepted in, also within one batch.
+Result<std::vector<TaskRecord>> tasks_in_insertion_order(const Store& store) {
+  RONDO_ASSIGN_OR_RETURN(std::vector<TaskRecord> all, list_tasks(store));
+  RONDO_ASSIGN_OR_RETURN(std::vector<std::string> order,
+                         guarded(store, "reading the task order", [&]() -> Result<std::vector<std::string>> {
+                           SQLite::Statement q(connection(store), "SELECT id FROM tasks ORDER BY rowid");
+                           std::vector<std::string> ids;
+                           while (q.executeStep()) ids.push_back(q.getColumn(0).getString());
+                           return ids;
+                         }));
+  std::map<std::string, TaskRecord> by_id;
+  for (TaskRecord& r : all) {
+    std::string id = r.id;
+    by_id.emplace(std::move(id), std::move(r));
+  }
+  std::vector<TaskRecord> out;
+  out.reserve(order.size());
+  for (const std::string& id : order) {
+    auto it = by_id.find(id);
+    if (it != by_id.end()) out.push_back(std::move(it->second));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::optional<Time> StoredRun::latest() const {
+  std::optional<Time> t;
+  const auto later = [&t](Time x) { t = t ? std::max(*t, x) : x; };
+  if (log_end.seq > 0) later(log_end.time);
+  if (traversals_end) later(*traversals_end);
+  if (robot) later(robot->updated);
+  return t;
+}
+
+Result<StoredRun> read_back(const Store& store, std::string_view robot) {
+  StoredRun run;
+  RONDO_ASSIGN_OR_RETURN(std::vector<TaskRecord> rows, tasks_in_insertion_order(store));
+  RONDO_ASSIGN_OR_RETURN(run.events, read_events(store));
+  RONDO_ASSIGN_OR_RETURN(run.log_end, log_end(store));
+  RONDO_ASSIGN_OR_RETURN(run.robot, load_robot_state(store, robot));
+  RONDO_ASSIGN_OR_RETURN(run.meta, read_meta(store));
+  RONDO_ASSIGN_OR_RETURN(run.traversals_end,
+                         guarded(store, "reading the end of the traversal log", [&]() -> Result<std::optional<Time>> {
+                           SQLite::Statement q(connection(store), "SELECT MAX(start_ms + duration_ms) FROM traversals");
+                           if (!q.executeStep() || q.getColumn(0).isNull()) return std::optional<Time>{};
+                           return std::optional<Time>(time_from_db(q.getColumn(0).getInt64()));
+                         }));
+
+  std::map<std::string, std::size_t> index;
+  run.tasks.reserve(rows.size());
+  for (TaskRecord& r : rows) {
+    index.emplace(r.id, run.tasks.size());
+    run.tasks.push_back(StoredTask{
+        .row = std::move(r), .last_transition = std::nullopt, .dropped_for_now = std::nullopt, .added_events = 0});
+  }
+  for (const Event& e : run.events) {
+    if (e.subject != Subject::kTask) continue;
+    const auto it = index.find(e.task_id);
+    if (it == index.end()) continue;  // the schema's foreign key makes this impossible
+    StoredTask& t = run.tasks[it->second];
+    if (e.code == "added") ++t.added_events;
+    if (e.event == t.row.state) {
+      t.last_transition = e;
+      t.dropped_for_now.reset();  // a change of state since the drop
+    } else if (e.event == kDroppedForNowEvent) {
+      t.dropped_for_now = e;
+    } else if (e.event == kReOfferedEvent) {
+      t.dropped_for_now.reset();
+    }
+  }
+  // A drop older than the change that put the task in its state is over (the loop keeps events in
+  // append order, so only a state event named differently from the current state can precede it).
+  for (StoredTask& t : run.tasks)
+    if (t.dropped_for_now && t.last_transition && t.dropped_for_now->seq < t.last_transition->seq)
+      t.dropped_for_now.reset();
+  return run;
+}
+
+}  // namespace rondo::store

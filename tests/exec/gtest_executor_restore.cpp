@@ -1,0 +1,278 @@
+// Executor::restore: the executor rebuilt from its store after a restart, on the real SimRobot in
+// the calm scenario world. A "crash" is the executor, robot and clock destroyed with nothing said
+// to the store (the executor writes nothing when it is destroyed, as after a SIGKILL); the next
+// life opens the same file, at the latest time the store holds (or later: a power cut), with the
+// robot at its stored node.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <set>
+
+#include "rondo/core/routine.h"
+#include "rondo/store/read_back.h"
+#include "rondo/store/robot_state.h"
+#include "rondo/store/task_table.h"
+#include "scenario.h"
+
+namespace rondo::exec::testing {
+namespace {
+
+using ::testing::HasSubstr;
+
+// One life of the executive on a store file: a clock, a robot, an executor.
+class Life {
+ public:
+  Life(const std::filesystem::path& db, Time now, const std::string& robot_at = "Dock")
+      : map_(scenario_map()),
+        zone_(TimeZone::named("Europe/London").value()),
+        clock_(now),
+        store_(store::Store::open(db, {.sync_commits = false}).value()) {
+    auto doc = Document::parse(kCalmWorld, DocumentFormat::kYaml, "world.yaml").value();
+    world_ = std::make_unique<sim::SimWorld>(sim::decode_world(doc, ".", map_, zone_).value());
+    const map::NodeIndex dock = *map_.find_node("Dock");
+    robot_ = std::make_unique<sim::SimRobot>(clock_, map_, *world_,
+                                             sim::SimRobotOptions{.start = *map_.find_node(robot_at), .dock = dock});
+    executor_ = std::make_unique<Executor>(clock_, *robot_, map_, store_, zone_, ExecutorOptions{.dock = dock});
+  }
+  ~Life() {
+    executor_.reset();
+    robot_.reset();
+  }
+
+  Executor& executor() { return *executor_; }
+  store::Store& store() { return store_; }
+  SimClock& clock() { return clock_; }
+  Time at(const std::string& local) const { return zone_.parse_time("2026-11-23T" + local).value(); }
+  void run_until(const std::string& local) { clock_.run_until(at(local)); }
+  std::string state(const std::string& id) const { return to_string(executor_->tasks().at(id).state); }
+
+ private:
+  map::TopoMap map_;
+  TimeZone zone_;
+  SimClock clock_;
+  store::Store store_;
+  std::unique_ptr<sim::SimWorld> world_;
+  std::unique_ptr<sim::SimRobot> robot_;
+  std::unique_ptr<Executor> executor_;
+};
+
+// Where the next life starts: the latest stored time, the robot's stored node.
+struct Resume {
+  Time at{};
+  std::string node;
+};
+Resume resume_point(const std::filesystem::path& db) {
+  auto store = store::Store::open(db, {.mode = store::OpenMode::kReadOnly}).value();
+  const store::StoredRun back = store::read_back(store, "robot").value();
+  return {back.latest().value(), back.robot ? back.robot->node : "Dock"};
+}
+
+std::vector<store::Event> events_of(const std::filesystem::path& db, const std::string& id) {
+  auto store = store::Store::open(db, {.mode = store::OpenMode::kReadOnly}).value();
+  return store::read_events_of(store, id).value();
+}
+
+TEST(ExecutorRestore, ARunningTaskComesBackInterruptedThenQueuedAndIsCompleted) {
+  const auto db = fresh_db_path();
+  const Time start = TimeZone::named("Europe/London").value().parse_time("2026-11-23T08:00").value();
+  {
+    Life first(db, start);
+    first.executor().start();
+    ASSERT_TRUE(
+        first.executor().add_task(task("A", "Office", first.at("09:00"), first.at("10:00"), minutes(20)), "test"));
+    first.run_until("09:05");
+    ASSERT_EQ(first.state("A"), "acting");
+  }  // the crash
+  const Resume r = resume_point(db);
+  EXPECT_EQ(r.node, "Office");  // the robot's last known node
+  Life second(db, r.at, r.node);
+  ASSERT_TRUE(second.executor().restore());
+  EXPECT_EQ(second.state("A"), "queued");
+  EXPECT_EQ(second.executor().tasks().at("A").outcome, Outcome::kInterrupted);
+  second.executor().start();
+  second.run_until("10:00");
+  EXPECT_EQ(second.state("A"), "succeeded");
+  EXPECT_TRUE(second.executor().write_errors().empty());
+
+  // The event log tells the whole story, once: added, ..., acting, interrupted -> queued, ...,
+  // succeeded.
+  std::vector<std::string> states;
+  int added = 0;
+  for (const store::Event& e : events_of(db, "A")) {
+    if (e.code == "added") ++added;
+    if (e.event == "queued" && e.code == "interrupted") {
+      EXPECT_THAT(e.reason, HasSubstr("the executive restarted while it ran"));
+      EXPECT_THAT(e.reason, HasSubstr("back in the queue"));
+    }
+    if (parse_task_state(e.event)) states.push_back(e.event + (e.code.empty() ? "" : ":" + e.code));
+  }
+  EXPECT_EQ(added, 1);
+  EXPECT_THAT(states, ::testing::IsSupersetOf({"acting:arrived", "queued:interrupted", "succeeded:done"}));
+  EXPECT_EQ(second.executor().book().event_counts().at("queued").at(Outcome::kInterrupted), 1);
+}
+
+TEST(ExecutorRestore, AnInterruptedTaskWhoseWindowIsGoneFailsWithThatReason) {
+  const auto db = fresh_db_path();
+  const Time start = TimeZone::named("Europe/London").value().parse_time("2026-11-23T08:00").value();
+  {
+    Life first(db, start);
+    first.executor().start();
+    ASSERT_TRUE(
+        first.executor().add_task(task("A", "Office", first.at("09:00"), first.at("09:30"), minutes(20)), "test"));
+    first.run_until("09:05");
+    ASSERT_EQ(first.state("A"), "acting");
+  }
+  // The executive comes back after a power cut: at 09:20 the 20 minutes no longer fit by 09:30.
+  Life second(db, start + minutes(80), resume_point(db).node);
+  ASSERT_TRUE(second.executor().restore());
+  EXPECT_EQ(second.state("A"), "failed");
+  EXPECT_EQ(second.executor().tasks().at("A").outcome, Outcome::kInterrupted);
+  EXPECT_THAT(second.executor().tasks().at("A").reason, HasSubstr("its window no longer allows it"));
+  auto stored = store::get_task(second.store(), "A").value();
+  EXPECT_EQ(stored.state, "failed");
+}
+
+TEST(ExecutorRestore, ADroppedForNowTaskStaysDroppedForNowAndComesBackWhenACancelFreesItsWindow) {
+  const auto db = fresh_db_path();
+  const Time start = TimeZone::named("Europe/London").value().parse_time("2026-11-23T08:00").value();
+  std::map<std::string, std::map<Outcome, int>> counts_before;
+  {
+    Life first(db, start);
+    first.executor().start();
+    ASSERT_TRUE(
+        first.executor().add_tasks({task("Big", "Office", first.at("09:00"), first.at("10:00"), minutes(50), 5),
+                                    task("Small", "Kitchen", first.at("09:00"), first.at("10:00"), minutes(30), 1)},
+                                   "test"));
+    first.run_until("08:30");
+    ASSERT_TRUE(first.executor().tasks().at("Small").dropped_for_now.has_value());
+    counts_before = first.executor().book().event_counts();
+  }
+  const Resume r = resume_point(db);
+  Life second(db, r.at, r.node);
+  ASSERT_TRUE(second.executor().restore());
+  const TaskRecord& small = second.executor().tasks().at("Small");
+  EXPECT_EQ(small.state, TaskState::kQueued);
+  ASSERT_TRUE(small.dropped_for_now.has_value());
+  EXPECT_EQ(small.dropped_for_now->first, Outcome::kDroppedForHigherPriority);
+  EXPECT_FALSE(second.executor().tasks().at("Big").dropped_for_now.has_value());
+  // The book counts what happened before the restart as it did then.
+  EXPECT_EQ(second.executor().book().event_counts(), counts_before);
+  second.executor().start();
+  ASSERT_TRUE(second.executor().cancel_task("Big", "meeting moved").ok());
+  second.run_until("11:00");
+  EXPECT_EQ(second.state("Small"), "succeeded");
+  EXPECT_EQ(second.state("Big"), "cancelled");
+}
+
+TEST(ExecutorRestore, ADroppedForNowTaskIsDroppedForGoodWhenItsWindowPassesAfterTheRestart) {
+  const auto db = fresh_db_path();
+  const Time start = TimeZone::named("Europe/London").value().parse_time("2026-11-23T08:00").value();
+  {
+    Life first(db, start);
+    first.executor().start();
+    ASSERT_TRUE(
+        first.executor().add_tasks({task("Big", "Office", first.at("09:00"), first.at("10:00"), minutes(50), 5),
+                                    task("Small", "Kitchen", first.at("09:00"), first.at("10:00"), minutes(30), 1)},
+                                   "test"));
+    first.run_until("08:30");
+  }
+  const Resume r = resume_point(db);
+  Life second(db, r.at, r.node);
+  ASSERT_TRUE(second.executor().restore());
+  second.executor().start();
+  second.run_until("11:00");
+  EXPECT_EQ(second.state("Big"), "succeeded");
+  EXPECT_EQ(second.state("Small"), "dropped");
+  EXPECT_EQ(second.executor().tasks().at("Small").outcome, Outcome::kDroppedForHigherPriority);
+}
+
+TEST(ExecutorRestore, RoutineTasksAlreadyStoredAreNotMadeAgain) {
+  const auto db = fresh_db_path();
+  const Time start = TimeZone::named("Europe/London").value().parse_time("2026-11-23T08:00").value();
+  Routine patrol;
+  patrol.name = "patrol";
+  patrol.task = task("", "Lab", start, start, minutes(10));
+  patrol.task.window.reset();
+  patrol.window_start = hours(9);
+  patrol.window_end = hours(11);
+  {
+    Life first(db, start);
+    first.executor().add_routines({patrol});
+    first.executor().start();
+    first.run_until("09:05");
+    ASSERT_EQ(first.executor().tasks().size(), 1u);
+  }
+  const Resume r = resume_point(db);
+  Life second(db, r.at, r.node);
+  second.executor().add_routines({patrol});
+  ASSERT_TRUE(second.executor().restore());
+  second.executor().start();                    // makes today's routine tasks: the stored one is not made again
+  second.clock().run_until(start + hours(30));  // and tomorrow's, at midnight
+  EXPECT_TRUE(second.executor().write_errors().empty());
+  const auto tasks = store::list_tasks(second.store()).value();
+  std::set<std::string> ids;
+  for (const auto& t : tasks) ids.insert(t.id);
+  EXPECT_EQ(ids, (std::set<std::string>{"patrol@2026-11-23T09:00", "patrol@2026-11-24T09:00"}));
+  EXPECT_EQ(second.executor().tasks().size(), 2u);
+  for (const std::string& id : ids) {
+    int added = 0;
+    for (const store::Event& e : events_of(db, id)) added += e.code == "added";
+    EXPECT_EQ(added, 1) << id;
+  }
+  EXPECT_EQ(second.state("patrol@2026-11-23T09:00"), "succeeded");
+}
+
+TEST(ExecutorRestore, FinalTasksComeBackFinalAndAQueuedOnDemandTaskRunsFirst) {
+  const auto db = fresh_db_path();
+  const Time start = TimeZone::named("Europe/London").value().parse_time("2026-11-23T08:00").value();
+  {
+    Life first(db, start);
+    first.executor().start();
+    ASSERT_TRUE(
+        first.executor().add_task(task("Early", "Office", first.at("08:05"), first.at("08:30"), minutes(5)), "test"));
+    ASSERT_TRUE(first.executor().add_task(task("Late", "Office", first.at("09:00"), first.at("12:00"), minutes(30), 1,
+                                               /*interruptible=*/false),
+                                          "test"));
+    first.run_until("09:10");
+    ASSERT_EQ(first.state("Early"), "succeeded");
+    ASSERT_EQ(first.state("Late"), "acting");
+    ASSERT_TRUE(first.executor().add_task(on_demand("Ask", "Kitchen", minutes(5)), "test"));
+    first.run_until("09:11");
+    ASSERT_EQ(first.state("Ask"), "queued");  // waits for the task that cannot be interrupted
+  }
+  const Resume r = resume_point(db);
+  Life second(db, r.at, r.node);
+  ASSERT_TRUE(second.executor().restore());
+  const TaskRecord& early = second.executor().tasks().at("Early");
+  EXPECT_EQ(early.state, TaskState::kSucceeded);
+  EXPECT_EQ(early.outcome, Outcome::kDone);
+  EXPECT_THAT(early.reason, HasSubstr("done"));
+  EXPECT_EQ(early.source, "test");
+  EXPECT_TRUE(early.ended.has_value());
+  EXPECT_EQ(second.executor().task_order(), (std::vector<TaskId>{"Early", "Late", "Ask"}));
+  second.executor().start();
+  second.run_until("12:00");
+  EXPECT_EQ(second.state("Ask"), "succeeded");
+  EXPECT_EQ(second.state("Late"), "succeeded");
+  // The on-demand task went first after the restart.
+  const auto succeeded = [&](const std::string& id) {
+    for (const store::Event& e : events_of(db, id))
+      if (e.event == "succeeded") return e.time;
+    return Time{};
+  };
+  EXPECT_LT(succeeded("Ask"), succeeded("Late"));
+}
+
+TEST(ExecutorRestore, RestoreRunsOnlyBeforeStartAndOnAnEmptyBook) {
+  const auto db = fresh_db_path();
+  const Time start = TimeZone::named("Europe/London").value().parse_time("2026-11-23T08:00").value();
+  Life life(db, start);
+  life.executor().start();
+  const Status late = life.executor().restore();
+  ASSERT_FALSE(late.ok());
+  EXPECT_EQ(late.error().code, ErrorCode::kInternal);
+}
+
+}  // namespace
+}  // namespace rondo::exec::testing
