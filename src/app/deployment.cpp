@@ -34,8 +34,8 @@ Result<Duration> non_negative_duration(const Field& f) {
 
 Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
   RONDO_RETURN_IF_ERROR(f.expect_keys({"navigation_overrun", "navigation_slack", "action_overrun", "action_slack",
-                                       "dock_when_waiting_over", "max_failed_edges", "refit_at", "slot_width",
-                                       "scheduler_polls"}));
+                                       "dock_when_waiting_over", "max_failed_edges", "refit_at", "refit_window",
+                                       "online_model", "slot_width", "scheduler_polls"}));
   if (auto v = f.optional("navigation_overrun")) { RONDO_ASSIGN_OR_RETURN(o.navigation_overrun, positive(*v)); }
   if (auto v = f.optional("navigation_slack")) { RONDO_ASSIGN_OR_RETURN(o.navigation_slack, non_negative_duration(*v)); }
   if (auto v = f.optional("action_overrun")) { RONDO_ASSIGN_OR_RETURN(o.action_overrun, positive(*v)); }
@@ -55,6 +55,15 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
       RONDO_ASSIGN_OR_RETURN(o.refit_at, time_of_day(*v));
     }
   }
+  if (auto v = f.optional("refit_window")) {
+    if (v->is_null()) {
+      o.refit_window.reset();
+    } else {
+      RONDO_ASSIGN_OR_RETURN(o.refit_window, v->as_duration());
+      if (*o.refit_window < hours(24)) return v->error("must be at least 1d (or null: the whole log)");
+    }
+  }
+  if (auto v = f.optional("online_model")) { RONDO_ASSIGN_OR_RETURN(o.online_model, v->as_bool()); }
   if (auto v = f.optional("slot_width")) {
     RONDO_ASSIGN_OR_RETURN(o.slot_width, v->as_duration());
     if (o.slot_width < minutes(1) || o.slot_width > hours(24)) return v->error("must be between 1m and 24h");

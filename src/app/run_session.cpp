@@ -116,7 +116,9 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
       sim_clock.run_until(t);
   };
   auto today = d.zone.local_date(start);
+  std::vector<double> day_wall_seconds;  // run.json: the cost of each simulated day
   for (int day = 0; day < d.days; ++day) {
+    const auto day_wall_start = std::chrono::steady_clock::now();
     const auto tomorrow = std::chrono::year_month_day{std::chrono::sys_days{today} + std::chrono::days{1}};
     const Time day_from = std::max(start, d.zone.at(today, Duration{0}));
     const Time day_to = d.zone.at(tomorrow, Duration{0});
@@ -127,6 +129,7 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
         });
     }
     run_until(day_to);
+    day_wall_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - day_wall_start).count());
     const std::string date = date_text(today);
     DayPicture picture =
         day_picture(executor, fmt::format("{} — {} (day {})", d.name, date, day + 1), day_from, day_to, d.zone);
@@ -153,6 +156,7 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   RONDO_RETURN_IF_ERROR(write_file(request.out / "report.json", result.report.dump(2) + "\n"));
   Json run{{"wall_seconds", result.wall_seconds},
            {"simulated_days", d.days},
+           {"day_wall_seconds", day_wall_seconds},
            {"realtime", request.realtime},
            {"store_write_errors", executor.write_errors()}};
   RONDO_RETURN_IF_ERROR(write_file(request.out / "run.json", run.dump(2) + "\n"));

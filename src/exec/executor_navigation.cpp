@@ -12,6 +12,7 @@ void Executor::begin_navigation(map::NodeIndex target, Duration expected) {
   nav_target_ = target;
   nav_start_ = clock_.now();
   nav_expected_ = expected;
+  nav_offline_expected_ = current_ ? offline_estimate(robot_.location(), target) : expected;
   failed_edges_ = 0;
   if (current_) {
     nav_monitor_ = arm_monitor(CancelIntent::kNavigationOverrun, "navigation overrun: still travelling",
@@ -73,12 +74,7 @@ void Executor::on_edge_finished(const EdgeAttempt& a) {
   const map::Edge& edge = map_.edge(a.edge);
   stats_.travelling += a.duration;
   if (is_learning_data(a.outcome)) {
-    // Experience of the way: the traversal log, which the models learn from.
-    const Traversal t{.edge_id = edge.id, .from = edge.from, .to = edge.to, .start = a.start, .duration = a.duration,
-                      .success = a.succeeded()};
-    if (auto ok = store::add_traversal(store_, t); !ok) book_.write_error(ok.error().message);
-    ++stats_.navigation_attempts;
-    if (a.succeeded()) ++stats_.navigation_successes;
+    learn_from(a);
   } else {
     // A cancelled attempt or one cut by a fault says nothing about the way: the event log only.
     const std::string what = fmt::format("edge {} {} after {}{}{}", edge.id, to_string(a.outcome),
@@ -100,6 +96,24 @@ void Executor::on_edge_finished(const EdgeAttempt& a) {
   step_navigation();
 }
 
+// Experience of the way: the traversal log, which the nightly refit reads, and the online model of
+// the edge, which the next estimate reads.
+void Executor::learn_from(const EdgeAttempt& a) {
+  const map::Edge& edge = map_.edge(a.edge);
+  const Traversal t{.edge_id = edge.id, .from = edge.from, .to = edge.to, .start = a.start, .duration = a.duration,
+                    .success = a.succeeded()};
+  if (auto ok = store::add_traversal(store_, t); !ok) book_.write_error(ok.error().message);
+  models_->observe(a.edge, {.start = a.start, .end = a.start + a.duration, .seconds = to_seconds(a.duration),
+                            .success = a.succeeded()});
+  ++stats_.navigation_attempts;
+  if (a.succeeded()) ++stats_.navigation_successes;
+}
+
+Duration Executor::offline_estimate(map::NodeIndex from, map::NodeIndex to) const {
+  if (!options_.online_model) return travel_->travel(from, to, clock_.now());
+  return offline_travel_->travel(from, to, clock_.now());
+}
+
 void Executor::arrived() {
   if (nav_monitor_ != 0) clock_.cancel(nav_monitor_);
   nav_monitor_ = 0;
@@ -110,7 +124,8 @@ void Executor::arrived() {
     return;
   }
   navigations_.push_back({.task = *current_, .start = nav_start_, .expected = nav_expected_,
-                          .actual = clock_.now() - nav_start_, .arrived = true});
+                          .offline_expected = nav_offline_expected_, .actual = clock_.now() - nav_start_,
+                          .arrived = true});
   overrun_pending_.reset();  // a navigation overrun noted while not interruptible is moot now
   start_actions();
 }

@@ -27,7 +27,8 @@
 //   action monitor past `action_overrun` x the processing time; a task that is not interruptible
 //   (its flag, or the robot saying so at run time) is never preempted: the monitor waits.
 // - idle: back to the dock. Nightly (at `refit_at`, local time) the edge models are refitted
-//   from the whole traversal log, so travel estimates and schedules adapt.
+//   from the traversal log of the last `refit_window`; between refits every edge attempt updates
+//   the online model of its edge (`online_model`), so travel estimates and schedules adapt at once.
 #pragma once
 
 #include <cstdint>
@@ -67,6 +68,12 @@ struct ExecutorOptions {
   Duration dock_when_waiting_over = minutes(15);  // longer waits are spent on the charger
   int max_failed_edges = 25;             // a navigation gives up after this many failed attempts
   std::optional<Duration> refit_at = hours(2);    // local time of day; nothing = never refit
+  // The nightly refit reads the traversals that started within this long before it (nothing: the
+  // whole log), so a night costs the same however long the robot has lived (docs/executor.md).
+  std::optional<Duration> refit_window = hours(24 * 28);
+  // Travel estimates from the online edge model (each edge updated with every attempt, on the
+  // nightly snapshot); false: the snapshot alone, as before (plan::LearnedEdgeModels::Reading).
+  bool online_model = true;
   int duration_bins = 24;                // time-of-day bins of the refitted travel-time models
   Duration slot_width = minutes(15);     // travel-time slots of the planner
   std::int64_t scheduler_polls = 20'000;  // deterministic budget of each scheduler call (docs/scheduling.md)
@@ -91,7 +98,8 @@ struct ExecutorStats {
 struct NavigationRecord {
   TaskId task;
   Time start{};
-  Duration expected{0};
+  Duration expected{0};          // the estimate the executor used (online model, when it is on)
+  Duration offline_expected{0};  // what the nightly snapshot alone said for the same journey
   Duration actual{0};
   bool arrived = false;
 };
@@ -128,6 +136,7 @@ class Executor final : public RobotListener {
   // Store writes that failed (the run goes on; the caller reports them).
   const std::vector<std::string>& write_errors() const { return book_.write_errors(); }
   const plan::LearnedEdgeModels& models() const { return *models_; }
+  const TravelCache& travel_cache() const { return *travel_; }
 
   // RobotListener
   void on_edge_finished(const EdgeAttempt& attempt) override;
@@ -166,6 +175,10 @@ class Executor final : public RobotListener {
   void step_navigation();
   void abandon_navigation(Outcome outcome, const std::string& reason);
   std::vector<map::EdgeIndex> expected_route(const plan::Policy& policy, map::NodeIndex from) const;
+  // Learns from a finished attempt that is learning data: the traversal log and the online model.
+  void learn_from(const EdgeAttempt& attempt);
+  // What the nightly snapshot alone expects from `from` to `to` leaving now (for the record).
+  Duration offline_estimate(map::NodeIndex from, map::NodeIndex to) const;
   void arrived();
   void start_actions();
   void run_next_action();
@@ -200,6 +213,10 @@ class Executor final : public RobotListener {
   std::shared_ptr<plan::LearnedEdgeModels> models_;
   std::unique_ptr<plan::TravelOracle> planner_;
   std::unique_ptr<TravelCache> travel_;
+  // The snapshot read offline, only for NavigationRecord::offline_expected.
+  std::shared_ptr<plan::LearnedEdgeModels> offline_models_;
+  std::unique_ptr<plan::TravelOracle> offline_planner_;
+  std::unique_ptr<TravelCache> offline_travel_;
   schedule::DefaultScheduler solver_;
   std::mt19937_64 rng_;
 
@@ -215,6 +232,7 @@ class Executor final : public RobotListener {
   map::NodeIndex nav_target_ = 0;
   Time nav_start_{};
   Duration nav_expected_{0};
+  Duration nav_offline_expected_{0};
   int failed_edges_ = 0;
   std::size_t action_index_ = 0;
   Time acting_start_{};
