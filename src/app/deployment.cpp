@@ -60,7 +60,7 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
       o.refit_window.reset();
     } else {
       RONDO_ASSIGN_OR_RETURN(o.refit_window, v->as_duration());
-      if (*o.refit_window < hours(24)) return v->error("must be at least 1d (or null: the whole log)");
+      if (*o.refit_window < hours(24)) return v->error("must be at least 24h (or null: the whole log)");
     }
   }
   if (auto v = f.optional("online_model")) { RONDO_ASSIGN_OR_RETURN(o.online_model, v->as_bool()); }
