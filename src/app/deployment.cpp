@@ -48,20 +48,13 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
     if (n < 1 || n > 100000) return v->error("must be between 1 and 100000");
     o.max_failed_edges = static_cast<int>(n);
   }
-  if (auto v = f.optional("refit_at")) {
-    if (v->is_null()) {
-      o.refit_at.reset();
-    } else {
-      RONDO_ASSIGN_OR_RETURN(o.refit_at, time_of_day(*v));
-    }
-  }
+  // optional() hides a null value: null is "never" / "the whole log", so ask has() first.
+  if (f.has("refit_at") && !f.optional("refit_at")) o.refit_at.reset();
+  if (auto v = f.optional("refit_at")) { RONDO_ASSIGN_OR_RETURN(o.refit_at, time_of_day(*v)); }
+  if (f.has("refit_window") && !f.optional("refit_window")) o.refit_window.reset();
   if (auto v = f.optional("refit_window")) {
-    if (v->is_null()) {
-      o.refit_window.reset();
-    } else {
-      RONDO_ASSIGN_OR_RETURN(o.refit_window, v->as_duration());
-      if (*o.refit_window < hours(24)) return v->error("must be at least 24h (or null: the whole log)");
-    }
+    RONDO_ASSIGN_OR_RETURN(o.refit_window, v->as_duration());
+    if (*o.refit_window < hours(24)) return v->error("must be at least 24h (or null: the whole log)");
   }
   if (auto v = f.optional("online_model")) { RONDO_ASSIGN_OR_RETURN(o.online_model, v->as_bool()); }
   if (auto v = f.optional("slot_width")) {

@@ -168,6 +168,16 @@ TEST(RunCommand, TheRefitWindowAndTheOnlineModelAreExecutorKeys) {
     EXPECT_EQ(report["live_estimates"]["used"], report["live_estimates"]["offline_snapshot"]);
     const Json run = Json::parse(slurp(dir / "run" / "run.json"));
     EXPECT_EQ(run["day_wall_seconds"].size(), 3u);
+    EXPECT_EQ(report["model_refits"].get<int>(), 2);
+    std::filesystem::remove_all(dir);
+  }
+  {
+    // null: never refit (a null value is not the same as leaving the key out).
+    const auto dir = fresh_dir("never");
+    const auto deployment = edited_example(dir, "deployment.yaml", refit, "refit_at: null\n  refit_window: null");
+    const auto r = test::run_cli({"run", deployment.string(), "--days", "2", "--out", (dir / "run").string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(Json::parse(slurp(dir / "run" / "report.json"))["model_refits"].get<int>(), 0);
     std::filesystem::remove_all(dir);
   }
 }
