@@ -70,7 +70,7 @@ struct ExecutorOptions {
   std::optional<Duration> refit_at = hours(2);    // local time of day; nothing = never refit
   // The nightly refit reads the traversals that started within this long before it (nothing: the
   // whole log), so a night costs the same however long the robot has lived (docs/executor.md).
-  std::optional<Duration> refit_window = hours(24 * 28);
+  std::optional<Duration> refit_window = hours(24 * 14);
   // Travel estimates from the online edge model (each edge updated with every attempt, on the
   // nightly snapshot); false: the snapshot alone, as before (plan::LearnedEdgeModels::Reading).
   bool online_model = true;
