@@ -54,7 +54,7 @@ class Opaque final : public plan::EdgeModelView {
 volatile double g_sink = 0;
 
 struct Measured {
-  double seconds = 0;  // median per update + re-read
+  double seconds = 0;   // median per update + re-read
   double resolved = 0;  // cached (slot, target) entries solved again per update (of 96 x 12)
 };
 
@@ -104,10 +104,10 @@ int main(int argc, char** argv) {
   for (const bool on_route : {false, true}) {
     for (const bool name_edges : {true, false}) {
       const Measured r = run(m, name_edges, on_route, updates);
-      fmt::print("{:<40} {:>13.2f} ms {:>8.1f} / 1152\n",
-                 fmt::format("{} / {}", on_route ? "on a route" : "random edge",
-                             name_edges ? "keep untouched" : "empty all"),
-                 r.seconds * 1e3, r.resolved);
+      fmt::print(
+          "{:<40} {:>13.2f} ms {:>8.1f} / 1152\n",
+          fmt::format("{} / {}", on_route ? "on a route" : "random edge", name_edges ? "keep untouched" : "empty all"),
+          r.seconds * 1e3, r.resolved);
     }
   }
   return 0;

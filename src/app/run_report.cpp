@@ -88,7 +88,7 @@ Json live_estimates(const exec::Executor& executor) {
     offline.push_back((to_seconds(n.offline_expected) - actual) / actual);
   }
   const auto row = [](const plan::ErrorSummary& e) {
-    return Json{{"q10", e.q10},           {"q25", e.q25}, {"q75", e.q75},      {"q90", e.q90},
+    return Json{{"q10", e.q10},           {"q25", e.q25}, {"q75", e.q75},    {"q90", e.q90},
                 {"mean_abs", e.mean_abs}, {"std", e.std}, {"count", e.count}};
   };
   return Json{{"used", row(plan::summarize_errors(used))}, {"offline_snapshot", row(plan::summarize_errors(offline))}};

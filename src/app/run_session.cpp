@@ -129,7 +129,8 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
         });
     }
     run_until(day_to);
-    day_wall_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - day_wall_start).count());
+    day_wall_seconds.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - day_wall_start).count());
     const std::string date = date_text(today);
     DayPicture picture =
         day_picture(executor, fmt::format("{} — {} (day {})", d.name, date, day + 1), day_from, day_to, d.zone);

@@ -30,8 +30,8 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
       book_(store, clock) {
   planner_ = std::make_unique<plan::TravelOracle>(map_, models_, plan::TravelOracleOptions{.slot_width = options_.slot_width});
   travel_ = std::make_unique<TravelCache>(map_, models_, *planner_, options_.slot_width);
-  offline_planner_ =
-      std::make_unique<plan::TravelOracle>(map_, offline_models_, plan::TravelOracleOptions{.slot_width = options_.slot_width});
+  offline_planner_ = std::make_unique<plan::TravelOracle>(map_, offline_models_,
+                                                          plan::TravelOracleOptions{.slot_width = options_.slot_width});
   offline_travel_ = std::make_unique<TravelCache>(map_, offline_models_, *offline_planner_, options_.slot_width);
   robot_.set_listener(this);
 }

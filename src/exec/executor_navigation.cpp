@@ -100,11 +100,16 @@ void Executor::on_edge_finished(const EdgeAttempt& a) {
 // the edge, which the next estimate reads.
 void Executor::learn_from(const EdgeAttempt& a) {
   const map::Edge& edge = map_.edge(a.edge);
-  const Traversal t{.edge_id = edge.id, .from = edge.from, .to = edge.to, .start = a.start, .duration = a.duration,
+  const Traversal t{.edge_id = edge.id,
+                    .from = edge.from,
+                    .to = edge.to,
+                    .start = a.start,
+                    .duration = a.duration,
                     .success = a.succeeded()};
   if (auto ok = store::add_traversal(store_, t); !ok) book_.write_error(ok.error().message);
-  models_->observe(a.edge, {.start = a.start, .end = a.start + a.duration, .seconds = to_seconds(a.duration),
-                            .success = a.succeeded()});
+  models_->observe(
+      a.edge,
+      {.start = a.start, .end = a.start + a.duration, .seconds = to_seconds(a.duration), .success = a.succeeded()});
   ++stats_.navigation_attempts;
   if (a.succeeded()) ++stats_.navigation_successes;
 }
@@ -123,8 +128,11 @@ void Executor::arrived() {
     next();
     return;
   }
-  navigations_.push_back({.task = *current_, .start = nav_start_, .expected = nav_expected_,
-                          .offline_expected = nav_offline_expected_, .actual = clock_.now() - nav_start_,
+  navigations_.push_back({.task = *current_,
+                          .start = nav_start_,
+                          .expected = nav_expected_,
+                          .offline_expected = nav_offline_expected_,
+                          .actual = clock_.now() - nav_start_,
                           .arrived = true});
   overrun_pending_.reset();  // a navigation overrun noted while not interruptible is moot now
   start_actions();

@@ -75,7 +75,9 @@ std::optional<std::vector<map::EdgeIndex>> LearnedEdgeModels::changed_since(std:
 EdgeOutcome LearnedEdgeModels::outcome(map::EdgeIndex edge, Time at) const {
   const std::size_t i = index_.at(edge);
   if (i == kUnknown) return prior_.outcome(edge, at);
-  if (live_) return {.success_probability = live_->success_probability(i, at), .expected_seconds = live_->expected_seconds(i, at)};
+  if (live_)
+    return {.success_probability = live_->success_probability(i, at),
+            .expected_seconds = live_->expected_seconds(i, at)};
   return {.success_probability = models_->success_probability(i, at),
           .expected_seconds = models_->expected_seconds(i, at)};
 }

@@ -32,8 +32,8 @@ bool Policy::survives_edge_change(EdgeIndex edge, NodeIndex from, NodeIndex to, 
   if (from == target_) return true;  // no step leaves the target
   const PolicyStep& s = steps_[from];
   if (s.edge == edge) {
-    return crossing == expected_crossing_seconds(sanitize({.success_probability = s.success_probability,
-                                                           .expected_seconds = s.attempt_seconds}));
+    return crossing == expected_crossing_seconds(sanitize(
+                           {.success_probability = s.success_probability, .expected_seconds = s.attempt_seconds}));
   }
   return !(crossing + expected_[to] < expected_[from]);
 }

@@ -59,7 +59,8 @@ bool TravelOracle::refresh(CachedMdp& entry) {
     outcomes.reserve(old.edge_count());
     for (EdgeIndex e = 0; e < old.edge_count(); ++e) outcomes.push_back(old.outcome(e));
     for (const auto& [e, o] : patches) outcomes[e] = o;
-    entry.mdp = std::make_shared<const Mdp>(Mdp::from_outcomes(*map_, std::move(outcomes), old.time(), dead_ends_).value());
+    entry.mdp =
+        std::make_shared<const Mdp>(Mdp::from_outcomes(*map_, std::move(outcomes), old.time(), dead_ends_).value());
   }
   entry.version = now;
   return true;
@@ -77,7 +78,9 @@ const std::shared_ptr<const Mdp>& TravelOracle::slot_entry(std::int64_t slot) {
   return it->second.mdp;
 }
 
-std::shared_ptr<const Mdp> TravelOracle::mdp_at(Time depart) { return slot_entry(slot_of(depart)); }
+std::shared_ptr<const Mdp> TravelOracle::mdp_at(Time depart) {
+  return slot_entry(slot_of(depart));
+}
 
 bool TravelOracle::refresh(CachedPolicy& entry, std::int64_t slot) {
   const std::uint64_t now = models_->version();

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <memory>
 
+#include "plan/patchable_models.h"
 #include "rondo/exec/map_travel.h"
 #include "rondo/plan/edge_model_view.h"
 #include "rondo/plan/travel_oracle.h"
-#include "plan/patchable_models.h"
 #include "scenario.h"
 
 namespace rondo::exec::testing {
@@ -108,8 +108,9 @@ RC_GTEST_PROP(MapTravel, CachedAnswersEqualAFreshCacheAfterOneEdgeUpdates, ()) {
 
 TEST(MapTravel, AnUpdateOfAnEdgeOffTheWayKeepsTheEntry) {
   const map::TopoMap map = scenario_map();
-  auto models = std::make_shared<plan::testing::PatchableEdgeModels>(
-      map.edge_count(), [](map::EdgeIndex, Time) { return plan::EdgeOutcome{1.0, 10.0}; });
+  auto models = std::make_shared<plan::testing::PatchableEdgeModels>(map.edge_count(), [](map::EdgeIndex, Time) {
+    return plan::EdgeOutcome{1.0, 10.0};
+  });
   plan::TravelOracle planner(map, models, {.slot_width = minutes(15)});
   TravelCache cache(map, models, planner, minutes(15));
   const map::NodeIndex dock = *map.find_node("Dock"), office = *map.find_node("Office");

@@ -51,8 +51,8 @@ TEST(RefitWindow, TheOnlineModelLearnsFromAFailedAttemptAtOnce) {
   const Time now = s.clock().now();
   const double before = models.outcome(dock_hall, now).success_probability;
   const std::uint64_t version = models.version();
-  s.executor().on_edge_finished({.edge = dock_hall, .start = now - seconds(10), .duration = seconds(10),
-                                 .outcome = EdgeOutcome::kFailed});
+  s.executor().on_edge_finished(
+      {.edge = dock_hall, .start = now - seconds(10), .duration = seconds(10), .outcome = EdgeOutcome::kFailed});
   EXPECT_EQ(models.version(), version + 1);
   EXPECT_LT(models.outcome(dock_hall, now).success_probability, before);
 }

@@ -25,7 +25,8 @@ std::vector<Attempt> rhythmic_edge(int days, std::uint32_t seed) {
   for (int d = 0; d < days; ++d)
     for (int slot = 0; slot < 72; ++slot) {
       const Time start = monday() + hours(24 * d) + minutes(20 * slot) + seconds(static_cast<int>(u(rng) * 600));
-      const double open = testing::wednesday_closure((start - monday()).count() / 1000 % (7 * 86400), 0.7 + 0.3 * (slot % 3) / 2.0);
+      const double open =
+          testing::wednesday_closure((start - monday()).count() / 1000 % (7 * 86400), 0.7 + 0.3 * (slot % 3) / 2.0);
       const bool ok = u(rng) < open;
       out.push_back({start, start + seconds(10), 10.0, ok});
       if (!ok) out.push_back({start + seconds(20), start + seconds(30), 10.0, u(rng) < 0.5});
@@ -58,7 +59,8 @@ RC_GTEST_PROP(SlotProbabilities, EqualTheSlowReferenceAtEverySlot, ()) {
 TEST(SlotProbabilities, ALiveViewAnswersAsTheModelDoes) {
   const std::vector<Traversal> log = [] {
     std::vector<Traversal> out;
-    for (const Attempt& a : rhythmic_edge(14, 3)) out.push_back({"A_B", "A", "B", a.start, a.end - a.start, a.success, ""});
+    for (const Attempt& a : rhythmic_edge(14, 3))
+      out.push_back({"A_B", "A", "B", a.start, a.end - a.start, a.success, ""});
     return out;
   }();
   const std::vector<EdgeSpec> edges = {{"A_B", 10}, {"B_A", 10}};

@@ -126,7 +126,8 @@ TEST(LearnedEdgeModels, OnlineAFailureRaisesTheTravelTimeAtOnceAndIsForgotten) {
   const map::TopoMap m = small_map({"A", "B"}, {"A>B", "B>A"});
   const std::vector<learn::EdgeSpec> specs = {{"A_B", 20.0}, {"B_A", 20.0}};
   auto fitted = fit(specs, daily_closures());
-  auto live = std::make_shared<LearnedEdgeModels>(m, fitted, DistancePriorOptions{}, LearnedEdgeModels::Reading::kOnline);
+  auto live =
+      std::make_shared<LearnedEdgeModels>(m, fitted, DistancePriorOptions{}, LearnedEdgeModels::Reading::kOnline);
   TravelOracle oracle(m, live);
   const map::EdgeIndex a_b = *m.find_edge("A_B");
   const Time t = kStart + hours(24 * 28 + 15);  // day 29, 15:00: open
@@ -139,8 +140,8 @@ TEST(LearnedEdgeModels, OnlineAFailureRaisesTheTravelTimeAtOnceAndIsForgotten) {
   // Read at the slot's start, before the failure ended: as right after it (a gap of 0).
   const double at_once = oracle.expected_seconds(0, 1, t + seconds(20));
   const double later = oracle.expected_seconds(0, 1, t + hours(6));
-  EXPECT_GT(at_once, 3 * before);          // the next try is expected to fail again
-  EXPECT_LT(later, 1.5 * before);          // six hours later the closure is forgotten
+  EXPECT_GT(at_once, 3 * before);  // the next try is expected to fail again
+  EXPECT_LT(later, 1.5 * before);  // six hours later the closure is forgotten
   EXPECT_EQ(oracle.expected_seconds(1, 0, t + seconds(20)), oracle.expected_seconds(1, 0, t));  // B_A saw nothing
   // A refit starts again from the snapshot: changed_since cannot list edges across it.
   live->set(fitted);
@@ -155,8 +156,8 @@ TEST(LearnedEdgeModels, OfflineIgnoresObservations) {
   const Time t = kStart + hours(24 * 28 + 15);
   EXPECT_FALSE(offline.observe(0, {t, t + seconds(20), 20.0, false}));
   EXPECT_EQ(offline.version(), v);
-  EXPECT_EQ(offline.outcome(0, t + seconds(30)),
-            (EdgeOutcome{fitted->success_probability(0, t + seconds(30)), fitted->expected_seconds(0, t + seconds(30))}));
+  EXPECT_EQ(offline.outcome(0, t + seconds(30)), (EdgeOutcome{fitted->success_probability(0, t + seconds(30)),
+                                                              fitted->expected_seconds(0, t + seconds(30))}));
 }
 
 }  // namespace

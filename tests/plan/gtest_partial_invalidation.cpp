@@ -31,8 +31,8 @@ RC_GTEST_PROP(PartialInvalidation, CachedAnswersEqualAFreshOracleAfterUpdates, (
   const auto seed = *rc::gen::arbitrary<std::uint32_t>();
   const map::TopoMap m = testing::building_map({.rows = 4, .columns = 5, .seed = seed, .door_fraction = 0.3});
   const FunctionEdgeModels daily = testing::daily_models(m);
-  auto models = std::make_shared<PatchableEdgeModels>(m.edge_count(),
-                                                      [daily](map::EdgeIndex e, Time t) { return daily.outcome(e, t); });
+  auto models = std::make_shared<PatchableEdgeModels>(
+      m.edge_count(), [daily](map::EdgeIndex e, Time t) { return daily.outcome(e, t); });
   TravelOracle cached(m, models, {.slot_width = minutes(15)});
   const int steps = *rc::gen::inRange(1, 40);
   for (int k = 0; k < steps; ++k) {
@@ -52,7 +52,8 @@ RC_GTEST_PROP(PartialInvalidation, CachedAnswersEqualAFreshOracleAfterUpdates, (
       TravelOracle fresh(m, models, {.slot_width = minutes(15)});
       RC_ASSERT(same(cached.expected_seconds(a, b, t), fresh.expected_seconds(a, b, t)));
       if (what == 9) {
-        RC_ASSERT(same(cached.time_dependent_expected_seconds(a, b, t), fresh.time_dependent_expected_seconds(a, b, t)));
+        RC_ASSERT(
+            same(cached.time_dependent_expected_seconds(a, b, t), fresh.time_dependent_expected_seconds(a, b, t)));
       }
     }
   }
@@ -67,7 +68,7 @@ TEST(PartialInvalidation, AnUpdateKeepsThePoliciesItDoesNotTouch) {
   TravelOracle oracle(m, models);
   EXPECT_DOUBLE_EQ(oracle.expected_seconds(0, 2, kMorning), 20.0);  // policy to C
   EXPECT_DOUBLE_EQ(oracle.expected_seconds(0, 3, kMorning), 10.0);  // policy to D: takes A>D
-  models->change(*m.find_edge("A_D"), 1.0, 3.0);  // slower: the policy to C does not take it
+  models->change(*m.find_edge("A_D"), 1.0, 3.0);                    // slower: the policy to C does not take it
   EXPECT_DOUBLE_EQ(oracle.expected_seconds(0, 2, kMorning), 20.0);
   EXPECT_EQ(oracle.policies_kept(), 1u);
   EXPECT_EQ(oracle.policies_resolved(), 0u);
@@ -96,7 +97,8 @@ RC_GTEST_PROP(SurvivesEdgeChange, AgreesWithAFreshSolve, ()) {
   const Mdp after_mdp = Mdp::from_outcomes(m, outcomes, kMorning).value();
   const Policy after = ExactSolver{}.solve(after_mdp, target).value().policy;
   if (before.survives_edge_change(e, m.from_index(e), m.to_index(e), after_mdp.expected_crossing_seconds(e))) {
-    for (NodeIndex n = 0; n < m.node_count(); ++n) RC_ASSERT(same(before.expected_seconds(n), after.expected_seconds(n)));
+    for (NodeIndex n = 0; n < m.node_count(); ++n)
+      RC_ASSERT(same(before.expected_seconds(n), after.expected_seconds(n)));
   }
 }
 
