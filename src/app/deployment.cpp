@@ -34,8 +34,9 @@ Result<Duration> non_negative_duration(const Field& f) {
 
 Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
   RONDO_RETURN_IF_ERROR(f.expect_keys({"navigation_overrun", "navigation_slack", "action_overrun", "action_slack",
-                                       "dock_when_waiting_over", "max_failed_edges", "refit_at", "slot_width",
-                                       "scheduler_polls", "capacity", "return_to", "return_within"}));
+                                       "dock_when_waiting_over", "max_failed_edges", "refit_at", "refit_window",
+                                       "online_model", "slot_width", "scheduler_polls", "capacity", "return_to",
+                                       "return_within"}));
   if (auto v = f.optional("navigation_overrun")) { RONDO_ASSIGN_OR_RETURN(o.navigation_overrun, positive(*v)); }
   if (auto v = f.optional("navigation_slack")) { RONDO_ASSIGN_OR_RETURN(o.navigation_slack, non_negative_duration(*v)); }
   if (auto v = f.optional("action_overrun")) { RONDO_ASSIGN_OR_RETURN(o.action_overrun, positive(*v)); }
@@ -48,13 +49,15 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
     if (n < 1 || n > 100000) return v->error("must be between 1 and 100000");
     o.max_failed_edges = static_cast<int>(n);
   }
-  if (auto v = f.optional("refit_at")) {
-    if (v->is_null()) {
-      o.refit_at.reset();
-    } else {
-      RONDO_ASSIGN_OR_RETURN(o.refit_at, time_of_day(*v));
-    }
+  // optional() hides a null value: null is "never" / "the whole log", so ask has() first.
+  if (f.has("refit_at") && !f.optional("refit_at")) o.refit_at.reset();
+  if (auto v = f.optional("refit_at")) { RONDO_ASSIGN_OR_RETURN(o.refit_at, time_of_day(*v)); }
+  if (f.has("refit_window") && !f.optional("refit_window")) o.refit_window.reset();
+  if (auto v = f.optional("refit_window")) {
+    RONDO_ASSIGN_OR_RETURN(o.refit_window, v->as_duration());
+    if (*o.refit_window < hours(24)) return v->error("must be at least 24h (or null: the whole log)");
   }
+  if (auto v = f.optional("online_model")) { RONDO_ASSIGN_OR_RETURN(o.online_model, v->as_bool()); }
   if (auto v = f.optional("slot_width")) {
     RONDO_ASSIGN_OR_RETURN(o.slot_width, v->as_duration());
     if (o.slot_width < minutes(1) || o.slot_width > hours(24)) return v->error("must be between 1m and 24h");

@@ -115,6 +115,24 @@ Json travel_table(const map::TopoMap& map, std::span<const Traversal> log, Time 
   return plan::travel_evaluation_to_json(*e);
 }
 
+// The error of the travel estimates the executor used when it left for each task (the online
+// model, when on), next to what the nightly snapshot alone said for the same journeys, in Table
+// I's columns: relative error (estimate - actual) / actual of the navigations that arrived.
+Json live_estimates(const exec::Executor& executor) {
+  std::vector<double> used, offline;
+  for (const exec::NavigationRecord& n : executor.navigations()) {
+    if (!n.arrived || n.actual <= Duration{0}) continue;
+    const double actual = to_seconds(n.actual);
+    used.push_back((to_seconds(n.expected) - actual) / actual);
+    offline.push_back((to_seconds(n.offline_expected) - actual) / actual);
+  }
+  const auto row = [](const plan::ErrorSummary& e) {
+    return Json{{"q10", e.q10},           {"q25", e.q25}, {"q75", e.q75},    {"q90", e.q90},
+                {"mean_abs", e.mean_abs}, {"std", e.std}, {"count", e.count}};
+  };
+  return Json{{"used", row(plan::summarize_errors(used))}, {"offline_snapshot", row(plan::summarize_errors(offline))}};
+}
+
 Json run_report(const exec::Executor& executor, const RunFigures& figures) {
   const exec::ExecutorStats& s = executor.stats();
   Json j = Json::object();
@@ -141,6 +159,7 @@ Json run_report(const exec::Executor& executor, const RunFigures& figures) {
                      {"charging", to_seconds(figures.charging)}};
   j["scheduler_calls"] = s.schedules;
   j["model_refits"] = s.refits;
+  j["live_estimates"] = live_estimates(executor);
   return j;
 }
 

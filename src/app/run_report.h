@@ -33,6 +33,10 @@ Json task_summary(const exec::Executor& executor);
 // place of the table when the run is shorter than 14 days.
 Json travel_table(const map::TopoMap& map, std::span<const Traversal> log, Time start, int days);
 
+// The estimates the executor used (NavigationRecord::expected) and the snapshot's alone, scored
+// on the same journeys in Table I's columns; report.json's "live_estimates".
+Json live_estimates(const exec::Executor& executor);
+
 Json run_report(const exec::Executor& executor, const RunFigures& figures);
 
 // The schedule picture of one local day [from, to).

@@ -179,7 +179,9 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
       sim_clock.run_until(t);
   };
   auto today = d.zone.local_date(start);
+  Json day_wall_seconds = Json::array();  // run.json: the cost of each simulated day (null: an earlier attempt's)
   for (int day = 0; day < d.days; ++day) {
+    const auto day_wall_start = std::chrono::steady_clock::now();
     const auto tomorrow = std::chrono::year_month_day{std::chrono::sys_days{today} + std::chrono::days{1}};
     const Time day_from = std::max(start, d.zone.at(today, Duration{0}));
     const Time day_to = d.zone.at(tomorrow, Duration{0});
@@ -192,8 +194,12 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
         });
       }
     }
-    if (!done_before) {
+    if (done_before) {
+      day_wall_seconds.push_back(nullptr);  // run by an earlier attempt
+    } else {
       run_until(day_to);
+      day_wall_seconds.push_back(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - day_wall_start).count());
       const std::string date = date_text(today);
       DayPicture picture =
           day_picture(executor, fmt::format("{} — {} (day {})", d.name, date, day + 1), day_from, day_to, d.zone);
@@ -228,6 +234,7 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   RONDO_RETURN_IF_ERROR(write_file(request.out / "report.json", result.report.dump(2) + "\n"));
   Json run{{"wall_seconds", result.wall_seconds},
            {"simulated_days", d.days},
+           {"day_wall_seconds", day_wall_seconds},
            {"realtime", request.realtime},
            {"resumed", resumed},
            {"store_write_errors", executor.write_errors()}};

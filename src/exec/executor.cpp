@@ -33,17 +33,26 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
       store_(store),
       zone_(zone),
       options_(options),
-      models_(parts.models ? std::move(parts.models) : std::make_shared<plan::LearnedEdgeModels>(map, nullptr)),
+      models_(parts.models ? std::move(parts.models)
+                           : std::make_shared<plan::LearnedEdgeModels>(
+                                 map, nullptr, plan::DistancePriorOptions{},
+                                 options.online_model ? plan::LearnedEdgeModels::Reading::kOnline
+                                                      : plan::LearnedEdgeModels::Reading::kOffline)),
       planner_(std::make_unique<plan::TravelOracle>(map_, models_,
                                                     plan::TravelOracleOptions{.slot_width = options_.slot_width})),
       travel_(std::make_unique<TravelCache>(map_, models_, *planner_, options_.slot_width)),
+      offline_models_(std::make_shared<plan::LearnedEdgeModels>(map, nullptr)),
+      offline_planner_(std::make_unique<plan::TravelOracle>(
+          map_, offline_models_, plan::TravelOracleOptions{.slot_width = options_.slot_width})),
+      offline_travel_(std::make_unique<TravelCache>(map_, offline_models_, *offline_planner_, options_.slot_width)),
       scheduler_(parts.scheduler ? std::move(parts.scheduler) : std::make_unique<schedule::DefaultScheduler>()),
       rng_(options.seed),
       book_(store, clock),
       dispatcher_(std::make_unique<Dispatcher>(map_, *travel_, book_, options_, zone_)),
       deliveries_(std::make_unique<Deliveries>()),
       loading_(std::make_unique<LoadingTimes>()),
-      steps_{clock_, robot_, map_, book_, *travel_, *planner_, options_, zone_, stats_, navigations_, in_fault_} {
+      steps_{clock_,   robot_, map_,   book_,        *travel_, *offline_travel_, *planner_,
+             options_, zone_,  stats_, navigations_, in_fault_} {
   robot_.set_listener(this);
 }
 

@@ -1,5 +1,5 @@
 // The executor's daily rhythm: routine tasks created at local midnight for the day ahead, and the
-// nightly refit of the edge models from the whole traversal log.
+// nightly refit of the edge models from the traversal log of the last `refit_window`.
 #include <fmt/format.h>
 
 #include <chrono>
@@ -48,7 +48,10 @@ void Executor::schedule_refit() {
 }
 
 void Executor::refit() {
-  auto log = store::find_traversals(store_);
+  // A bounded window: the same cost every night however long the robot has lived.
+  store::TraversalQuery window;
+  if (options_.refit_window) window.from = clock_.now() - *options_.refit_window;
+  auto log = store::find_traversals(store_, window);
   if (!log) {
     book_.write_error(log.error().message);
     return;
@@ -66,6 +69,7 @@ void Executor::refit() {
     return;
   }
   models_->set(*fitted);
+  offline_models_->set(*fitted);
   ++stats_.refits;
 }
 

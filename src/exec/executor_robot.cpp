@@ -23,6 +23,10 @@ void Executor::learn_from(const EdgeAttempt& a) {
     const Traversal t{.edge_id = edge.id, .from = edge.from, .to = edge.to, .start = a.start, .duration = a.duration,
                       .success = a.succeeded()};
     if (auto ok = store::add_traversal(store_, t); !ok) book_.write_error(ok.error().message);
+    // The online model of the edge: the next estimate reads it.
+    models_->observe(
+        a.edge,
+        {.start = a.start, .end = a.start + a.duration, .seconds = to_seconds(a.duration), .success = a.succeeded()});
     ++stats_.navigation_attempts;
     if (a.succeeded()) ++stats_.navigation_successes;
     return;

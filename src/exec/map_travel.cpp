@@ -8,9 +8,12 @@
 #include <utility>
 
 #include "rondo/plan/mdp.h"
+#include "rondo/plan/policy.h"
 
 namespace rondo::exec {
 namespace {
+
+constexpr Duration kKeepBehind = hours(24 * 7);
 
 Duration to_duration(double seconds) {
   if (!std::isfinite(seconds) || seconds >= to_seconds(kUnreachable)) return kUnreachable;
@@ -21,26 +24,47 @@ Duration to_duration(double seconds) {
 
 TravelCache::TravelCache(const map::TopoMap& map, std::shared_ptr<const plan::EdgeModelView> models,
                          plan::TravelOracle& planner, Duration slot_width)
-    : map_(&map), models_(std::move(models)), planner_(&planner), slot_width_(slot_width) {
-  version_ = models_->version();
+    : map_(&map), models_(std::move(models)), planner_(&planner), slot_width_(slot_width) {}
+
+bool TravelCache::refresh(Entry& entry, Time slot_start) const {
+  const std::uint64_t now = models_->version();
+  if (entry.version == now) return true;
+  const std::optional<std::vector<map::EdgeIndex>> changed = models_->changed_since(entry.version);
+  if (!changed) return false;
+  if (!changed->empty()) {
+    // The planner's M_t re-reads just these edges at the slot start.
+    const std::shared_ptr<const plan::Mdp> mdp = planner_->mdp_at(slot_start);
+    for (map::EdgeIndex e : *changed) {
+      if (!entry.policy.survives_edge_change(e, map_->from_index(e), map_->to_index(e),
+                                             mdp->expected_crossing_seconds(e)))
+        return false;
+    }
+  }
+  entry.version = now;
+  return true;
 }
 
-void TravelCache::check_version() const {
-  if (models_->version() == version_) return;
-  version_ = models_->version();
-  values_.clear();
-  edge_min_seconds_.clear();
-  lower_from_.clear();
+const plan::Policy& TravelCache::policy(map::NodeIndex to, Time slot_start) const {
+  const auto key = std::make_pair(slot_start, to);
+  auto it = policies_.find(key);
+  if (it != policies_.end()) {
+    if (refresh(it->second, slot_start)) {
+      ++kept_;
+      return it->second.policy;
+    }
+    ++resolved_;
+    it->second = {planner_->policy(to, slot_start), models_->version()};
+    return it->second.policy;
+  }
+  // Departures only move forward: entries a week older than the one asked for are not asked again.
+  if (!policies_.empty() && policies_.begin()->first.first < slot_start - kKeepBehind)
+    policies_.erase(policies_.begin(), policies_.lower_bound({slot_start - kKeepBehind, 0}));
+  return policies_.emplace(key, Entry{planner_->policy(to, slot_start), models_->version()}).first->second.policy;
 }
 
 Duration TravelCache::at_slot(map::NodeIndex from, map::NodeIndex to, Time slot_start) const {
-  check_version();
   if (from == to) return Duration{0};
-  const auto key = std::make_tuple(slot_start, from, to);
-  if (auto it = values_.find(key); it != values_.end()) return it->second;
-  const Duration d = to_duration(planner_->expected_seconds(from, to, slot_start));
-  values_.emplace(key, d);
-  return d;
+  return to_duration(policy(to, slot_start).expected_seconds(from));
 }
 
 Duration TravelCache::travel(map::NodeIndex from, map::NodeIndex to, Time depart) const {
@@ -57,19 +81,40 @@ Duration TravelCache::travel(map::NodeIndex from, map::NodeIndex to, Time depart
   return Duration{static_cast<std::int64_t>(std::llround(ms))};
 }
 
-Duration TravelCache::lower_bound(map::NodeIndex from, map::NodeIndex to) const {
-  check_version();
-  if (from == to) return Duration{0};
-  const std::size_t n = map_->node_count();
-  if (edge_min_seconds_.empty()) {
-    edge_min_seconds_.assign(map_->edge_count(), std::numeric_limits<double>::infinity());
-    const Time week_start = planner_->slot_start(Time{});
-    for (Time t = week_start; t < week_start + hours(24 * 7); t += slot_width_)
-      for (map::EdgeIndex e = 0; e < map_->edge_count(); ++e) {
-        const double c = plan::expected_crossing_seconds(plan::sanitize(models_->outcome(e, t)));
-        edge_min_seconds_[e] = std::min(edge_min_seconds_[e], c);
-      }
+double TravelCache::edge_week_min(map::EdgeIndex e) const {
+  // Every slot start of a week from when the edge's answers stop depending on anything but the
+  // time of week, and the ones before that (they may depend on the time since its last attempt).
+  double m = std::numeric_limits<double>::infinity();
+  const Time from = planner_->slot_start(models_->conditioned_until(e));
+  for (Time t = from; t < from + hours(24 * 7) + models_->memory(); t += slot_width_)
+    m = std::min(m, plan::expected_crossing_seconds(plan::sanitize(models_->outcome(e, t))));
+  return m;
+}
+
+void TravelCache::refresh_lower_bounds() const {
+  const std::uint64_t now = models_->version();
+  if (!edge_min_seconds_.empty() && lower_version_ == now) return;
+  const std::optional<std::vector<map::EdgeIndex>> changed =
+      edge_min_seconds_.empty() ? std::nullopt : models_->changed_since(lower_version_);
+  lower_version_ = now;
+  if (!changed) {
+    edge_min_seconds_.resize(map_->edge_count());
+    for (map::EdgeIndex e = 0; e < map_->edge_count(); ++e) edge_min_seconds_[e] = edge_week_min(e);
+    lower_from_.clear();
+    return;
   }
+  for (map::EdgeIndex e : *changed) {
+    const double m = edge_week_min(e);
+    if (m == edge_min_seconds_[e]) continue;
+    edge_min_seconds_[e] = m;
+    lower_from_.clear();
+  }
+}
+
+Duration TravelCache::lower_bound(map::NodeIndex from, map::NodeIndex to) const {
+  if (from == to) return Duration{0};
+  refresh_lower_bounds();
+  const std::size_t n = map_->node_count();
   auto it = lower_from_.find(from);
   if (it == lower_from_.end()) {
     std::vector<double> dist(n, std::numeric_limits<double>::infinity());

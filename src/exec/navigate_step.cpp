@@ -16,6 +16,7 @@ void NavigateStep::start() {
   const map::NodeIndex here = ctx_.robot.location();
   started_ = now;
   expected_ = ctx_.travel.travel(here, target_, now);
+  if (purpose_ == Purpose::kToStart) offline_expected_ = ctx_.offline_travel.travel(here, target_, now);
   if (purpose_ == Purpose::kDock) return advance();
   if (purpose_ == Purpose::kToEnd && here == target_) return end({.status = StepEnd::Status::kDone});
   const std::string& to = ctx_.map.node(target_).name;
@@ -78,7 +79,8 @@ void NavigateStep::arrived() {
   monitor_.cancel();
   if (purpose_ == Purpose::kToStart)
     ctx_.navigations.push_back({.task = *task_, .start = started_, .expected = expected_,
-                                .actual = ctx_.clock.now() - started_, .arrived = true});
+                                .offline_expected = offline_expected_, .actual = ctx_.clock.now() - started_,
+                                .arrived = true});
   end({.status = StepEnd::Status::kDone});
 }
 

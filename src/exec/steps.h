@@ -76,6 +76,7 @@ class NavigateStep final : public RobotStep {
   map::NodeIndex target_;
   Time started_{};
   Duration expected_{0};
+  Duration offline_expected_{0};
   int failed_edges_ = 0;
 };
 

@@ -216,6 +216,7 @@ Result<std::shared_ptr<const EdgeModels>> EdgeModels::load(const std::filesystem
 LiveEdgeModels::LiveEdgeModels(std::shared_ptr<const EdgeModels> models) : models_(std::move(models)) {
   live_.reserve(models_->size());
   for (const auto& e : models_->edges_) live_.push_back(e.model ? e.model->stats() : EpisodeStats{});
+  slots_.resize(live_.size());
 }
 
 bool LiveEdgeModels::observe(const Traversal& t) {
@@ -227,17 +228,28 @@ bool LiveEdgeModels::observe(const Traversal& t) {
 
 void LiveEdgeModels::observe(std::size_t index, const Attempt& a) {
   live_[index].add(a, *models_->priors_);
+  slots_[index].clear();
+}
+
+const EpisodeEdgeModel& LiveEdgeModels::rates(std::size_t index) const {
+  const auto& e = models_->edges_[index];
+  return e.model ? *e.model : models_->prior_rates();
+}
+
+double LiveEdgeModels::slot_value(std::size_t index, Time t) const {
+  std::vector<double>& slots = slots_[index];
+  const EpisodeEdgeModel& model = rates(index);
+  if (slots.empty()) slots = model.slot_probabilities(live_[index], live_[index].has_last);
+  return slots[static_cast<std::size_t>(model.priors()->week_slot(t))];
 }
 
 double LiveEdgeModels::success_probability(std::size_t index, Time t) const {
-  const auto& e = models_->edges_[index];
-  const EpisodeEdgeModel& model = e.model ? *e.model : models_->prior_rates();
-  return model.probability(t, live_[index], true);
+  return rates(index).probability_from(t, live_[index], slot_value(index, t));
 }
 
 double LiveEdgeModels::expected_seconds(std::size_t index, Time t) const {
   const auto& e = models_->edges_[index];
-  return e.model ? e.model->expected_seconds(t, live_[index], true) : models_->prior_mean(e);
+  return e.model ? e.model->expected_seconds_from(t, live_[index], slot_value(index, t)) : models_->prior_mean(e);
 }
 
 double LiveEdgeModels::quantile_seconds(std::size_t index, Time t, double q) const {

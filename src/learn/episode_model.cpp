@@ -171,6 +171,91 @@ double EpisodeEdgeModel::offline_probability(Time t, const EpisodeStats& live) c
   return count > 0 ? sum / count : priors_->first_success;
 }
 
+std::vector<double> EpisodeEdgeModel::slot_probabilities(const EpisodeStats& live, bool first_attempt) const {
+  const auto& o = priors_->options;
+  const bool weekly = weekly_.weekly;
+  // The edge's rate, as for_each_histogram sums it.
+  double successes = 0, attempts = 0;
+  for (std::size_t b = 0; b < live.first_attempts.size(); ++b) {
+    successes += live.first_successes[b];
+    attempts += live.first_attempts[b];
+  }
+  const double edge = (successes + o.edge_prior * priors_->first_success) / (attempts + o.edge_prior);
+  const double length = first_attempt ? 1.0 : retry_length(live);
+  std::vector<double> sum(kWeekSlots, 0.0);
+  int count = 0;
+  std::vector<double> day_q(kDaySlots), week_q(kWeekSlots);
+  // One histogram at a time, in for_each_bin_estimate's order: each bin's estimate once, computed
+  // as there (the same loop from the bin's first slot), then added to every slot in the bin.
+  for_each_shifted_histogram(o.day_resolutions, [&](int width, int offset) {
+    std::vector<double> day_s(kDaySlots), day_n(kDaySlots);
+    for (int d = 0; d < kDaySlots; ++d) {
+      const int back = (((d - offset) % width) + width) % width;
+      if (back != 0 && d != 0) {
+        day_q[static_cast<std::size_t>(d)] = day_q[static_cast<std::size_t>(d - 1)];
+        day_s[static_cast<std::size_t>(d)] = day_s[static_cast<std::size_t>(d - 1)];
+        day_n[static_cast<std::size_t>(d)] = day_n[static_cast<std::size_t>(d - 1)];
+        continue;
+      }
+      double bs = 0, bn = 0;
+      for (int k = 0; k < width; ++k) {
+        const auto i = static_cast<std::size_t>((d - back + k + kDaySlots) % kDaySlots);
+        bs += live.first_successes[i];
+        bn += live.first_attempts[i];
+      }
+      day_s[static_cast<std::size_t>(d)] = bs;
+      day_n[static_cast<std::size_t>(d)] = bn;
+      day_q[static_cast<std::size_t>(d)] = (bs + o.bin_prior * edge) / (bn + o.bin_prior);
+    }
+    for (int w = 0; w < kWeekSlots; ++w) {
+      const auto d = static_cast<std::size_t>(w % kDaySlots);
+      double q = day_q[d];
+      if (weekly) {
+        const int back = (((static_cast<int>(d) - offset) % width) + width) % width;
+        if (back != 0 && d != 0) {
+          q = week_q[static_cast<std::size_t>(w - 1)];
+        } else {
+          double sw = 0, nw = 0;
+          for (int k = 0; k < width; ++k) {
+            const auto i = static_cast<std::size_t>((w - back + k + kWeekSlots) % kWeekSlots);
+            sw += live.week_successes[i];
+            nw += live.week_attempts[i];
+          }
+          if (nw > 0) {
+            const double correction = nw / (nw + o.weekly_prior) * (sw / nw - day_s[d] / day_n[d]);
+            q = std::clamp(q + correction, 0.0, 1.0);
+          }
+        }
+        week_q[static_cast<std::size_t>(w)] = q;
+      }
+      sum[static_cast<std::size_t>(w)] += first_attempt ? q : q / (q + (1 - q) * length);
+    }
+    ++count;
+  });
+  for (double& v : sum) v = count > 0 ? v / count : priors_->first_success;
+  return sum;
+}
+
+double EpisodeEdgeModel::probability_from(Time t, const EpisodeStats& live, double slot_value) const {
+  if (!live.has_last) return slot_value;
+  const double q = slot_value;
+  const auto& o = priors_->options;
+  const auto s = idx(EpisodeStats::state_of(live.last_success, t - live.last_end));
+  const double pooled =
+      (priors_->state_successes[s] + o.pooled_state_prior * q) / (priors_->state_attempts[s] + o.pooled_state_prior);
+  return std::clamp((live.state_successes[s] + o.state_prior * pooled) / (live.state_attempts[s] + o.state_prior), 0.0,
+                    1.0);
+}
+
+double EpisodeEdgeModel::expected_seconds_from(Time t, const EpisodeStats& live, double slot_value) const {
+  if (live.in_retry(t, *priors_)) {
+    return std::max(0.0, priors_->retry_intercept + priors_->retry_slope * live.last_seconds);
+  }
+  const auto bin = idx(priors_->duration_bin(t));
+  const double p = probability_from(t, live, slot_value);
+  return p * durations_.success_mean[bin] + (1 - p) * durations_.failure_mean[bin];
+}
+
 double EpisodeEdgeModel::probability(Time t, const EpisodeStats& live, bool use_state) const {
   if (!use_state || !live.has_last) return offline_probability(t, live);
   const double q = first_attempt_probability(t, live);

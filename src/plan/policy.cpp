@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "rondo/plan/mdp.h"
+
 namespace rondo::plan {
 
 Policy::Policy(NodeIndex target, std::vector<PolicyStep> steps, std::vector<double> expected_seconds)
@@ -23,6 +25,17 @@ std::optional<EdgeIndex> Policy::next_edge(NodeIndex node) const {
 std::optional<PolicyStep> Policy::step(NodeIndex node) const {
   if (steps_.at(node).edge == kNoEdge) return std::nullopt;
   return steps_[node];
+}
+
+bool Policy::survives_edge_change(EdgeIndex edge, NodeIndex from, NodeIndex to, double crossing) const {
+  if (from >= expected_.size() || to >= expected_.size()) return false;
+  if (from == target_) return true;  // no step leaves the target
+  const PolicyStep& s = steps_[from];
+  if (s.edge == edge) {
+    return crossing == expected_crossing_seconds(sanitize(
+                           {.success_probability = s.success_probability, .expected_seconds = s.attempt_seconds}));
+  }
+  return !(crossing + expected_[to] < expected_[from]);
 }
 
 std::vector<PolicyStep> Policy::route(NodeIndex from) const {

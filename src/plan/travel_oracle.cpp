@@ -31,7 +31,6 @@ TravelOracle::TravelOracle(const map::TopoMap& map, std::shared_ptr<const EdgeMo
   if (options_.slot_width <= Duration::zero()) throw std::invalid_argument("TravelOracle: slot width must be > 0");
   options_.max_cached_policies = std::max<std::size_t>(options_.max_cached_policies, 1);
   options_.max_cached_slots = std::max<std::size_t>(options_.max_cached_slots, 1);
-  version_ = models_->version();
 }
 
 std::int64_t TravelOracle::slot_of(Time t) const {
@@ -44,41 +43,79 @@ Time TravelOracle::slot_start(Time t) const {
   return Time{options_.slot_width * slot_of(t)};
 }
 
-void TravelOracle::check_version() {
+bool TravelOracle::refresh(CachedMdp& entry) {
   const std::uint64_t now = models_->version();
-  if (now == version_) return;
-  version_ = now;
-  slots_.clear();
-  policies_.clear();
+  if (entry.version == now) return true;
+  const std::optional<std::vector<EdgeIndex>> changed = models_->changed_since(entry.version);
+  if (!changed) return false;
+  const Mdp& old = *entry.mdp;
+  std::vector<std::pair<EdgeIndex, EdgeOutcome>> patches;
+  for (EdgeIndex e : *changed) {
+    const EdgeOutcome o = sanitize(models_->outcome(e, old.time()));
+    if (!(o == old.outcome(e))) patches.emplace_back(e, o);
+  }
+  if (!patches.empty()) {
+    std::vector<EdgeOutcome> outcomes;
+    outcomes.reserve(old.edge_count());
+    for (EdgeIndex e = 0; e < old.edge_count(); ++e) outcomes.push_back(old.outcome(e));
+    for (const auto& [e, o] : patches) outcomes[e] = o;
+    entry.mdp =
+        std::make_shared<const Mdp>(Mdp::from_outcomes(*map_, std::move(outcomes), old.time(), dead_ends_).value());
+  }
+  entry.version = now;
+  return true;
 }
 
-const Mdp& TravelOracle::slot_mdp(std::int64_t slot) {
+const std::shared_ptr<const Mdp>& TravelOracle::slot_entry(std::int64_t slot) {
   auto it = slots_.find(slot);
+  if (it != slots_.end() && refresh(it->second)) return it->second.mdp;
   if (it == slots_.end()) {
     if (slots_.size() >= options_.max_cached_slots) slots_.clear();
-    const Time at{options_.slot_width * slot};
-    it = slots_.emplace(slot, std::make_shared<const Mdp>(Mdp::build(*map_, *models_, at, dead_ends_))).first;
+    it = slots_.emplace(slot, CachedMdp{}).first;
   }
-  return *it->second;
+  const Time at{options_.slot_width * slot};
+  it->second = {std::make_shared<const Mdp>(Mdp::build(*map_, *models_, at, dead_ends_)), models_->version()};
+  return it->second.mdp;
 }
 
 std::shared_ptr<const Mdp> TravelOracle::mdp_at(Time depart) {
-  check_version();
-  const std::int64_t slot = slot_of(depart);
-  slot_mdp(slot);
-  return slots_.at(slot);
+  return slot_entry(slot_of(depart));
+}
+
+bool TravelOracle::refresh(CachedPolicy& entry, std::int64_t slot) {
+  const std::uint64_t now = models_->version();
+  if (entry.version == now) return true;
+  const std::optional<std::vector<EdgeIndex>> changed = models_->changed_since(entry.version);
+  if (!changed) return false;
+  if (!changed->empty()) {
+    const Mdp& mdp = slot_mdp(slot);
+    for (EdgeIndex e : *changed) {
+      if (!entry.policy.survives_edge_change(e, map_->from_index(e), map_->to_index(e),
+                                             mdp.expected_crossing_seconds(e)))
+        return false;
+    }
+  }
+  entry.version = now;
+  return true;
 }
 
 const Policy& TravelOracle::policy(NodeIndex target, Time depart) {
   check_node(*map_, target);
-  check_version();
   const std::int64_t slot = slot_of(depart);
   const auto key = std::make_pair(slot, target);
-  if (auto it = policies_.find(key); it != policies_.end()) return it->second;
-  const std::shared_ptr<const Mdp> mdp = mdp_at(depart);          // kept alive while solving
+  auto it = policies_.find(key);
+  if (it != policies_.end()) {
+    if (refresh(it->second, slot)) {
+      ++kept_;
+      return it->second.policy;
+    }
+    ++resolved_;
+    policies_.erase(it);
+  }
+  const std::shared_ptr<const Mdp> mdp = slot_entry(slot);  // kept alive while solving
   Solution solution = solver_.solve(*mdp, target).value();  // target checked above
   if (policies_.size() >= options_.max_cached_policies) policies_.clear();
-  return policies_.emplace(key, std::move(solution.policy)).first->second;
+  return policies_.emplace(key, CachedPolicy{std::move(solution.policy), models_->version()}).first->second.policy;
 }
 
 double TravelOracle::expected_seconds(NodeIndex from, NodeIndex to, Time depart) {
@@ -120,7 +157,6 @@ double TravelOracle::edge_arrival(EdgeIndex edge, Time depart, double t, double*
 TimedRoute TravelOracle::time_dependent_route(NodeIndex from, NodeIndex to, Time depart) {
   check_node(*map_, from);
   check_node(*map_, to);
-  check_version();
   TimedRoute route;
   if (from == to) {
     route.reachable = true;

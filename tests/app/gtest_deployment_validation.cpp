@@ -140,3 +140,47 @@ TEST(TaskFile, ATaskIdOfARoutinesFormIsRefused) {
 
 }  // namespace
 }  // namespace rondo
+
+namespace rondo {
+namespace {
+
+// The executor's learning options are deployment keys: a refit window shorter than a day is
+// refused naming the line, and with the online model off the estimates used are the snapshot's.
+TEST(RunCommand, TheRefitWindowAndTheOnlineModelAreExecutorKeys) {
+  const std::string refit = "refit_at: \"02:00\"        # nightly refit of the edge models";
+  {
+    const auto dir = fresh_dir("short-window");
+    const auto deployment = edited_example(dir, "deployment.yaml", refit, refit + "\n  refit_window: 2h");
+    const auto r = test::run_cli({"run", deployment.string(), "--days", "1", "--out", (dir / "run").string()});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_THAT(r.err, HasSubstr("deployment.yaml:" + std::to_string(line_of(slurp(deployment), "refit_window"))));
+    EXPECT_THAT(r.err, HasSubstr("refit_window"));
+    std::filesystem::remove_all(dir);
+  }
+  {
+    const auto dir = fresh_dir("offline");
+    const auto deployment =
+        edited_example(dir, "deployment.yaml", refit, refit + "\n  refit_window: 48h\n  online_model: false");
+    const auto r = test::run_cli({"run", deployment.string(), "--days", "3", "--out", (dir / "run").string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Json report = Json::parse(slurp(dir / "run" / "report.json"));
+    EXPECT_GT(report["live_estimates"]["used"]["count"].get<int>(), 10);
+    EXPECT_EQ(report["live_estimates"]["used"], report["live_estimates"]["offline_snapshot"]);
+    const Json run = Json::parse(slurp(dir / "run" / "run.json"));
+    EXPECT_EQ(run["day_wall_seconds"].size(), 3u);
+    EXPECT_EQ(report["model_refits"].get<int>(), 2);
+    std::filesystem::remove_all(dir);
+  }
+  {
+    // null: never refit (a null value is not the same as leaving the key out).
+    const auto dir = fresh_dir("never");
+    const auto deployment = edited_example(dir, "deployment.yaml", refit, "refit_at: null\n  refit_window: null");
+    const auto r = test::run_cli({"run", deployment.string(), "--days", "2", "--out", (dir / "run").string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(Json::parse(slurp(dir / "run" / "report.json"))["model_refits"].get<int>(), 0);
+    std::filesystem::remove_all(dir);
+  }
+}
+
+}  // namespace
+}  // namespace rondo

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 
+#include "plan/patchable_models.h"
 #include "rondo/exec/map_travel.h"
 #include "rondo/plan/edge_model_view.h"
 #include "rondo/plan/travel_oracle.h"
@@ -73,6 +74,52 @@ TEST(MapTravel, NewModelsEmptyTheCache) {
   models->set([](map::EdgeIndex, Time) { return plan::EdgeOutcome{0.5, 10.0}; });
   EXPECT_EQ(travel.travel(0, 1, kMonday), seconds(40));
   EXPECT_EQ(travel.lower_bound(0, 1), seconds(40));
+}
+
+// After any sequence of one-edge updates (and snapshot swaps), every cached travel time and lower
+// bound equals what a fresh cache over a fresh planner gives: the entries kept were untouched.
+RC_GTEST_PROP(MapTravel, CachedAnswersEqualAFreshCacheAfterOneEdgeUpdates, ()) {
+  const map::TopoMap map = scenario_map();
+  const auto phase = *rc::gen::container<std::vector<double>>(map.edge_count(), rc::gen::inRange(0, 24));
+  auto base = rhythmic_models(phase, 1.5, 0.8);
+  auto models = std::make_shared<plan::testing::PatchableEdgeModels>(
+      map.edge_count(), [base](map::EdgeIndex e, Time t) { return base->outcome(e, t); });
+  plan::TravelOracle planner(map, models, {.slot_width = minutes(15)});
+  TravelCache cache(map, models, planner, minutes(15));
+  const int steps = *rc::gen::inRange(1, 40);
+  for (int k = 0; k < steps; ++k) {
+    const int what = *rc::gen::inRange(0, 10);
+    if (what < 3) {
+      models->change(*rc::gen::inRange<std::size_t>(0, map.edge_count()), *rc::gen::element(1.0, 0.5, 0.0),
+                     *rc::gen::element(1.0, 0.25, 3.0));
+    } else if (what == 3) {
+      models->change_all(*rc::gen::element(1.0, 0.8), 1.0);
+    } else {
+      const auto a = *rc::gen::inRange<std::size_t>(0, map.node_count());
+      const auto b = *rc::gen::inRange<std::size_t>(0, map.node_count());
+      const Time t = kMonday + hours(9) + seconds(*rc::gen::inRange(0, 3 * 3600));
+      plan::TravelOracle fresh_planner(map, models, {.slot_width = minutes(15)});
+      TravelCache fresh(map, models, fresh_planner, minutes(15));
+      RC_ASSERT(cache.travel(a, b, t) == fresh.travel(a, b, t));
+      RC_ASSERT(cache.lower_bound(a, b) == fresh.lower_bound(a, b));
+    }
+  }
+}
+
+TEST(MapTravel, AnUpdateOfAnEdgeOffTheWayKeepsTheEntry) {
+  const map::TopoMap map = scenario_map();
+  auto models = std::make_shared<plan::testing::PatchableEdgeModels>(map.edge_count(), [](map::EdgeIndex, Time) {
+    return plan::EdgeOutcome{1.0, 10.0};
+  });
+  plan::TravelOracle planner(map, models, {.slot_width = minutes(15)});
+  TravelCache cache(map, models, planner, minutes(15));
+  const map::NodeIndex dock = *map.find_node("Dock"), office = *map.find_node("Office");
+  const Duration before = cache.travel(dock, office, kMonday);
+  // Slower edges that no route to the office takes: into the dock.
+  for (map::EdgeIndex e : map.in_edges(dock)) models->change(e, 1.0, 2.0);
+  EXPECT_EQ(cache.travel(dock, office, kMonday), before);
+  EXPECT_EQ(cache.resolved_count(), 0u);
+  EXPECT_GT(cache.kept_count(), 0u);
 }
 
 TEST(MapTravel, AnUnreachableNodeIsKUnreachable) {

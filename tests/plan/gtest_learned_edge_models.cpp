@@ -107,5 +107,58 @@ TEST(LearnedEdgeModels, SetSwapsTheSnapshotAndTheOracleDropsItsCaches) {
                                                          .policy.expected_seconds(0));
 }
 
+// Four weeks of A_B tried every 10 minutes, closed daily 10:00-13:00 (each attempt and its retry,
+// started as it ends, as the executor retries, fail): the log teaches the online model that a
+// failure is followed by failures.
+std::vector<Traversal> daily_closures() {
+  std::vector<Traversal> log;
+  for (int day = 0; day < 28; ++day)
+    for (int slot = 0; slot < 144; ++slot) {
+      const Time start = kStart + hours(24 * day) + minutes(10 * slot);
+      const bool closed = slot >= 60 && slot < 78;
+      log.push_back({"A_B", "A", "B", start, seconds(20), !closed, ""});
+      if (closed) log.push_back({"A_B", "A", "B", start + seconds(20), seconds(20), false, ""});
+    }
+  return log;
+}
+
+TEST(LearnedEdgeModels, OnlineAFailureRaisesTheTravelTimeAtOnceAndIsForgotten) {
+  const map::TopoMap m = small_map({"A", "B"}, {"A>B", "B>A"});
+  const std::vector<learn::EdgeSpec> specs = {{"A_B", 20.0}, {"B_A", 20.0}};
+  auto fitted = fit(specs, daily_closures());
+  auto live =
+      std::make_shared<LearnedEdgeModels>(m, fitted, DistancePriorOptions{}, LearnedEdgeModels::Reading::kOnline);
+  TravelOracle oracle(m, live);
+  const map::EdgeIndex a_b = *m.find_edge("A_B");
+  const Time t = kStart + hours(24 * 28 + 15);  // day 29, 15:00: open
+  EXPECT_TRUE(live->observe(a_b, {t - minutes(10), t - minutes(10) + seconds(20), 20.0, true}));
+  const double before = oracle.expected_seconds(0, 1, t);
+  const std::uint64_t v = live->version();
+  EXPECT_TRUE(live->observe(a_b, {t, t + seconds(20), 20.0, false}));
+  EXPECT_EQ(live->version(), v + 1);
+  EXPECT_EQ(live->changed_since(v), (std::vector<map::EdgeIndex>{a_b}));  // that edge only
+  // Read at the slot's start, before the failure ended: as right after it (a gap of 0).
+  const double at_once = oracle.expected_seconds(0, 1, t + seconds(20));
+  const double later = oracle.expected_seconds(0, 1, t + hours(6));
+  EXPECT_GT(at_once, 3 * before);  // the next try is expected to fail again
+  EXPECT_LT(later, 1.5 * before);  // six hours later the closure is forgotten
+  EXPECT_EQ(oracle.expected_seconds(1, 0, t + seconds(20)), oracle.expected_seconds(1, 0, t));  // B_A saw nothing
+  // A refit starts again from the snapshot: changed_since cannot list edges across it.
+  live->set(fitted);
+  EXPECT_FALSE(live->changed_since(v).has_value());
+}
+
+TEST(LearnedEdgeModels, OfflineIgnoresObservations) {
+  const map::TopoMap m = small_map({"A", "B"}, {"A>B", "B>A"});
+  auto fitted = fit({{"A_B", 20.0}, {"B_A", 20.0}}, daily_closures());
+  LearnedEdgeModels offline(m, fitted);
+  const std::uint64_t v = offline.version();
+  const Time t = kStart + hours(24 * 28 + 15);
+  EXPECT_FALSE(offline.observe(0, {t, t + seconds(20), 20.0, false}));
+  EXPECT_EQ(offline.version(), v);
+  EXPECT_EQ(offline.outcome(0, t + seconds(30)), (EdgeOutcome{fitted->success_probability(0, t + seconds(30)),
+                                                              fitted->expected_seconds(0, t + seconds(30))}));
+}
+
 }  // namespace
 }  // namespace rondo::plan

@@ -32,7 +32,8 @@
 //   action monitor past `action_overrun` x the processing time; a task that is not interruptible
 //   (its flag, or the robot saying so at run time) is never preempted: the monitor waits.
 // - idle: back to the dock. Nightly (at `refit_at`, local time) the edge models are refitted
-//   from the whole traversal log, so travel estimates and schedules adapt.
+//   from the traversal log of the last `refit_window`; between refits every edge attempt updates
+//   the online model of its edge (`online_model`), so travel estimates and schedules adapt at once.
 #pragma once
 
 #include <cstdint>
@@ -71,7 +72,8 @@ class TaskRun;
 
 // What the executor plans with, when the caller wants to choose (as rmf_task::TaskPlanner takes
 // its configuration). Empty parts get the defaults: edge models from the map's distances (refitted
-// nightly from the robot's own log) and schedule::DefaultScheduler.
+// nightly from the robot's own log, read online or offline as `online_model` says) and
+// schedule::DefaultScheduler.
 struct ExecutorParts {
   std::shared_ptr<plan::LearnedEdgeModels> models{};
   std::unique_ptr<schedule::Scheduler> scheduler{};
@@ -121,6 +123,7 @@ class Executor final : public RobotListener {
   // Store writes that failed (the run goes on; the caller reports them).
   const std::vector<std::string>& write_errors() const { return book_.write_errors(); }
   const plan::LearnedEdgeModels& models() const { return *models_; }
+  const TravelCache& travel_cache() const { return *travel_; }
   ExecutorPhase phase() const;
   // The loading and unloading times learned so far, per action and place.
   std::vector<LearnedActionTime> loading_times() const;
@@ -202,6 +205,11 @@ class Executor final : public RobotListener {
   std::shared_ptr<plan::LearnedEdgeModels> models_;
   std::unique_ptr<plan::TravelOracle> planner_;
   std::unique_ptr<TravelCache> travel_;
+  // The snapshot read offline, only for NavigationRecord::offline_expected (the same models when
+  // the online model is off).
+  std::shared_ptr<plan::LearnedEdgeModels> offline_models_;
+  std::unique_ptr<plan::TravelOracle> offline_planner_;
+  std::unique_ptr<TravelCache> offline_travel_;
   std::unique_ptr<schedule::Scheduler> scheduler_;
   std::mt19937_64 rng_;
 

@@ -20,6 +20,12 @@ struct ExecutorOptions {
   Duration dock_when_waiting_over = minutes(15);  // longer waits are spent on the charger
   int max_failed_edges = 25;             // a navigation gives up after this many failed attempts
   std::optional<Duration> refit_at = hours(2);    // local time of day; nothing = never refit
+  // The nightly refit reads the traversals that started within this long before it (nothing: the
+  // whole log), so a night costs the same however long the robot has lived (docs/executor.md).
+  std::optional<Duration> refit_window = hours(24 * 14);
+  // Travel estimates from the online edge model (each edge updated with every attempt, on the
+  // nightly snapshot); false: the snapshot alone (plan::LearnedEdgeModels::Reading).
+  bool online_model = true;
   int duration_bins = 24;                // time-of-day bins of the refitted travel-time models
   Duration slot_width = minutes(15);     // travel-time slots of the planner
   std::int64_t scheduler_polls = 20'000;  // deterministic budget of each scheduler call (docs/scheduling.md)
@@ -49,7 +55,8 @@ struct ExecutorStats {
 struct NavigationRecord {
   TaskId task;
   Time start{};
-  Duration expected{0};
+  Duration expected{0};          // the estimate the executor used (online model, when it is on)
+  Duration offline_expected{0};  // what the nightly snapshot alone said for the same journey
   Duration actual{0};
   bool arrived = false;
 };

@@ -16,11 +16,11 @@
 #include <cstdint>
 #include <map>
 #include <memory>
-#include <tuple>
 #include <vector>
 
 #include "rondo/core/time.h"
 #include "rondo/map/topo_map.h"
+#include "rondo/plan/policy.h"
 #include "rondo/plan/travel_oracle.h"
 #include "rondo/schedule/travel_oracle.h"
 
@@ -28,8 +28,16 @@ namespace rondo::exec {
 
 inline constexpr Duration kUnreachable = hours(24 * 365);
 
-// Expected node-to-node seconds per slot start, shared by every problem of one executor. Emptied
-// when the planner's models change (compare version()).
+// Expected node-to-node seconds per slot start, shared by every problem of one executor. It keeps
+// the planner's policy to each (slot start, target) asked for, with the models' version() it is
+// valid at. When the models move on, an entry asks models->changed_since(): it stays when no
+// changed edge touches it (plan::Policy::survives_edge_change with the edge's new τ/p at that slot
+// start), and is solved again otherwise; everything is dropped when the models cannot say what
+// changed (a refit). The lower bounds re-read only the changed edges' weekly minima, and are
+// recomputed when one of those minima moved. So an online update of one edge leaves the entries
+// it does not touch, and every answer equals what a fresh cache would give. Entries for slots more
+// than a week before the latest one filled are dropped (departures move forward with the clock), so
+// the cache stays the same size however long the robot has lived.
 class TravelCache {
  public:
   // `planner` must read `models`; the map and the planner must outlive the cache.
@@ -46,16 +54,29 @@ class TravelCache {
   Duration lower_bound(map::NodeIndex from, map::NodeIndex to) const;
   Time slot_start(Time t) const { return planner_->slot_start(t); }
   plan::TravelOracle& planner() const { return *planner_; }
+  // Cached (slot, target) entries, and how many were solved again / kept after a model change.
+  std::size_t cached_count() const { return policies_.size(); }
+  std::size_t resolved_count() const { return resolved_; }
+  std::size_t kept_count() const { return kept_; }
 
  private:
-  void check_version() const;
+  struct Entry {
+    plan::Policy policy;
+    std::uint64_t version = 0;  // models->version() it is valid at
+  };
+  // The policy to `to` at `slot_start`, valid at the current version.
+  const plan::Policy& policy(map::NodeIndex to, Time slot_start) const;
+  bool refresh(Entry& entry, Time slot_start) const;
+  void refresh_lower_bounds() const;
+  double edge_week_min(map::EdgeIndex e) const;
 
   const map::TopoMap* map_;
   std::shared_ptr<const plan::EdgeModelView> models_;
   plan::TravelOracle* planner_;
   Duration slot_width_;
-  mutable std::uint64_t version_ = 0;
-  mutable std::map<std::tuple<Time, map::NodeIndex, map::NodeIndex>, Duration> values_;
+  mutable std::map<std::pair<Time, map::NodeIndex>, Entry> policies_;
+  mutable std::size_t resolved_ = 0, kept_ = 0;
+  mutable std::uint64_t lower_version_ = 0;                            // of edge_min_seconds_
   mutable std::vector<double> edge_min_seconds_;                       // empty until first needed
   mutable std::map<map::NodeIndex, std::vector<double>> lower_from_;  // per source: seconds to all
 };

@@ -64,6 +64,7 @@ struct StepContext {
   const map::TopoMap& map;
   TaskBook& book;
   const TravelCache& travel;
+  const TravelCache& offline_travel;  // the nightly snapshot alone (NavigationRecord::offline_expected)
   plan::TravelOracle& planner;
   const ExecutorOptions& options;
   const TimeZone& zone;

@@ -100,7 +100,9 @@ class EdgeModels {
 
 // The executor's online view of a fitted model set: per-edge live statistics updated with every
 // traversal (O(1)), predictions conditioned on each edge's recent outcomes. Single-threaded; the
-// shared EdgeModels stays immutable.
+// shared EdgeModels stays immutable. The time-of-week part of each edge's success probability is
+// kept per slot of the week (EpisodeEdgeModel::slot_probabilities) from the first read after an
+// update to the next update of that edge, so the planner's many reads cost little.
 class LiveEdgeModels {
  public:
   explicit LiveEdgeModels(std::shared_ptr<const EdgeModels> models);
@@ -111,10 +113,16 @@ class LiveEdgeModels {
   double expected_seconds(std::size_t index, Time t) const;
   double quantile_seconds(std::size_t index, Time t, double q) const;
   const EdgeModels& models() const { return *models_; }
+  // The live statistics of an edge (its recency state: last_end, last_success).
+  const EpisodeStats& live(std::size_t index) const { return live_[index]; }
 
  private:
+  const EpisodeEdgeModel& rates(std::size_t index) const;
+  double slot_value(std::size_t index, Time t) const;
+
   std::shared_ptr<const EdgeModels> models_;
   std::vector<EpisodeStats> live_;
+  mutable std::vector<std::vector<double>> slots_;  // per edge; empty: not read since its last update
 };
 
 }  // namespace rondo::learn

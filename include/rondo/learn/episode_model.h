@@ -203,6 +203,14 @@ class EpisodeEdgeModel {
   double offline_probability(Time t, const EpisodeStats& live) const;
   // Typical attempts per failed episode, >= 1.
   double retry_length(const EpisodeStats& live) const;
+  // For every 15-minute slot of the local week (kWeekSlots, Monday 00:00 first): q(t) from `live`
+  // counts when `first_attempt`, else offline_probability(t, live), at any t in that slot. The
+  // same sums in the same order as those functions, so equal to them, at the cost of a few calls.
+  std::vector<double> slot_probabilities(const EpisodeStats& live, bool first_attempt) const;
+  // probability(t, live, true) and expected_seconds(t, live, true) given slot_probabilities(live,
+  // live.has_last)'s value for t's slot: what LiveEdgeModels reads many times between updates.
+  double probability_from(Time t, const EpisodeStats& live, double slot_value) const;
+  double expected_seconds_from(Time t, const EpisodeStats& live, double slot_value) const;
 
   double expected_seconds(Time t) const { return expected_seconds(t, stats_, false); }
   double quantile_seconds(Time t, double q) const { return quantile_seconds(t, q, stats_, false); }

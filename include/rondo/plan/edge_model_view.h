@@ -12,7 +12,9 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <utility>
+#include <vector>
 
 #include "rondo/core/time.h"
 #include "rondo/map/topo_map.h"
@@ -35,11 +37,28 @@ struct EdgeOutcome {
 // version(); version() changes (any new value) whenever the answers may have changed, e.g. after
 // the models were refitted. Caches such as TravelOracle compare versions to know when to drop
 // what they hold. Edge indices are those of the map the planner was given.
+//
+// An online update changes a few edges only. A view that can tell which says so through
+// changed_since(v): the edges whose answers may differ from those at version v. A cache entry
+// filled at v then stays valid unless one of those edges touches it (travel_oracle.h,
+// exec/map_travel.h). nullopt means "anything may have changed" (a new snapshot, or a version the
+// view cannot account for): the default, so a view that says nothing empties caches as before.
 class EdgeModelView {
  public:
   virtual ~EdgeModelView() = default;
   virtual EdgeOutcome outcome(map::EdgeIndex edge, Time at) const = 0;
   virtual std::uint64_t version() const = 0;
+  // For bounds over every later departure (exec::TravelCache::lower_bound): an edge's answers at
+  // t >= conditioned_until(edge) + memory() depend only on t's place in the (local) week; before
+  // that they may also depend on t - conditioned_until(edge) (an online model's recency state).
+  // The defaults: answers that depend on the time of week only.
+  virtual Time conditioned_until(map::EdgeIndex /*edge*/) const { return Time{}; }
+  virtual Duration memory() const { return Duration{0}; }
+  // Precondition: since <= version(). Empty when since == version().
+  virtual std::optional<std::vector<map::EdgeIndex>> changed_since(std::uint64_t since) const {
+    if (since == version()) return std::vector<map::EdgeIndex>{};
+    return std::nullopt;
+  }
 };
 
 // An EdgeModelView made of a function: for tests, benchmarks and adapters.

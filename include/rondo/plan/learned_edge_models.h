@@ -7,12 +7,21 @@
 //   TravelOracle oracle(map, models);                               // reads models->outcome()
 //   models->set(refitted);                                          // version() moves on: the
 //                                                                   // oracle drops its caches
+//   LearnedEdgeModels live(map, fitted, {}, Reading::kOnline);      // the executor's: online
+//   live.observe(edge, attempt);   // that edge only: changed_since() lists it, caches keep the rest
 //
 // Contract. Map edge e is matched to the model set by its id, once per set(). An edge the model
 // set does not know (or every edge, while the set is null) answers with DistancePrior. A known
 // edge answers {success_probability(i, t), expected_seconds(i, t)} of the offline models: for an
 // edge with too little data of its own that is learn's prior model (pooled rate, prior time ×
 // pooled ratio; with no durations at all, the edge's prior time), see edge_models.h.
+//
+// Online reading (Reading::kOnline): the answers are learn::LiveEdgeModels', the online protocol
+// of `rondo eval` (docs/learning.md, Table I): each edge's snapshot statistics updated with every
+// attempt observe()d since the snapshot, and its success probability conditioned on the outcome of
+// its last attempt and the time since (so a closure is believed at once and forgotten as the gap
+// grows, a failure of a minute ago weighs more than one of an hour ago). set() starts again from
+// the new snapshot's own statistics (which include its log up to the refit).
 // outcome() is const and pure for a given version(); set() is
 // not synchronised with it: call both from the thread that owns the oracle. The map is not kept.
 #pragma once
@@ -20,6 +29,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,17 +48,33 @@ std::vector<learn::EdgeSpec> edge_specs(const map::TopoMap& map, const map::Trav
 class LearnedEdgeModels final : public EdgeModelView {
  public:
   static constexpr std::size_t kUnknown = static_cast<std::size_t>(-1);
+  enum class Reading { kOffline, kOnline };
 
   // `models` may be null (prior only until set()). `prior` answers for edges the models lack.
   LearnedEdgeModels(const map::TopoMap& map, std::shared_ptr<const learn::EdgeModels> models,
-                    const DistancePriorOptions& prior = {});
+                    const DistancePriorOptions& prior = {}, Reading reading = Reading::kOffline);
 
   // Precondition: edge < the map's edge_count().
   EdgeOutcome outcome(map::EdgeIndex edge, Time at) const override;
   std::uint64_t version() const override { return version_; }
 
+  // Online: the end of the edge's last attempt (observed or in the snapshot's log), and the gap
+  // after which the recency state no longer changes (learn::kGapBuckets). Offline: the defaults.
+  Time conditioned_until(map::EdgeIndex edge) const override;
+  Duration memory() const override;
+  // The edges observe()d since `since` when no set() came after it; nullopt otherwise.
+  std::optional<std::vector<map::EdgeIndex>> changed_since(std::uint64_t since) const override;
+
   // Swaps the snapshot (null: prior only), re-matches the edges and moves version() on.
   void set(std::shared_ptr<const learn::EdgeModels> models);
+
+  // Online reading: learns from one attempt on map edge `edge` (a succeeded or failed one: learning
+  // data, exec::is_learning_data), in the order attempts end. Only that edge's answers change;
+  // version() moves on and changed_since() names it. False (nothing changes) when offline or when
+  // the snapshot does not know the edge (the prior answers for it). Precondition: edge < the map's
+  // edge_count().
+  bool observe(map::EdgeIndex edge, const learn::Attempt& attempt);
+  Reading reading() const { return reading_; }
 
   const std::shared_ptr<const learn::EdgeModels>& models() const { return models_; }
   // The model set's index of a map edge, or kUnknown when the prior answers for it.
@@ -60,8 +86,12 @@ class LearnedEdgeModels final : public EdgeModelView {
   void match();
 
   DistancePrior prior_;
+  Reading reading_;
   std::vector<std::string> edge_ids_;  // of the map, by edge index
   std::shared_ptr<const learn::EdgeModels> models_;
+  std::optional<learn::LiveEdgeModels> live_;  // online reading with a snapshot
+  std::uint64_t snapshot_version_ = 1;         // version() of the last set()
+  std::vector<std::uint64_t> edge_version_;    // per map edge: version() of its last observe()
   std::vector<std::size_t> index_;
   std::size_t known_ = 0;
   std::uint64_t version_ = 1;  // DistancePrior is 0: a fresh view never looks like the prior

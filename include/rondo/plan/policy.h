@@ -69,6 +69,14 @@ class Policy {
   // at +inf.
   TravelTimeDistribution travel_time_distribution(NodeIndex from, const DistributionOptions& options = {}) const;
 
+  // Whether this policy stays optimal, with expected_seconds() unchanged, after the expected
+  // crossing time τ/p of `edge` (from `from` to `to`) becomes `crossing` (+inf: unusable). That
+  // holds exactly when the policy does not take the edge and the edge did not become a shortcut
+  // (crossing + V(to) >= V(from)), or when it takes the edge and its crossing time is the same.
+  // The optimal values of a shortest-path MDP are unique, so a fresh solve gives the same
+  // expected_seconds() (its choice between tied edges may differ).
+  bool survives_edge_change(EdgeIndex edge, NodeIndex from, NodeIndex to, double crossing) const;
+
  private:
   NodeIndex target_;
   std::vector<PolicyStep> steps_;

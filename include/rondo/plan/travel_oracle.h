@@ -12,9 +12,14 @@
 //   const Policy& p = oracle.policy(b, depart_at);
 //   TimedRoute r = oracle.time_dependent_route(a, b, depart_at);  // r.arrival_seconds
 //
-// Not thread-safe: queries fill caches. Every query first compares models->version() with the
-// version the caches were filled with and drops them when it changed. The map must outlive the
-// oracle.
+// Not thread-safe: queries fill caches. Every cached M_t and policy remembers the models->version()
+// it was last valid at. When the version has moved on, the entry asks models->changed_since(): an
+// M_t re-reads only the changed edges at its time (a copy with them patched when they differ); a
+// policy is kept when no changed edge touches it (Policy::survives_edge_change: the policy does
+// not take the edge and the edge did not become a shortcut), else solved again. When the models
+// cannot say what changed (a new snapshot), the entry is rebuilt. So an online update of one edge
+// (LearnedEdgeModels::observe) costs one model read per cached slot used afterwards, not a refill
+// of every cache. The map must outlive the oracle.
 #pragma once
 
 #include <cstddef>
@@ -81,11 +86,27 @@ class TravelOracle {
   Time slot_start(Time t) const;
   std::size_t cached_policy_count() const { return policies_.size(); }
   std::size_t cached_slot_count() const { return slots_.size(); }
+  // How many cached policies were solved again after a model change, and how many were kept.
+  std::size_t policies_resolved() const { return resolved_; }
+  std::size_t policies_kept() const { return kept_; }
 
  private:
+  struct CachedMdp {
+    std::shared_ptr<const Mdp> mdp;
+    std::uint64_t version = 0;  // models->version() it is valid at
+  };
+  struct CachedPolicy {
+    Policy policy;
+    std::uint64_t version = 0;
+  };
   std::int64_t slot_of(Time t) const;
-  void check_version();
-  const Mdp& slot_mdp(std::int64_t slot);
+  // The slot's M_t, valid at the models' current version (built, patched or as cached).
+  const std::shared_ptr<const Mdp>& slot_entry(std::int64_t slot);
+  const Mdp& slot_mdp(std::int64_t slot) { return *slot_entry(slot); }
+  // Brings a cached M_t to the current version; false when it must be built again.
+  bool refresh(CachedMdp& entry);
+  // Whether a cached policy is still optimal at the current version (then marks it so).
+  bool refresh(CachedPolicy& entry, std::int64_t slot);
   // Earliest expected arrival at the end of `edge` when reaching its start at `t` seconds after
   // `depart` (FIFO-repaired); also when to start trying it.
   double edge_arrival(EdgeIndex edge, Time depart, double t, double* start_out);
@@ -94,9 +115,9 @@ class TravelOracle {
   std::shared_ptr<const EdgeModelView> models_;
   TravelOracleOptions options_;
   std::shared_ptr<const DeadEnds> dead_ends_;  // the map's, shared by every slot's M_t
-  std::uint64_t version_ = 0;
-  std::map<std::int64_t, std::shared_ptr<const Mdp>> slots_;
-  std::map<std::pair<std::int64_t, NodeIndex>, Policy> policies_;
+  std::map<std::int64_t, CachedMdp> slots_;
+  std::map<std::pair<std::int64_t, NodeIndex>, CachedPolicy> policies_;
+  std::size_t resolved_ = 0, kept_ = 0;
   ExactSolver solver_;  // its scratch space is reused by every solve
 };
 
