@@ -77,6 +77,9 @@ void add_meta_routes(std::vector<Route>& routes);  // health, metrics, OpenAPI
 // The event stream (GET /api/v1/events): sets a chunked provider on `res`.
 void event_stream(Api& api, const httplib::Request& req, httplib::Response& res);
 
+// The body of a task file as text, with the deployment's time zone when it names none.
+std::string with_default_zone(Json body, const TimeZone& zone);
+
 // JSON views (json_views.cpp)
 Json time_json(std::optional<Time> t);
 Json task_json(const exec::TaskRecord& record);

@@ -6,6 +6,11 @@
 
 namespace rondo::service {
 
+std::string with_default_zone(Json body, const TimeZone& zone) {
+  if (body.is_object() && !body.contains("timezone")) body["timezone"] = zone.name();
+  return body.dump();
+}
+
 Json time_json(std::optional<Time> t) { return t ? Json(format_time(*t)) : Json(nullptr); }
 
 Json task_json(const exec::TaskRecord& r) {

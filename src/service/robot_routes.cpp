@@ -155,7 +155,7 @@ Reply add_routines(Api& api, const httplib::Request& req) {
   if (j.is_discarded() || !j.is_object()) return error_reply(400, "malformed", "the body is not a JSON object");
   const map::TopoMap& map = api.ctx.map;
   const PlaceCheck places{[&map](std::string_view n) { return map.find_node(n).has_value(); }, map.name()};
-  auto file = parse_task_file(req.body, DocumentFormat::kJson, "request", &places);
+  auto file = parse_task_file(with_default_zone(j, api.ctx.zone), DocumentFormat::kJson, "request", &places);
   if (!file) return error_reply(file.error());
   if (!file->tasks.empty()) return error_reply(422, "invalid", "request: tasks: add tasks through /api/v1/tasks", "tasks");
   if (file->routines.empty()) return error_reply(422, "invalid", "request: routines: no routine to add", "routines");

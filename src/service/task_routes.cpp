@@ -90,7 +90,7 @@ Reply submit(Api& api, const httplib::Request& req) {
   if (!body) return malformed(body.error().message);
   const map::TopoMap& map = api.ctx.map;
   const PlaceCheck places{[&map](std::string_view n) { return map.find_node(n).has_value(); }, map.name()};
-  auto file = parse_task_file(req.body, DocumentFormat::kJson, "request", &places);
+  auto file = parse_task_file(with_default_zone(*body, api.ctx.zone), DocumentFormat::kJson, "request", &places);
   if (!file) return error_reply(file.error());
   if (!file->routines.empty())
     return error_reply(422, "invalid", "request: routines: add routines through /api/v1/routines", "routines");
