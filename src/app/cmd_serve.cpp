@@ -30,8 +30,8 @@ Result<std::pair<std::string, int>> parse_listen(const std::string& text) {
   const std::string port_text = text.substr(colon + 1);
   int port = -1;
   const auto [end, err] = std::from_chars(port_text.data(), port_text.data() + port_text.size(), port);
-  if (err != std::errc{} || end != port_text.data() + port_text.size() || port < 1 || port > 65535)
-    return Error::invalid(fmt::format("--listen: the port '{}' is not from 1 to 65535", port_text));
+  if (err != std::errc{} || end != port_text.data() + port_text.size() || port < 0 || port > 65535)
+    return Error::invalid(fmt::format("--listen: the port '{}' is not from 0 (any free port) to 65535", port_text));
   return std::pair{host, port};
 }
 
@@ -58,7 +58,7 @@ void add_serve_commands(CLI::App& root, CommandContext& ctx) {
   auto args = std::make_shared<ServeArgs>();
   auto* serve = root.add_subcommand("serve", "Run the executive live with an HTTP API (default: the G4S example)");
   serve->add_option("deployment", args->deployment, "The deployment file (examples/g4s/deployment.yaml)");
-  serve->add_option("--listen", args->listen, "HOST:PORT to listen on (default 127.0.0.1:8080)");
+  serve->add_option("--listen", args->listen, "HOST:PORT to listen on (default 127.0.0.1:8080; port 0: any free one)");
   serve->add_option("--data", args->data, "The data folder holding rondo.sqlite (default ./rondo-data)");
   serve->add_option("--token-file", args->token_file,
                     "A file (mode 600) holding the token every write must present as 'Authorization: Bearer'");

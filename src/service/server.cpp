@@ -179,7 +179,9 @@ Result<int> Server::bind() {
   return port;
 }
 
-void Server::run() { impl_->http.listen_after_bind(); }
+void Server::run() {
+  if (!impl_->api.stopping) impl_->http.listen_after_bind();
+}
 
 void Server::stop() {
   impl_->api.stopping = true;
