@@ -22,6 +22,7 @@ struct Reply {
   Json body = Json::object();
   std::string text{};          // used instead of body when content_type is not JSON
   std::string content_type = "application/json";
+  std::vector<std::pair<std::string, std::string>> headers{};
 };
 
 // The error body {"error": {"code", "message", "field"}}; the field is null when none is known.
@@ -73,6 +74,7 @@ struct Route {
 void add_task_routes(std::vector<Route>& routes);
 void add_robot_routes(std::vector<Route>& routes);
 void add_meta_routes(std::vector<Route>& routes);  // health, metrics, OpenAPI
+void add_dashboard_routes(std::vector<Route>& routes);
 
 // The event stream (GET /api/v1/events): sets a chunked provider on `res`.
 void event_stream(Api& api, const httplib::Request& req, httplib::Response& res);

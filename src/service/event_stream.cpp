@@ -21,14 +21,22 @@ struct Stream {
   std::chrono::steady_clock::time_point last_write = std::chrono::steady_clock::now();
 };
 
-Result<std::int64_t> resume_point(const httplib::Request& req) {
+// Where a stream starts: after Last-Event-ID (a reconnecting client), ?after=N, or the last
+// ?tail=N events of the log (a page that shows only the recent ones); else the whole log.
+Result<std::int64_t> resume_point(const httplib::Request& req, const store::Store& db) {
   std::string text;
-  if (req.has_header("Last-Event-ID"))
+  if (req.has_header("Last-Event-ID")) {
     text = req.get_header_value("Last-Event-ID");
-  else if (req.has_param("after"))
+  } else if (req.has_param("after")) {
     text = req.get_param_value("after");
-  else
+  } else if (req.has_param("tail")) {
+    auto tail = query_int(req, "tail", 0, 100000);
+    if (!tail) return tail.error();
+    RONDO_ASSIGN_OR_RETURN(const store::LogEnd end, store::log_end(db));
+    return std::max<std::int64_t>(0, end.seq - **tail);
+  } else {
     return std::int64_t{0};
+  }
   std::int64_t v = -1;
   std::size_t used = 0;
   try {
@@ -44,16 +52,17 @@ Result<std::int64_t> resume_point(const httplib::Request& req) {
 }  // namespace
 
 void event_stream(Api& api, const httplib::Request& req, httplib::Response& res) {
-  auto after = resume_point(req);
-  if (!after) {
-    const Reply r = error_reply(422, "invalid", after.error().message, "Last-Event-ID");
+  auto db = store::Store::open(api.ctx.store.file(), {.mode = store::OpenMode::kReadOnly});
+  if (!db) {
+    const Reply r = error_reply(500, "internal", db.error().message);
     res.status = r.status;
     res.set_content(r.body.dump() + "\n", "application/json");
     return;
   }
-  auto db = store::Store::open(api.ctx.store.file(), {.mode = store::OpenMode::kReadOnly});
-  if (!db) {
-    const Reply r = error_reply(500, "internal", db.error().message);
+  auto after = resume_point(req, *db);
+  if (!after) {
+    const Reply r = error_reply(422, "invalid", after.error().message,
+                                req.has_header("Last-Event-ID") ? "Last-Event-ID" : (req.has_param("after") ? "after" : "tail"));
     res.status = r.status;
     res.set_content(r.body.dump() + "\n", "application/json");
     return;

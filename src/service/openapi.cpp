@@ -41,6 +41,9 @@ Json op(const char* summary, Json resp, Json params = Json::array(), bool body =
 Json document() {
   Json paths = Json::object();
   const Json id = param("id", "path", "string", "the task's id");
+  paths["/"]["get"] = op("The dashboard (HTML).", responses({{200, "text/html"}}));
+  paths["/dashboard.js"]["get"] = op("The dashboard's script.", responses({{200, "text/javascript"}}));
+  paths["/dashboard.css"]["get"] = op("The dashboard's style.", responses({{200, "text/css"}}));
   paths["/healthz"]["get"] = op("The service is up and its executive answers.", responses({{200, "ok"}, {503, "the executive does not answer"}}));
   paths["/metrics"]["get"] = op("Figures in the Prometheus text format.", responses({{200, "text/plain"}}));
   paths["/api/v1/openapi.json"]["get"] = op("This document.", responses({{200, "OpenAPI 3"}}));
@@ -72,6 +75,10 @@ Json document() {
   paths["/api/v1/schedule"]["get"] =
       op("One local day's schedule, planned against actual.", responses({{200, "the day"}, {422, "a bad date"}}),
          Json::array({param("date", "query", "string", "YYYY-MM-DD, local; default today")}));
+  paths["/api/v1/edges"]["get"] =
+      op("Every edge's success probability and expected travel time at one time (default now).",
+         responses({{200, "{time, edges}"}, {422, "a bad time"}}),
+         Json::array({param("at", "query", "string", "a UTC time; default now")}));
   paths["/api/v1/edges/{id}/model"]["get"] =
       op("An edge's learned model over a local day: p(t), expected tau(t) and quantiles.",
          responses({{200, "points"}, {404, "no such edge"}, {422, "a bad date or step"}}),
@@ -88,7 +95,8 @@ Json document() {
       op("The event log as server-sent events; id is the log's sequence number.",
          responses({{200, "text/event-stream"}, {422, "a bad Last-Event-ID"}}),
          Json::array({param("Last-Event-ID", "header", "integer", "resume after this event"),
-                      param("after", "query", "integer", "the same, for clients that cannot set headers")}));
+                      param("after", "query", "integer", "the same, for clients that cannot set headers"),
+                      param("tail", "query", "integer", "start with the last N events of the log")}));
   return Json{
       {"openapi", "3.0.3"},
       {"info", Json{{"title", "rondo"}, {"version", "1"}, {"description", "The long-term task executive as a service (docs/api.md)."}}},

@@ -140,6 +140,27 @@ Reply edge_model(Api& api, const httplib::Request& req) {
   });
 }
 
+// Every edge's success probability and expected travel time at one instant (the map's colours).
+Reply edges_now(Api& api, const httplib::Request& req) {
+  auto at = query_time(req, "at");
+  if (!at) return error_reply(422, "invalid", at.error().message, "at");
+  return api.on_clock([&api, at = *at] {
+    const Time t = at.value_or(api.ctx.clock.now());
+    const plan::LearnedEdgeModels& models = api.ctx.executor.models();
+    Json list = Json::array();
+    for (map::EdgeIndex e = 0; e < api.ctx.map.edge_count(); ++e) {
+      const plan::EdgeOutcome o = models.outcome(e, t);
+      const map::Edge& edge = api.ctx.map.edges()[e];
+      list.push_back(Json{{"id", edge.id}, {"from", edge.from}, {"to", edge.to}, {"p", o.success_probability},
+                          {"expected_s", o.expected_seconds},
+                          {"learned", models.models() && models.model_index(e) != plan::LearnedEdgeModels::kUnknown}});
+    }
+    Reply reply;
+    reply.body = Json{{"time", format_time(t)}, {"edges", std::move(list)}};
+    return reply;
+  });
+}
+
 Reply routines(Api& api, const httplib::Request&) {
   return api.on_clock([&api] {
     Json list = Json::array();
@@ -189,6 +210,7 @@ void add_robot_routes(std::vector<Route>& routes) {
   routes.push_back({"GET", "/api/v1/robot", false, robot});
   routes.push_back({"GET", "/api/v1/map", false, map_view});
   routes.push_back({"GET", "/api/v1/schedule", false, schedule});
+  routes.push_back({"GET", "/api/v1/edges", false, edges_now});
   routes.push_back({"GET", "/api/v1/edges/{id}/model", false, edge_model});
   routes.push_back({"GET", "/api/v1/routines", false, routines});
   routes.push_back({"POST", "/api/v1/routines", true, add_routines});

@@ -34,6 +34,7 @@ bool is_write(const std::string& method) { return method != "GET" && method != "
 
 void send(httplib::Response& res, const Reply& reply) {
   res.status = reply.status;
+  for (const auto& [k, v] : reply.headers) res.set_header(k, v);
   if (reply.content_type == "application/json")
     res.set_content(reply.body.dump() + "\n", "application/json");
   else
@@ -111,6 +112,7 @@ Server::Server(ServiceContext context, ServerOptions options)
   add_meta_routes(impl_->routes);
   add_task_routes(impl_->routes);
   add_robot_routes(impl_->routes);
+  add_dashboard_routes(impl_->routes);
   for (const Route& r : impl_->routes) impl_->add(r);
   Impl& im = *impl_;
   const ServerOptions& o = im.api.options;

@@ -141,3 +141,50 @@ TEST(ApiViews, TheOpenApiDocumentListsExactlyTheRoutes) {
 
 }  // namespace
 }  // namespace rondo::test
+
+namespace rondo::test {
+namespace {
+
+TEST(ApiViews, EveryEdgeNowAndTheEventTail) {
+  LiveService s(fresh_dir("rondo-service-test", "edges"));
+  auto cli = s.client();
+  Json e = body_of(cli.Get("/api/v1/edges"));
+  ASSERT_EQ(e["edges"].size(), s.map().edge_count());
+  for (const Json& edge : e["edges"]) {
+    EXPECT_GE(edge["p"].get<double>(), 0.0);
+    EXPECT_LE(edge["p"].get<double>(), 1.0);
+  }
+  EXPECT_EQ(cli.Get("/api/v1/edges?at=noon")->status, 422);
+  for (int i = 0; i < 3; ++i)
+    ASSERT_EQ(cli.Post("/api/v1/tasks", s.task_body("tail" + std::to_string(i), hours(1 + i)), "application/json")->status,
+              201);
+  // ?tail=1 starts with the log's last event only.
+  std::string got;
+  (void)cli.Get("/api/v1/events?tail=1", [&](const char* data, std::size_t n) {
+    got.append(data, n);
+    return got.find("\n\n") == std::string::npos;
+  });
+  Json last = body_of(cli.Get("/api/v1/tasks/tail2"));
+  const std::int64_t last_seq = last["events"].back()["seq"];
+  EXPECT_TRUE(got.starts_with("id: " + std::to_string(last_seq) + "\n")) << got;
+  EXPECT_EQ(cli.Get("/api/v1/events?tail=-1")->status, 422);
+}
+
+TEST(ApiViews, TheDashboardIsServedFromTheBinaryWithoutTheToken) {
+  LiveService s(fresh_dir("rondo-service-test", "dashboard"), {.token = "dashboard-token-0123456789"});
+  auto cli = s.client();
+  auto page = cli.Get("/");
+  ASSERT_EQ(page->status, 200);
+  EXPECT_TRUE(page->get_header_value("Content-Type").starts_with("text/html"));
+  EXPECT_NE(page->body.find("<script src=\"/dashboard.js\"></script>"), std::string::npos);
+  EXPECT_NE(page->get_header_value("Content-Security-Policy").find("default-src 'self'"), std::string::npos);
+  auto script = cli.Get("/dashboard.js");
+  ASSERT_EQ(script->status, 200);
+  EXPECT_TRUE(script->get_header_value("Content-Type").starts_with("text/javascript"));
+  EXPECT_NE(script->body.find("sessionStorage"), std::string::npos);  // asks for the token, keeps it in the tab
+  EXPECT_EQ(cli.Get("/dashboard.css")->status, 200);
+  for (const auto* body : {&page->body, &script->body}) EXPECT_EQ(body->find("dashboard-token"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rondo::test
