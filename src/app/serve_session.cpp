@@ -4,6 +4,7 @@
 #include <pthread.h>
 #include <signal.h>
 
+#include <atomic>
 #include <chrono>
 #include <ostream>
 #include <thread>
@@ -96,12 +97,21 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
 
   const sigset_t signals = stop_signals();
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);  // before any thread starts: they inherit it
-  std::thread http([&server] { server.run(); });
+  std::atomic<bool> http_done{false};
+  std::thread http([&server, &http_done] {
+    server.run();
+    http_done = true;
+  });
   std::thread waiter([&] {
     int sig = 0;
     sigwait(&signals, &sig);
     if (sig != SIGUSR1) log << fmt::format("rondo serve: {}: stopping\n", sig == SIGTERM ? "SIGTERM" : "SIGINT") << std::flush;
-    server.stop();  // no new requests; the ones in progress are answered (the clock still runs)
+    // No new requests; the ones in progress are answered (the clock still runs). Asked again until
+    // the server has gone, in case the signal came before it was listening.
+    while (!http_done) {
+      server.stop();
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
     http.join();
     clock.post([&] {
       robot.deactivate();  // halts the robot where it is

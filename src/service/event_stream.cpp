@@ -52,6 +52,13 @@ Result<std::int64_t> resume_point(const httplib::Request& req, const store::Stor
 }  // namespace
 
 void event_stream(Api& api, const httplib::Request& req, httplib::Response& res) {
+  if (api.streams.load() >= api.options.threads / 2) {
+    const Reply r = error_reply(503, "unavailable", "too many event streams are open; try again later");
+    res.status = r.status;
+    res.set_header("Retry-After", "5");
+    res.set_content(r.body.dump() + "\n", "application/json");
+    return;
+  }
   auto db = store::Store::open(api.ctx.store.file(), {.mode = store::OpenMode::kReadOnly});
   if (!db) {
     const Reply r = error_reply(500, "internal", db.error().message);

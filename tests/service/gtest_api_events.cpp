@@ -2,6 +2,9 @@
 // comes back with Last-Event-ID gets every event after the last it saw, none twice.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <thread>
+
 
 #include "live_service.h"
 #include "rondo/store/events.h"
@@ -84,6 +87,34 @@ TEST(ApiEvents, AResumedStreamMissesNothingAndRepeatsNothing) {
   std::vector<std::int64_t> tail = read_stream(s, {}, 1, "/api/v1/events?after=" + std::to_string(all.back() - 1));
   EXPECT_EQ(tail, std::vector<std::int64_t>{all.back()});
   EXPECT_EQ(cli.Get("/api/v1/events", {{"Last-Event-ID", "yesterday"}})->status, 422);
+}
+
+// Streams hold an HTTP thread each: past half of the threads they are refused, so requests are
+// still answered.
+TEST(ApiEvents, StreamsPastHalfTheThreadsAreRefusedAndRequestsStillAnswered) {
+  LiveService s(fresh_dir("rondo-service-test", "stream-cap"), {.threads = 4});
+  std::atomic<int> open{0};
+  std::atomic<bool> done{false};
+  std::vector<std::thread> streams;
+  for (int i = 0; i < 2; ++i)
+    streams.emplace_back([&] {
+      auto c = s.client();
+      bool counted = false;
+      (void)c.Get("/api/v1/events", [&](const char*, std::size_t) {
+        if (!counted) ++open;
+        counted = true;
+        return !done.load();
+      });
+    });
+  ASSERT_TRUE(eventually([&] { return open.load() == 2; }));
+  auto cli = s.client();
+  auto third = cli.Get("/api/v1/events");
+  ASSERT_TRUE(third);
+  EXPECT_EQ(third->status, 503);
+  EXPECT_EQ(cli.Get("/healthz")->status, 200);
+  done = true;
+  // The streams see keep-alives every second, and end at the next one.
+  for (auto& t : streams) t.join();
 }
 
 }  // namespace

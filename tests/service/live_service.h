@@ -29,6 +29,7 @@ struct LiveOptions {
   std::size_t body_limit = 1 << 20;
   Duration read_timeout = seconds(5);
   double speed = 1.0;
+  int threads = 16;
 };
 
 class LiveService {

@@ -54,7 +54,9 @@ struct ServerOptions {
   Duration answer_timeout = seconds(30); // the executor's thread did not answer: 503
   Duration stream_poll = std::chrono::milliseconds(100);  // how often an event stream looks for news
   Duration stream_keepalive = seconds(15);
-  int threads = 8;
+  // HTTP threads. An event stream holds one for as long as it is open, so at most half of them
+  // stream (more streams get 503) and the rest always answer requests.
+  int threads = 64;
 };
 
 // One route of the API: its method and OpenAPI path ("/api/v1/tasks/{id}").
