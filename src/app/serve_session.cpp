@@ -33,7 +33,8 @@ sigset_t stop_signals() {
   return set;
 }
 
-// The simulated people's requests of each local day, added when they fall due (as in `rondo run`).
+}  // namespace
+
 void schedule_people(exec::Clock& clock, exec::Executor& executor, sim::RequestGenerator& people, sim::Rng& rng,
                      const TimeZone& zone, Time from) {
   const auto day = zone.local_date(from);
@@ -46,8 +47,6 @@ void schedule_people(exec::Clock& clock, exec::Executor& executor, sim::RequestG
     schedule_people(clock, executor, people, rng, zone, to);
   });
 }
-
-}  // namespace
 
 Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   const Deployment& d = request.deployment;

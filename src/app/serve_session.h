@@ -14,6 +14,10 @@
 
 #include "deployment.h"
 #include "rondo/core/result.h"
+#include "rondo/exec/clock.h"
+#include "rondo/exec/executor.h"
+#include "rondo/sim/request_generator.h"
+#include "rondo/sim/rng.h"
 
 namespace rondo::app {
 
@@ -29,5 +33,11 @@ struct ServeRequest {
 // kInvalidInput (exit 2) for a bad deployment, token file, or a non-loopback host without a token;
 // kIo when the address cannot be bound. Returns once a signal has stopped the service.
 Status serve_deployment(const ServeRequest& request, std::ostream& log);
+
+// The simulated people's requests from `from` to the end of its local day, each added to the
+// executor (source "request") when it falls due, as in `rondo run`; at the day's end the next day's
+// are drawn, and so on. Precondition: everything outlives the clock's events.
+void schedule_people(exec::Clock& clock, exec::Executor& executor, sim::RequestGenerator& people, sim::Rng& rng,
+                     const TimeZone& zone, Time from);
 
 }  // namespace rondo::app
