@@ -42,13 +42,13 @@ void run_serve(const ServeArgs& args, CommandContext& ctx) {
       args.deployment.empty() ? default_deployment() : std::filesystem::path(args.deployment);
   auto deployment = load_deployment(file);
   if (!deployment) return (void)fail(ctx, deployment.error());
-  ServeRequest request{.deployment = std::move(*deployment),
-                       .host = listen->first,
-                       .port = listen->second,
-                       .data = args.data,
-                       .token_file = args.token_file.empty() ? std::nullopt
-                                                             : std::optional<std::filesystem::path>(args.token_file),
-                       .speed = args.speed};
+  ServeRequest request{
+      .deployment = std::move(*deployment),
+      .host = listen->first,
+      .port = listen->second,
+      .data = args.data,
+      .token_file = args.token_file.empty() ? std::nullopt : std::optional<std::filesystem::path>(args.token_file),
+      .speed = args.speed};
   if (Status ok = serve_deployment(request, ctx.err); !ok) return (void)fail(ctx, ok.error());
 }
 

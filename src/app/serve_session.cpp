@@ -40,12 +40,10 @@ void schedule_people(exec::Clock& clock, exec::Executor& executor, sim::RequestG
   const auto day = zone.local_date(from);
   const Time to = zone.at(std::chrono::year_month_day{std::chrono::sys_days{day} + std::chrono::days{1}}, Duration{0});
   for (sim::Request& r : people.between(from, to, rng))
-    clock.schedule_at(r.at, [&executor, task = std::move(r.task)]() mutable {
-      (void)executor.add_task(std::move(task), "request");
-    });
-  clock.schedule_at(to, [&clock, &executor, &people, &rng, &zone, to] {
-    schedule_people(clock, executor, people, rng, zone, to);
-  });
+    clock.schedule_at(
+        r.at, [&executor, task = std::move(r.task)]() mutable { (void)executor.add_task(std::move(task), "request"); });
+  clock.schedule_at(
+      to, [&clock, &executor, &people, &rng, &zone, to] { schedule_people(clock, executor, people, rng, zone, to); });
 }
 
 Status serve_deployment(const ServeRequest& request, std::ostream& log) {
@@ -86,8 +84,13 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   sim::Rng people_rng(d.seed * 0x9E3779B97F4A7C15ULL + 17);
   if (parts.people) schedule_people(clock, executor, *parts.people, people_rng, d.zone, clock.now());
 
-  service::Server server({.clock = clock, .executor = executor, .robot = robot, .store = db, .map = parts.map,
-                          .zone = d.zone, .deployment = d.name},
+  service::Server server({.clock = clock,
+                          .executor = executor,
+                          .robot = robot,
+                          .store = db,
+                          .map = parts.map,
+                          .zone = d.zone,
+                          .deployment = d.name},
                          {.host = request.host, .port = request.port, .token = token});
   RONDO_ASSIGN_OR_RETURN(const int port, server.bind());
   log << fmt::format("rondo serve: {} on http://{}:{}/ (speed {}, data {}, {})\n", d.name, request.host, port,
@@ -104,7 +107,8 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   std::thread waiter([&] {
     int sig = 0;
     sigwait(&signals, &sig);
-    if (sig != SIGUSR1) log << fmt::format("rondo serve: {}: stopping\n", sig == SIGTERM ? "SIGTERM" : "SIGINT") << std::flush;
+    if (sig != SIGUSR1)
+      log << fmt::format("rondo serve: {}: stopping\n", sig == SIGTERM ? "SIGTERM" : "SIGINT") << std::flush;
     // No new requests; the ones in progress are answered (the clock still runs). Asked again until
     // the server has gone, in case the signal came before it was listening.
     while (!http_done) {

@@ -36,8 +36,8 @@ Status Executor::update_task(const TaskId& id, std::optional<TimeWindow> window,
   if (is_final(record.state))
     return Error{ErrorCode::kConflict, fmt::format("task {} is already {}", id, to_string(record.state))};
   if (record.state != TaskState::kQueued || current_ == id)
-    return Error{ErrorCode::kConflict, fmt::format("task {} is {}: only a queued task can be changed", id,
-                                                   to_string(record.state))};
+    return Error{ErrorCode::kConflict,
+                 fmt::format("task {} is {}: only a queued task can be changed", id, to_string(record.state))};
   Task changed = record.task;
   std::string what;
   if (window) {
@@ -60,7 +60,8 @@ Status Executor::update_task(const TaskId& id, std::optional<TimeWindow> window,
   // reason instead of breaking the plan of the others.
   std::erase(schedule_, id);
   const bool deferred = std::find(deferred_.begin(), deferred_.end(), id) != deferred_.end();
-  if (started_) reschedule(deferred ? std::vector<TaskId>{} : std::vector<TaskId>{id}, fmt::format("task {} changed", id));
+  if (started_)
+    reschedule(deferred ? std::vector<TaskId>{} : std::vector<TaskId>{id}, fmt::format("task {} changed", id));
   if (started_) kick();
   return Status{};
 }

@@ -20,7 +20,7 @@ namespace rondo::service {
 struct Reply {
   int status = 200;
   Json body = Json::object();
-  std::string text{};          // used instead of body when content_type is not JSON
+  std::string text{};  // used instead of body when content_type is not JSON
   std::string content_type = "application/json";
   std::vector<std::pair<std::string, std::string>> headers{};
 };
@@ -64,9 +64,9 @@ struct Api {
 
 using Handler = std::function<Reply(Api&, const httplib::Request&)>;
 struct Route {
-  std::string method;   // GET, POST, PATCH, DELETE
-  std::string path;     // OpenAPI form: /api/v1/tasks/{id}
-  bool write = false;   // needs the token when there is one
+  std::string method;  // GET, POST, PATCH, DELETE
+  std::string path;    // OpenAPI form: /api/v1/tasks/{id}
+  bool write = false;  // needs the token when there is one
   Handler handler;
   bool stream = false;  // the event stream: answered by event_stream() itself
 };

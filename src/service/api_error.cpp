@@ -21,13 +21,18 @@ bool looks_like_path(std::string_view s) {
 
 const char* code_name(ErrorCode code) {
   switch (code) {
-    case ErrorCode::kInvalidInput: return "invalid";
-    case ErrorCode::kNotFound: return "not_found";
-    case ErrorCode::kConflict: return "conflict";
-    case ErrorCode::kUnsupported: return "unsupported";
+    case ErrorCode::kInvalidInput:
+      return "invalid";
+    case ErrorCode::kNotFound:
+      return "not_found";
+    case ErrorCode::kConflict:
+      return "conflict";
+    case ErrorCode::kUnsupported:
+      return "unsupported";
     case ErrorCode::kIo:
     case ErrorCode::kStorage:
-    case ErrorCode::kInternal: break;
+    case ErrorCode::kInternal:
+      break;
   }
   return "internal";
 }
@@ -37,7 +42,8 @@ const char* code_name(ErrorCode code) {
 Reply error_reply(int status, std::string code, std::string message, std::string field) {
   Reply r;
   r.status = status;
-  r.body = Json{{"error", Json{{"code", std::move(code)}, {"message", std::move(message)},
+  r.body = Json{{"error", Json{{"code", std::move(code)},
+                               {"message", std::move(message)},
                                {"field", field.empty() ? Json(nullptr) : Json(std::move(field))}}}};
   return r;
 }
@@ -66,11 +72,20 @@ std::string field_of(const std::string& message) {
 Reply error_reply(const Error& error) {
   int status = 500;
   switch (error.code) {
-    case ErrorCode::kInvalidInput: status = 422; break;
-    case ErrorCode::kNotFound: status = 404; break;
-    case ErrorCode::kConflict: status = 409; break;
-    case ErrorCode::kUnsupported: status = 501; break;
-    default: break;
+    case ErrorCode::kInvalidInput:
+      status = 422;
+      break;
+    case ErrorCode::kNotFound:
+      status = 404;
+      break;
+    case ErrorCode::kConflict:
+      status = 409;
+      break;
+    case ErrorCode::kUnsupported:
+      status = 501;
+      break;
+    default:
+      break;
   }
   return error_reply(status, code_name(error.code), error.message,
                      error.code == ErrorCode::kInvalidInput ? field_of(error.message) : "");

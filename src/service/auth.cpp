@@ -16,7 +16,8 @@ bool is_loopback_host(const std::string& host) {
 Result<std::string> load_token_file(const std::filesystem::path& file) {
   struct stat st {};
   if (::stat(file.c_str(), &st) != 0) return Error::not_found(fmt::format("{}: no such token file", file.string()));
-  if (!S_ISREG(st.st_mode)) return Error::invalid(fmt::format("{}: the token file is not a regular file", file.string()));
+  if (!S_ISREG(st.st_mode))
+    return Error::invalid(fmt::format("{}: the token file is not a regular file", file.string()));
   if ((st.st_mode & (S_IRGRP | S_IWGRP | S_IROTH | S_IWOTH)) != 0)
     return Error::invalid(fmt::format("{}: the token file can be read or written by others (mode {:o}); chmod 600 it",
                                       file.string(), st.st_mode & 0777));

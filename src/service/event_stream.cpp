@@ -68,8 +68,9 @@ void event_stream(Api& api, const httplib::Request& req, httplib::Response& res)
   }
   auto after = resume_point(req, *db);
   if (!after) {
-    const Reply r = error_reply(422, "invalid", after.error().message,
-                                req.has_header("Last-Event-ID") ? "Last-Event-ID" : (req.has_param("after") ? "after" : "tail"));
+    const Reply r =
+        error_reply(422, "invalid", after.error().message,
+                    req.has_header("Last-Event-ID") ? "Last-Event-ID" : (req.has_param("after") ? "after" : "tail"));
     res.status = r.status;
     res.set_content(r.body.dump() + "\n", "application/json");
     return;
@@ -86,7 +87,8 @@ void event_stream(Api& api, const httplib::Request& req, httplib::Response& res)
           if (!events) return false;
           if (!events->empty()) {
             std::string chunk;
-            for (const store::Event& e : *events) chunk += fmt::format("id: {}\ndata: {}\n\n", e.seq, event_json(e).dump());
+            for (const store::Event& e : *events)
+              chunk += fmt::format("id: {}\ndata: {}\n\n", e.seq, event_json(e).dump());
             if (!sink.write(chunk.data(), chunk.size())) return false;
             stream->last = events->back().seq;
             stream->last_write = std::chrono::steady_clock::now();

@@ -11,7 +11,9 @@ std::string with_default_zone(Json body, const TimeZone& zone) {
   return body.dump();
 }
 
-Json time_json(std::optional<Time> t) { return t ? Json(format_time(*t)) : Json(nullptr); }
+Json time_json(std::optional<Time> t) {
+  return t ? Json(format_time(*t)) : Json(nullptr);
+}
 
 Json task_json(const exec::TaskRecord& r) {
   const Task& t = r.task;
@@ -26,9 +28,9 @@ Json task_json(const exec::TaskRecord& r) {
          {"start_node", t.start_node},
          {"duration_s", to_seconds(t.duration)},
          {"added", time_json(r.added)},
-         {"window", t.window ? Json{{"release", format_time(t.window->release)},
-                                    {"deadline", format_time(t.window->deadline)}}
-                             : Json(nullptr)},
+         {"window",
+          t.window ? Json{{"release", format_time(t.window->release)}, {"deadline", format_time(t.window->deadline)}}
+                   : Json(nullptr)},
          {"planned", Json{{"start", time_json(r.planned_start)}, {"end", time_json(r.planned_end)}}},
          {"actual", Json{{"start", time_json(r.started)}, {"end", time_json(r.ended)}}},
          {"dropped_for_now", r.dropped_for_now ? Json{{"code", std::string(exec::to_string(r.dropped_for_now->first))},
@@ -67,7 +69,8 @@ Result<std::optional<long>> query_int(const httplib::Request& req, const char* n
     used = 0;
   }
   if (used == 0 || used != text.size() || v < min || v > max)
-    return Error::invalid(fmt::format("query: {}: expected a whole number from {} to {}, found '{}'", name, min, max, text));
+    return Error::invalid(
+        fmt::format("query: {}: expected a whole number from {} to {}, found '{}'", name, min, max, text));
   return std::optional<long>(v);
 }
 

@@ -45,24 +45,29 @@ Reply map_view(Api& api, const httplib::Request&) {
   return r;
 }
 
-Result<std::chrono::year_month_day> query_date(const httplib::Request& req, const TimeZone& zone, Time now) {
-  if (!req.has_param("date")) return zone.local_date(now);
-  auto t = parse_time(req.get_param_value("date") + "T12:00:00Z");
-  if (!t) return Error::invalid(fmt::format("query: date: expected YYYY-MM-DD, found '{}'", req.get_param_value("date")));
+// The local day a `date` parameter names ("" : today's).
+Result<std::chrono::year_month_day> local_day(const std::string& date, const TimeZone& zone, Time now) {
+  if (date.empty()) return zone.local_date(now);
+  auto t = parse_time(date + "T12:00:00Z");
+  if (!t) return Error::invalid(fmt::format("query: date: expected YYYY-MM-DD, found '{}'", date));
   return std::chrono::year_month_day{std::chrono::floor<std::chrono::days>(*t)};
 }
 
+std::string date_param(const httplib::Request& req) {
+  return req.has_param("date") ? req.get_param_value("date") : "";
+}
+
+std::chrono::year_month_day next_day(std::chrono::year_month_day d) {
+  return std::chrono::year_month_day{std::chrono::sys_days{d} + std::chrono::days{1}};
+}
+
 Reply schedule(Api& api, const httplib::Request& req) {
-  const httplib::Request* q = &req;
-  return api.on_clock([&api, date_text = q->has_param("date") ? q->get_param_value("date") : std::string()] {
-    httplib::Request r;
-    if (!date_text.empty()) r.params.emplace("date", date_text);
+  return api.on_clock([&api, date = date_param(req)] {
     const Time now = api.ctx.clock.now();
-    auto day = query_date(r, api.ctx.zone, now);
+    auto day = local_day(date, api.ctx.zone, now);
     if (!day) return error_reply(422, "invalid", day.error().message, "date");
     const Time from = api.ctx.zone.at(*day, Duration{0});
-    const Time to = api.ctx.zone.at(std::chrono::year_month_day{std::chrono::sys_days{*day} + std::chrono::days{1}},
-                                    Duration{0});
+    const Time to = api.ctx.zone.at(next_day(*day), Duration{0});
     const exec::Executor::Activity a = api.ctx.executor.activity();
     Json tasks = Json::array();
     for (const TaskId& id : api.ctx.executor.task_order()) {
@@ -99,23 +104,20 @@ Reply schedule(Api& api, const httplib::Request& req) {
 Reply edge_model(Api& api, const httplib::Request& req) {
   const std::string edge_id = req.matches[1];
   const auto edge = api.ctx.map.find_edge(edge_id);
-  if (!edge) return error_reply(404, "not_found", fmt::format("no edge '{}' on the map '{}'", edge_id, api.ctx.map.name()));
+  if (!edge)
+    return error_reply(404, "not_found", fmt::format("no edge '{}' on the map '{}'", edge_id, api.ctx.map.name()));
   auto step = query_int(req, "step_minutes", 1, 240);
   if (!step) return error_reply(422, "invalid", step.error().message, "step_minutes");
-  const std::string date_text = req.has_param("date") ? req.get_param_value("date") : "";
   const long step_min = step->value_or(15);
-  return api.on_clock([&api, e = *edge, edge_id, date_text, step_min] {
-    httplib::Request r;
-    if (!date_text.empty()) r.params.emplace("date", date_text);
-    auto day = query_date(r, api.ctx.zone, api.ctx.clock.now());
+  return api.on_clock([&api, e = *edge, edge_id, date = date_param(req), step_min] {
+    auto day = local_day(date, api.ctx.zone, api.ctx.clock.now());
     if (!day) return error_reply(422, "invalid", day.error().message, "date");
     const plan::LearnedEdgeModels& models = api.ctx.executor.models();
     const std::size_t index = models.model_index(e);
     const auto& fitted = models.models();
     const bool learned = fitted && index != plan::LearnedEdgeModels::kUnknown;
     const Time from = api.ctx.zone.at(*day, Duration{0});
-    const Time to = api.ctx.zone.at(std::chrono::year_month_day{std::chrono::sys_days{*day} + std::chrono::days{1}},
-                                    Duration{0});
+    const Time to = api.ctx.zone.at(next_day(*day), Duration{0});
     Json points = Json::array();
     for (Time t = from; t < to; t += minutes(step_min)) {
       const plan::EdgeOutcome o = models.outcome(e, t);
@@ -151,7 +153,10 @@ Reply edges_now(Api& api, const httplib::Request& req) {
     for (map::EdgeIndex e = 0; e < api.ctx.map.edge_count(); ++e) {
       const plan::EdgeOutcome o = models.outcome(e, t);
       const map::Edge& edge = api.ctx.map.edges()[e];
-      list.push_back(Json{{"id", edge.id}, {"from", edge.from}, {"to", edge.to}, {"p", o.success_probability},
+      list.push_back(Json{{"id", edge.id},
+                          {"from", edge.from},
+                          {"to", edge.to},
+                          {"p", o.success_probability},
                           {"expected_s", o.expected_seconds},
                           {"learned", models.models() && models.model_index(e) != plan::LearnedEdgeModels::kUnknown}});
     }
@@ -178,7 +183,8 @@ Reply add_routines(Api& api, const httplib::Request& req) {
   const PlaceCheck places{[&map](std::string_view n) { return map.find_node(n).has_value(); }, map.name()};
   auto file = parse_task_file(with_default_zone(j, api.ctx.zone), DocumentFormat::kJson, "request", &places);
   if (!file) return error_reply(file.error());
-  if (!file->tasks.empty()) return error_reply(422, "invalid", "request: tasks: add tasks through /api/v1/tasks", "tasks");
+  if (!file->tasks.empty())
+    return error_reply(422, "invalid", "request: tasks: add tasks through /api/v1/tasks", "tasks");
   if (file->routines.empty()) return error_reply(422, "invalid", "request: routines: no routine to add", "routines");
   return api.on_clock([&api, list = std::move(file->routines)]() mutable {
     Json added = Json::array();

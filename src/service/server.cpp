@@ -30,7 +30,9 @@ bool same_secret(const std::string& a, const std::string& b) {
   return diff == 0;
 }
 
-bool is_write(const std::string& method) { return method != "GET" && method != "HEAD" && method != "OPTIONS"; }
+bool is_write(const std::string& method) {
+  return method != "GET" && method != "HEAD" && method != "OPTIONS";
+}
 
 void send(httplib::Response& res, const Reply& reply) {
   res.status = reply.status;
@@ -120,7 +122,8 @@ Server::Server(ServiceContext context, ServerOptions options)
   im.http.set_payload_max_length(o.body_limit);
   im.http.set_read_timeout(std::chrono::duration_cast<std::chrono::microseconds>(o.read_timeout));
   im.http.set_write_timeout(std::chrono::duration_cast<std::chrono::microseconds>(o.read_timeout));
-  im.http.set_keep_alive_timeout(std::max<time_t>(1, std::chrono::duration_cast<std::chrono::seconds>(o.read_timeout).count()));
+  im.http.set_keep_alive_timeout(
+      std::max<time_t>(1, std::chrono::duration_cast<std::chrono::seconds>(o.read_timeout).count()));
   im.http.set_pre_routing_handler([&im](const httplib::Request& req, httplib::Response& res) {
     if (!im.host_ok(req)) {
       send(res, error_reply(403, "host", fmt::format("Host '{}' is not this service's", req.get_header_value("Host"))));
@@ -141,21 +144,32 @@ Server::Server(ServiceContext context, ServerOptions options)
     }
     return httplib::Server::HandlerResponse::Unhandled;
   });
-  im.http.set_error_handler(httplib::Server::HandlerWithResponse([](const httplib::Request& req, httplib::Response& res) {
-    if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
-    Reply r;
-    switch (res.status) {
-      case 404: r = error_reply(404, "not_found", fmt::format("no route {} {}", req.method, req.path)); break;
-      case 413: r = error_reply(413, "too_large", "the request body is larger than the service accepts"); break;
-      case 400: r = error_reply(400, "malformed", "the request is not valid HTTP"); break;
-      default: r = error_reply(res.status, "error", fmt::format("HTTP {}", res.status)); break;
-    }
-    send(res, r);
-    return httplib::Server::HandlerResponse::Handled;
-  }));
+  im.http.set_error_handler(
+      httplib::Server::HandlerWithResponse([](const httplib::Request& req, httplib::Response& res) {
+        if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+        Reply r;
+        switch (res.status) {
+          case 404:
+            r = error_reply(404, "not_found", fmt::format("no route {} {}", req.method, req.path));
+            break;
+          case 413:
+            r = error_reply(413, "too_large", "the request body is larger than the service accepts");
+            break;
+          case 400:
+            r = error_reply(400, "malformed", "the request is not valid HTTP");
+            break;
+          default:
+            r = error_reply(res.status, "error", fmt::format("HTTP {}", res.status));
+            break;
+        }
+        send(res, r);
+        return httplib::Server::HandlerResponse::Handled;
+      }));
 }
 
-Server::~Server() { stop(); }
+Server::~Server() {
+  stop();
+}
 
 Result<int> Server::bind() {
   Impl& im = *impl_;

@@ -32,7 +32,9 @@ Result<Json> parse_body(const httplib::Request& req) {
   return j;
 }
 
-Reply malformed(const std::string& what) { return error_reply(400, "malformed", what); }
+Reply malformed(const std::string& what) {
+  return error_reply(400, "malformed", what);
+}
 
 Reply created(Api& api, const std::vector<TaskId>& ids) {
   Json tasks = Json::array();
@@ -152,8 +154,11 @@ Reply one(Api& api, const httplib::Request& req) {
     } else {
       auto stored = store::get_task(api.ctx.store, id);
       if (!stored) return error_reply(404, "not_found", fmt::format("no task '{}'", id));
-      reply.body = Json{{"id", stored->id}, {"state", stored->state}, {"source", stored->source},
-                        {"added", format_time(stored->created)}, {"task", stored->task}};
+      reply.body = Json{{"id", stored->id},
+                        {"state", stored->state},
+                        {"source", stored->source},
+                        {"added", format_time(stored->created)},
+                        {"task", stored->task}};
     }
     reply.body["events"] = std::move(history);
     return reply;
@@ -181,7 +186,8 @@ Reply cancel(Api& api, const httplib::Request& req) {
 }
 
 Result<Time> time_field(const Json& j, const std::string& path) {
-  if (!j.is_string()) return Error::invalid(fmt::format("request: {}: expected a time like 2026-11-23T09:00:00Z", path));
+  if (!j.is_string())
+    return Error::invalid(fmt::format("request: {}: expected a time like 2026-11-23T09:00:00Z", path));
   auto t = parse_time(j.get<std::string>());
   if (!t) return Error::invalid(fmt::format("request: {}: {}", path, t.error().message));
   return *t;
@@ -195,7 +201,8 @@ Reply change(Api& api, const httplib::Request& req) {
   std::optional<int> priority;
   for (const auto& [k, v] : body->items()) {
     if (k == "priority") {
-      if (!v.is_number_integer()) return error_reply(422, "invalid", "request: priority: expected a whole number", "priority");
+      if (!v.is_number_integer())
+        return error_reply(422, "invalid", "request: priority: expected a whole number", "priority");
       priority = v.get<int>();
     } else if (k == "window") {
       if (!v.is_object() || !v.contains("release") || !v.contains("deadline") || v.size() != 2)

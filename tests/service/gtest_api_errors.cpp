@@ -44,14 +44,14 @@ TEST(ApiErrors, MalformedJsonIs400AndTasksThatCannotBeMeantAre422NamingTheField)
       fmt::format(R"("window": {{"release": "{}", "deadline": "{}"}})", format_time(t), format_time(t + hours(1)));
   const std::string backwards =
       fmt::format(R"("window": {{"release": "{}", "deadline": "{}"}})", format_time(t), format_time(t - hours(1)));
-  expect_error(cli.Post("/api/v1/tasks", task(backwards, R"("duration": 60, "start_node": "WayPoint2")"),
-                        "application/json"),
-               422, "invalid", "tasks[0].window.deadline");
-  expect_error(cli.Post("/api/v1/tasks", task(ok_window, R"("duration": 60, "start_node": "Atlantis")"),
-                        "application/json"),
-               422, "invalid", "tasks[0].start_node");
-  auto too_long = cli.Post("/api/v1/tasks", task(ok_window, R"("duration": 7200, "start_node": "WayPoint2")"),
-                           "application/json");
+  expect_error(
+      cli.Post("/api/v1/tasks", task(backwards, R"("duration": 60, "start_node": "WayPoint2")"), "application/json"),
+      422, "invalid", "tasks[0].window.deadline");
+  expect_error(
+      cli.Post("/api/v1/tasks", task(ok_window, R"("duration": 60, "start_node": "Atlantis")"), "application/json"),
+      422, "invalid", "tasks[0].start_node");
+  auto too_long =
+      cli.Post("/api/v1/tasks", task(ok_window, R"("duration": 7200, "start_node": "WayPoint2")"), "application/json");
   ASSERT_TRUE(too_long);
   EXPECT_EQ(too_long->status, 422);
   EXPECT_TRUE(body_of(too_long)["error"]["field"].get<std::string>().starts_with("tasks[0]")) << too_long->body;
@@ -94,9 +94,10 @@ TEST(ApiErrors, AStallingClientIsDisconnected) {
   addr.sin_port = htons(static_cast<std::uint16_t>(s.port()));
   addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
-  const std::string half = fmt::format("POST /api/v1/tasks HTTP/1.1\r\nHost: 127.0.0.1:{}\r\nContent-Length: 500\r\n"
-                                       "Content-Type: application/json\r\n\r\n{{\"tasks\"",
-                                       s.port());
+  const std::string half = fmt::format(
+      "POST /api/v1/tasks HTTP/1.1\r\nHost: 127.0.0.1:{}\r\nContent-Length: 500\r\n"
+      "Content-Type: application/json\r\n\r\n{{\"tasks\"",
+      s.port());
   ASSERT_EQ(::send(fd, half.data(), half.size(), 0), static_cast<ssize_t>(half.size()));
   // The server answers 408 or just closes: either way the connection ends, well before the deadline.
   std::string got;

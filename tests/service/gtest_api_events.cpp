@@ -5,7 +5,6 @@
 #include <atomic>
 #include <thread>
 
-
 #include "live_service.h"
 #include "rondo/store/events.h"
 #include "test_files.h"

@@ -127,10 +127,10 @@ TEST(ApiViews, TheOpenApiDocumentListsExactlyTheRoutes) {
   for (const auto& [method, path] : documented) {
     if (path == "/api/v1/events") continue;  // a stream; its own test reads it
     const std::string concrete = std::regex_replace(path, std::regex(R"(\{[a-z_]+\})"), "x");
-    httplib::Result res = method == "GET"      ? cli.Get(concrete.c_str())
-                          : method == "POST"   ? cli.Post(concrete.c_str(), "{}", "application/json")
-                          : method == "PATCH"  ? cli.Patch(concrete.c_str(), "{}", "application/json")
-                                               : cli.Delete(concrete.c_str());
+    httplib::Result res = method == "GET"     ? cli.Get(concrete.c_str())
+                          : method == "POST"  ? cli.Post(concrete.c_str(), "{}", "application/json")
+                          : method == "PATCH" ? cli.Patch(concrete.c_str(), "{}", "application/json")
+                                              : cli.Delete(concrete.c_str());
     ASSERT_TRUE(res) << method << " " << concrete;
     const Json j = Json::parse(res->body, nullptr, false);
     const bool unknown_route = res->status == 404 && !j.is_discarded() && j.contains("error") &&
@@ -156,8 +156,9 @@ TEST(ApiViews, EveryEdgeNowAndTheEventTail) {
   }
   EXPECT_EQ(cli.Get("/api/v1/edges?at=noon")->status, 422);
   for (int i = 0; i < 3; ++i)
-    ASSERT_EQ(cli.Post("/api/v1/tasks", s.task_body("tail" + std::to_string(i), hours(1 + i)), "application/json")->status,
-              201);
+    ASSERT_EQ(
+        cli.Post("/api/v1/tasks", s.task_body("tail" + std::to_string(i), hours(1 + i)), "application/json")->status,
+        201);
   // ?tail=1 starts with the log's last event only.
   std::string got;
   (void)cli.Get("/api/v1/events?tail=1", [&](const char* data, std::size_t n) {

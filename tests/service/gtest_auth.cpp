@@ -75,9 +75,9 @@ TEST(ApiAuth, ANonLoopbackHostWithoutATokenIsRefusedWithExitCode2) {
   std::ostringstream out2, err2;
   EXPECT_EQ(app::run({"serve", "--listen", "127.0.0.1:99999"}, out2, err2), 2);
   std::ostringstream out3, err3;
-  EXPECT_EQ(app::run({"serve", "--listen", "127.0.0.1:18080", "--speed", "0", "--data", (dir / "d2").string()}, out3,
-                     err3),
-            2);
+  EXPECT_EQ(
+      app::run({"serve", "--listen", "127.0.0.1:18080", "--speed", "0", "--data", (dir / "d2").string()}, out3, err3),
+      2);
 }
 
 }  // namespace

@@ -52,7 +52,8 @@ struct Child {
     const auto end = std::chrono::steady_clock::now() + deadline;
     while (std::chrono::steady_clock::now() < end) {
       int status = 0;
-      if (::waitpid(pid, &status, WNOHANG) == pid) return reaped = true, WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      if (::waitpid(pid, &status, WNOHANG) == pid)
+        return reaped = true, WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
       std::this_thread::sleep_for(std::chrono::milliseconds(20));  // polling: the deadline is the bound
     }
     return -1;
@@ -80,7 +81,8 @@ Child spawn(const std::vector<std::string>& args) {
 
 TEST(ServeCommand, ServesAndStopsCleanlyOnSigterm) {
   const auto dir = fresh_dir("rondo-service-test", "process");
-  Child c = spawn({RONDO_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", (dir / "data").string(), "--speed", "10"});
+  Child c =
+      spawn({RONDO_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", (dir / "data").string(), "--speed", "10"});
   const std::string port_text = c.wait_for(std::regex(R"(on http://127\.0\.0\.1:(\d+)/)"));
   ASSERT_FALSE(port_text.empty()) << c.seen;
   httplib::Client cli("127.0.0.1", std::stoi(port_text));
@@ -92,7 +94,8 @@ TEST(ServeCommand, ServesAndStopsCleanlyOnSigterm) {
   EXPECT_EQ(cli.Get("/api/v1/tasks")->status, 200);
   const Time release = std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now()) + hours(1);
   const std::string task = fmt::format(R"({{"tasks": [{{"id": "late-1", "window": {{"release": "{}", "deadline": "{}"}},
-      "duration": 60, "start_node": "WayPoint2"}}]}})", format_time(release), format_time(release + hours(1)));
+      "duration": 60, "start_node": "WayPoint2"}}]}})",
+                                       format_time(release), format_time(release + hours(1)));
   auto r = cli.Post("/api/v1/tasks", task, "application/json");
   ASSERT_TRUE(r);
   ASSERT_EQ(r->status, 201) << r->body;

@@ -33,12 +33,21 @@ LiveService::LiveService(const std::filesystem::path& data, LiveOptions o)
   eo.dock = parts_.dock;
   executor_ = std::make_unique<exec::Executor>(clock_, *robot_, parts_.map, store_, TimeZone::utc(), eo);
   executor_->start();
-  server_ = std::make_unique<service::Server>(
-      service::ServiceContext{.clock = clock_, .executor = *executor_, .robot = *robot_, .store = store_,
-                              .map = parts_.map, .zone = TimeZone::utc(), .deployment = "g4s"},
-      service::ServerOptions{.host = "127.0.0.1", .port = 0, .token = o.token, .body_limit = o.body_limit,
-                             .read_timeout = o.read_timeout, .stream_poll = std::chrono::milliseconds(20),
-                             .stream_keepalive = seconds(1), .threads = o.threads});
+  server_ = std::make_unique<service::Server>(service::ServiceContext{.clock = clock_,
+                                                                      .executor = *executor_,
+                                                                      .robot = *robot_,
+                                                                      .store = store_,
+                                                                      .map = parts_.map,
+                                                                      .zone = TimeZone::utc(),
+                                                                      .deployment = "g4s"},
+                                              service::ServerOptions{.host = "127.0.0.1",
+                                                                     .port = 0,
+                                                                     .token = o.token,
+                                                                     .body_limit = o.body_limit,
+                                                                     .read_timeout = o.read_timeout,
+                                                                     .stream_poll = std::chrono::milliseconds(20),
+                                                                     .stream_keepalive = seconds(1),
+                                                                     .threads = o.threads});
   auto port = server_->bind();
   if (!port) throw std::runtime_error(port.error().message);
   port_ = *port;

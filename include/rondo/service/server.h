@@ -49,9 +49,9 @@ struct ServerOptions {
   // With a token, every write needs "Authorization: Bearer <token>"; without one only a loopback
   // host may be bound.
   std::optional<std::string> token;
-  std::size_t body_limit = 1 << 20;      // bytes; larger bodies get 413
-  Duration read_timeout = seconds(5);    // a client that stalls longer is disconnected
-  Duration answer_timeout = seconds(30); // the executor's thread did not answer: 503
+  std::size_t body_limit = 1 << 20;                       // bytes; larger bodies get 413
+  Duration read_timeout = seconds(5);                     // a client that stalls longer is disconnected
+  Duration answer_timeout = seconds(30);                  // the executor's thread did not answer: 503
   Duration stream_poll = std::chrono::milliseconds(100);  // how often an event stream looks for news
   Duration stream_keepalive = seconds(15);
   // HTTP threads. An event stream holds one for as long as it is open, so at most half of them
