@@ -3,6 +3,7 @@
 // over of every request to the clock's thread.
 #include <fmt/format.h>
 
+#include <atomic>
 #include <chrono>
 #include <future>
 #include <regex>
@@ -45,19 +46,28 @@ void send(httplib::Response& res, const Reply& reply) {
 
 }  // namespace
 
+// A request the clock's thread has not started within the answer timeout is withdrawn (503: it
+// was not carried out); one it has started is waited for to the end, so a 503 never hides a commit.
 Reply Api::on_clock(std::function<Reply()> work) {
   if (stopping) return error_reply(503, "unavailable", "the service is shutting down");
+  enum : int { kPending, kStarted, kWithdrawn };
   auto promise = std::make_shared<std::promise<Reply>>();
+  auto stage = std::make_shared<std::atomic<int>>(kPending);
   std::future<Reply> answer = promise->get_future();
-  ctx.clock.post([promise, work = std::move(work)] {
+  ctx.clock.post([promise, stage, work = std::move(work)] {
+    int expected = kPending;
+    if (!stage->compare_exchange_strong(expected, kStarted)) return;  // withdrawn: the client has its 503
     try {
       promise->set_value(work());
     } catch (const std::exception& e) {
       promise->set_value(error_reply(500, "internal", fmt::format("internal error: {}", e.what())));
     }
   });
-  if (answer.wait_for(options.answer_timeout) != std::future_status::ready)
-    return error_reply(503, "unavailable", "the executive did not answer in time");
+  if (answer.wait_for(options.answer_timeout) != std::future_status::ready) {
+    int expected = kPending;
+    if (stage->compare_exchange_strong(expected, kWithdrawn))
+      return error_reply(503, "unavailable", "the executive did not take the request in time; it was not carried out");
+  }
   return answer.get();
 }
 

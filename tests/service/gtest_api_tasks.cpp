@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <future>
+
 #include "live_service.h"
 #include "rondo/store/events.h"
 #include "rondo/store/task_table.h"
@@ -166,6 +169,32 @@ TEST(ApiTasks, AnIdempotencyKeyReturnsTheFirstAnswerEvenAfterARestart) {
   auto all = store::list_tasks(*reader);
   ASSERT_TRUE(all.ok());
   EXPECT_EQ(std::count_if(all->begin(), all->end(), [](const store::TaskRecord& t) { return t.id == "once"; }), 1);
+}
+
+// A submission the executive's thread cannot take in time is withdrawn: 503, and never carried
+// out later behind the client's back.
+TEST(ApiTasks, ASubmissionNotTakenInTimeIsWithdrawnNotDoneLater) {
+  const auto data = fresh_dir("rondo-service-test", "withdrawn");
+  LiveService s(data, {.answer_timeout = std::chrono::milliseconds(200)});
+  std::promise<void> release;
+  std::shared_future<void> released = release.get_future().share();
+  std::atomic<bool> blocked{false};
+  s.clock().post([&blocked, released] {  // the executive is busy until the test says so
+    blocked = true;
+    released.wait();
+  });
+  ASSERT_TRUE(eventually([&] { return blocked.load(); }));
+  auto cli = s.client();
+  auto r = cli.Post("/api/v1/tasks", s.task_body("late"), "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 503) << r->body;
+  release.set_value();
+  // Once the executive is free again, the withdrawn request has not been carried out.
+  EXPECT_EQ(cli.Get("/healthz")->status, 200);
+  EXPECT_EQ(cli.Get("/api/v1/tasks/late")->status, 404);
+  auto reader = store::Store::open(data / "rondo.sqlite", {.mode = store::OpenMode::kReadOnly});
+  ASSERT_TRUE(reader.ok());
+  EXPECT_FALSE(store::get_task(*reader, "late").ok());
 }
 
 }  // namespace

@@ -44,7 +44,7 @@ LiveService::LiveService(const std::filesystem::path& data, LiveOptions o)
                                                                      .port = 0,
                                                                      .token = o.token,
                                                                      .body_limit = o.body_limit,
-                                                                     .read_timeout = o.read_timeout,
+                                                                     .read_timeout = o.read_timeout, .answer_timeout = o.answer_timeout,
                                                                      .stream_poll = std::chrono::milliseconds(20),
                                                                      .stream_keepalive = seconds(1),
                                                                      .threads = o.threads});

@@ -30,6 +30,7 @@ struct LiveOptions {
   Duration read_timeout = seconds(5);
   double speed = 1.0;
   int threads = 16;
+  Duration answer_timeout = seconds(30);
 };
 
 class LiveService {
