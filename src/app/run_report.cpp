@@ -36,6 +36,44 @@ Json task_summary(const exec::Executor& executor) {
   return tasks;
 }
 
+// Delivery jobs by how their drop ended (the job's own drop, not a return made later): delivered,
+// failed or cancelled by code, pending; returns made and done; what is on board at the end.
+// Nothing when the run had no delivery.
+std::optional<Json> delivery_summary(const exec::Executor& executor) {
+  std::map<std::string, std::vector<const exec::TaskRecord*>> drops;  // job -> its drops, in order added
+  for (const TaskId& id : executor.task_order()) {
+    const exec::TaskRecord& r = executor.tasks().at(id);
+    if (r.task.delivery && r.task.delivery->role == DeliveryRole::kDrop) drops[r.task.delivery->job].push_back(&r);
+  }
+  if (drops.empty()) return std::nullopt;
+  int delivered = 0, pending = 0, returns = 0, returned = 0;
+  std::map<std::string, std::map<std::string, int>> ended;
+  for (const auto& [job, list] : drops) {
+    const exec::TaskRecord& own = *list.front();
+    if (own.state == TaskState::kSucceeded)
+      ++delivered;
+    else if (!is_final(own.state))
+      ++pending;
+    else
+      ++ended[to_string(own.state)][std::string(exec::to_string(own.outcome))];
+    for (std::size_t i = 1; i < list.size(); ++i) {
+      ++returns;
+      if (list[i]->state == TaskState::kSucceeded) ++returned;
+    }
+  }
+  Json j{{"jobs", drops.size()}, {"delivered", delivered}, {"pending", pending}};
+  for (const char* state : {"failed", "cancelled", "dropped"}) {
+    Json codes = Json::object();
+    for (const auto& [code, n] : ended[state]) codes[code] = n;
+    j[state] = codes;
+  }
+  j["returns"] = Json{{"made", returns}, {"done", returned}};
+  Json on_board = Json::array();
+  for (const exec::OnBoard& o : executor.on_board()) on_board.push_back(Json{{"job", o.job}, {"object", o.object}});
+  j["on_board_at_end"] = on_board;
+  return j;
+}
+
 // What happened on the way that is not a final outcome: preemptions (the task went back to the
 // queue), drops for now and re-offers, cancels that waited, robot faults; each by outcome code.
 Json event_summary(const exec::Executor& executor) {
@@ -83,6 +121,7 @@ Json run_report(const exec::Executor& executor, const RunFigures& figures) {
   j["to"] = format_time(figures.to);
   j["tasks"] = task_summary(executor);
   j["events"] = event_summary(executor);
+  if (std::optional<Json> d = delivery_summary(executor)) j["deliveries"] = *d;
   j["navigation"] = Json{{"attempts", s.navigation_attempts},
                          {"successes", s.navigation_successes},
                          {"distance_m", std::round(figures.distance_m * 10) / 10}};

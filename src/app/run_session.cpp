@@ -122,8 +122,8 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
     const Time day_to = d.zone.at(tomorrow, Duration{0});
     if (s.parts.people) {
       for (sim::Request& r : s.parts.people->between(day_from, day_to, people_rng))
-        clock.schedule_at(r.at, [&executor, task = std::move(r.task)]() mutable {
-          (void)executor.add_task(std::move(task), "request");
+        clock.schedule_at(r.at, [&executor, tasks = r.tasks()]() mutable {
+          (void)executor.add_tasks(std::move(tasks), "request");
         });
     }
     run_until(day_to);

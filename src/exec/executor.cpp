@@ -1,4 +1,4 @@
-// The executor's bookkeeping: accepting tasks, state transitions written to the store, start-up.
+// The executor's front: accepting and cancelling tasks, start-up, and what it tells about itself.
 #include "rondo/exec/executor.h"
 
 #include <fmt/format.h>
@@ -6,34 +6,51 @@
 #include <algorithm>
 #include <utility>
 
-#include "rondo/plan/distance_prior.h"
-#include "rondo/store/events.h"
-#include "rondo/store/observations.h"
-#include "rondo/store/robot_state.h"
+#include "deliveries.h"
+#include "dispatcher.h"
+#include "rondo/schedule/default_scheduler.h"
+#include "task_run.h"
 
 namespace rondo::exec {
 
+const char* to_string(ExecutorPhase phase) {
+  switch (phase) {
+    case ExecutorPhase::kIdle: return "idle";
+    case ExecutorPhase::kWaiting: return "waiting";
+    case ExecutorPhase::kNavigating: return "navigating";
+    case ExecutorPhase::kActing: return "acting";
+    case ExecutorPhase::kDocking: return "docking";
+  }
+  return "idle";
+}
+
 Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::Store& store, const TimeZone& zone,
-                   ExecutorOptions options)
+                   ExecutorOptions options, ExecutorParts parts)
     : clock_(clock),
       robot_(robot),
       map_(map),
       store_(store),
       zone_(zone),
       options_(options),
-      models_(std::make_shared<plan::LearnedEdgeModels>(map, nullptr)),
+      models_(parts.models ? std::move(parts.models) : std::make_shared<plan::LearnedEdgeModels>(map, nullptr)),
+      planner_(std::make_unique<plan::TravelOracle>(map_, models_,
+                                                    plan::TravelOracleOptions{.slot_width = options_.slot_width})),
+      travel_(std::make_unique<TravelCache>(map_, models_, *planner_, options_.slot_width)),
+      scheduler_(parts.scheduler ? std::move(parts.scheduler) : std::make_unique<schedule::DefaultScheduler>()),
       rng_(options.seed),
-      book_(store, clock) {
-  planner_ = std::make_unique<plan::TravelOracle>(map_, models_, plan::TravelOracleOptions{.slot_width = options_.slot_width});
-  travel_ = std::make_unique<TravelCache>(map_, models_, *planner_, options_.slot_width);
+      book_(store, clock),
+      dispatcher_(std::make_unique<Dispatcher>(map_, *travel_, book_, options_, zone_)),
+      deliveries_(std::make_unique<Deliveries>()),
+      steps_{clock_, robot_, map_, book_, *travel_, *planner_, options_, zone_, stats_, navigations_, in_fault_} {
   robot_.set_listener(this);
 }
 
-Executor::~Executor() { robot_.set_listener(nullptr); }
+Executor::~Executor() {
+  robot_.set_listener(nullptr);
+  if (look_again_ != 0) clock_.cancel(look_again_);
+}
 
-std::string Executor::fmt_time(Time t) const { return zone_.format_clock(t); }
-
-Status Executor::accept(const Task& task) {
+Status Executor::accept(const Task& task) const {
   if (auto ok = validate(task, "task " + task.id); !ok) return ok;
   if (book_.contains(task.id)) return Error::invalid(fmt::format("task {}: the id is already taken", task.id));
   for (const std::string* node : {&task.start_node, &task.end_node}) {
@@ -52,8 +69,9 @@ Result<std::vector<TaskId>> Executor::insert_tasks(std::vector<Task> tasks, std:
   RONDO_RETURN_IF_ERROR(book_.add(std::move(tasks), source));
   std::vector<TaskId> standard;
   for (const TaskId& id : ids) {
+    deliveries_->add(book_.at(id).task);
     if (book_.at(id).task.kind == TaskKind::kOnDemand)
-      on_demand_.push_back(id);
+      dispatcher_->on_demand.push_back(id);
     else
       standard.push_back(id);
   }
@@ -73,15 +91,13 @@ Status Executor::add_tasks(std::vector<Task> tasks, std::string_view source) {
   std::vector<TaskId> standard = std::move(*inserted);
   if (!started_) return Status{};  // start() schedules everything added before it
   if (!standard.empty()) reschedule(std::move(standard), "new tasks");
-  if (!on_demand_.empty() && current_ && book_.at(*current_).task.kind == TaskKind::kStandard &&
-      (phase_ == Phase::kNavigating || phase_ == Phase::kActing)) {
-    const TaskId& od = on_demand_.front();
+  if (!dispatcher_->on_demand.empty() && running_standard()) {
     if (interruptible_now()) {
-      preempt_for(Outcome::kPreemptedOnDemand, fmt::format("preempted by an on-demand task: {}", od), {});
+      preempt_for_on_demand();
       return Status{};
     }
-    book_.note(od, "waiting", Outcome::kRunsAfterCurrent,
-         fmt::format("the running task {} cannot be interrupted now; runs right after it", *current_));
+    book_.note(dispatcher_->on_demand.front(), "waiting", Outcome::kRunsAfterCurrent,
+               fmt::format("the running task {} cannot be interrupted now; runs right after it", run_->id()));
   }
   kick();
   return Status{};
@@ -91,31 +107,27 @@ Status Executor::cancel_task(const TaskId& id, const std::string& reason) {
   if (!book_.contains(id)) return Error::not_found(fmt::format("no task '{}'", id));
   const TaskRecord& r = book_.at(id);
   if (is_final(r.state))
-    return Error{ErrorCode::kConflict, fmt::format("task {} is already {}: it cannot be cancelled", id, to_string(r.state))};
+    return Error{ErrorCode::kConflict,
+                 fmt::format("task {} is already {}: it cannot be cancelled", id, to_string(r.state))};
   const std::string why = reason.empty() ? "cancelled" : "cancelled: " + reason;
-  if (current_ && *current_ == id) {
-    if (phase_ == Phase::kWaiting) {
-      clock_.cancel(wait_timer_);
-      wait_timer_ = 0;
-      stats_.waiting += clock_.now() - wait_start_;
-      current_.reset();
-      phase_ = Phase::kIdle;
+  if (run_ && run_->id() == id) {
+    if (run_->waiting()) {
+      end_wait();
     } else if (interruptible_now()) {
-      stop_current(CancelIntent::kCancel, Outcome::kCancelled, why);
+      run_->stop(TaskRun::Stop::kCancel, Outcome::kCancelled, why);
       return Status{};
     } else {
-      cancel_pending_ = why;
+      run_->cancel_when_possible(why);
       book_.note(id, "cancel pending", Outcome::kCancelPending,
                  why + "; the task cannot be interrupted now, so it stops at its next interruptible moment");
       return Status{};
     }
   }
-  std::erase(schedule_, id);
-  std::erase(deferred_, id);
-  std::erase(on_demand_, id);
+  dispatcher_->forget(id);
   book_.at(id).planned_start.reset();
   book_.at(id).planned_end.reset();
   book_.transition(id, TaskState::kCancelled, Outcome::kCancelled, why);
+  cancel_job_of(id, why);
   if (started_) {
     reschedule({}, "task " + id + " cancelled");  // its room may let a dropped task back in
     kick();
@@ -130,13 +142,15 @@ void Executor::add_routines(std::vector<Routine> routines) {
 void Executor::start() {
   if (started_) return;
   started_ = true;
-  robot_interruptible_ = true;
   if (auto up = robot_.activate(); !up) on_fault({.kind = RobotFault::Kind::kError, .message = up.error().message});
   create_routine_tasks(zone_.local_date(clock_.now()));
   std::vector<TaskId> pending;
+  const auto queued = [](const std::vector<TaskId>& q, const TaskId& id) {
+    return std::find(q.begin(), q.end(), id) != q.end();
+  };
   for (const TaskId& id : book_.order())
     if (book_.at(id).task.kind == TaskKind::kStandard && book_.at(id).state == TaskState::kQueued &&
-        std::find(schedule_.begin(), schedule_.end(), id) == schedule_.end())
+        !queued(dispatcher_->planned, id) && !queued(dispatcher_->deferred, id))
       pending.push_back(id);
   if (!pending.empty()) reschedule(std::move(pending), "start");
   schedule_midnight();
@@ -144,70 +158,28 @@ void Executor::start() {
   clock_.schedule_at(clock_.now(), [this] { kick(); });
 }
 
-void Executor::log_battery() {
-  const store::Observation o{.what = "battery", .where = map_.node(robot_.location()).name, .when = clock_.now(),
-                             .value = std::clamp(robot_.battery(), 0.0, 1.0), .text = std::nullopt};
-  if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
+bool Executor::interruptible_now() const { return !run_ || run_->interruptible(); }
+
+bool Executor::running_standard() const {
+  return run_ && !run_->waiting() && run_->task().kind == TaskKind::kStandard;
 }
 
-void Executor::save_robot_state() {
-  const std::optional<map::Pose> pose = robot_.position();
-  store::RobotState st{.robot = options_.robot_name,
-                       .node = map_.node(robot_.location()).name,
-                       .battery = std::clamp(robot_.battery(), 0.0, 1.0),
-                       .updated = clock_.now()};
-  if (pose) {
-    st.x = pose->x;
-    st.y = pose->y;
-    st.yaw = pose->yaw;
+void Executor::preempt_for_on_demand() {
+  preempt_for(Outcome::kPreemptedOnDemand,
+              fmt::format("preempted by an on-demand task: {}", dispatcher_->on_demand.front()), {});
+}
+
+ExecutorPhase Executor::phase() const {
+  if (run_) {
+    if (run_->waiting()) return ExecutorPhase::kWaiting;
+    return run_->acting_since() ? ExecutorPhase::kActing : ExecutorPhase::kNavigating;
   }
-  if (fault_) st.fault = fault_->message;
-  if (auto ok = store::save_robot_state(store_, st); !ok) book_.write_error(ok.error().message);
+  return trip_ ? ExecutorPhase::kDocking : ExecutorPhase::kIdle;
 }
 
-void Executor::on_observation(const Observation& seen) {
-  const store::Observation o{.what = seen.what, .where = seen.where, .when = seen.when, .value = seen.value,
-                             .text = seen.text.empty() ? std::nullopt : std::optional<std::string>(seen.text)};
-  if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
-}
-
-void Executor::on_fault(const RobotFault& fault) {
-  const bool first = !fault_;
-  fault_ = fault;
-  if (!first) return;
-  fault_since_ = clock_.now();
-  save_robot_state();
-  book_.note_robot("fault", Outcome::kRobotFault, fmt::format("{}: {}; dispatch paused", to_string(fault.kind), fault.message));
-  suspend_monitors();
-  if (wait_timer_ != 0 && phase_ == Phase::kIdle) {  // an idle look-again timer: ready() kicks instead
-    clock_.cancel(wait_timer_);
-    wait_timer_ = 0;
-  }
-}
-
-void Executor::on_ready() {
-  if (!fault_) return;
-  const Duration down = clock_.now() - fault_since_.value_or(clock_.now());
-  fault_.reset();
-  fault_since_.reset();
-  book_.note_robot("ready", Outcome::kRobotReady,
-             fmt::format("ready again after {}; dispatch resumes",
-                         format_duration(std::chrono::round<std::chrono::seconds>(down))));
-  resume_monitors();
-  if (phase_ == Phase::kNavigating || phase_ == Phase::kDocking) {
-    if (!robot_.busy()) step_navigation();
-    return;
-  }
-  if (phase_ == Phase::kActing) {
-    if (!robot_.busy()) run_next_action();
-    return;
-  }
-  kick();
-}
-
-bool Executor::interruptible_now() const {
-  if (!current_) return true;
-  return book_.at(*current_).task.interruptible && robot_interruptible_;
+std::optional<TaskId> Executor::current_task() const {
+  if (run_) return run_->id();
+  return std::nullopt;
 }
 
 }  // namespace rondo::exec

@@ -6,27 +6,19 @@
 
 #include <algorithm>
 
+#include "dispatcher.h"
 #include "rondo/core/task_codec.h"
 #include "rondo/exec/executor.h"
 #include "rondo/store/task_table.h"
 
 namespace rondo::exec {
-namespace {
-
-const char* phase_name(int phase) {
-  static constexpr const char* kNames[] = {"idle", "waiting", "navigating", "acting", "docking"};
-  return kNames[phase];
-}
-
-}  // namespace
-
 Executor::Activity Executor::activity() const {
   Activity a;
-  a.phase = phase_name(static_cast<int>(phase_));
-  a.current = current_;
+  a.phase = to_string(phase());
+  a.current = current_task();
   a.fault = fault_;
-  a.planned = schedule_;
-  a.on_demand.assign(on_demand_.begin(), on_demand_.end());
+  a.planned = dispatcher_->planned;
+  a.on_demand.assign(dispatcher_->on_demand.begin(), dispatcher_->on_demand.end());
   return a;
 }
 
@@ -35,7 +27,7 @@ Status Executor::update_task(const TaskId& id, std::optional<TimeWindow> window,
   TaskRecord& record = book_.at(id);
   if (is_final(record.state))
     return Error{ErrorCode::kConflict, fmt::format("task {} is already {}", id, to_string(record.state))};
-  if (record.state != TaskState::kQueued || current_ == id)
+  if (record.state != TaskState::kQueued || current_task() == id)
     return Error{ErrorCode::kConflict,
                  fmt::format("task {} is {}: only a queued task can be changed", id, to_string(record.state))};
   Task changed = record.task;
@@ -44,7 +36,7 @@ Status Executor::update_task(const TaskId& id, std::optional<TimeWindow> window,
     if (changed.kind == TaskKind::kOnDemand)
       return Error::invalid(fmt::format("task {}: window: an on-demand task has no window", id));
     changed.window = *window;
-    what = fmt::format("window {} to {}", fmt_time(window->release), fmt_time(window->deadline));
+    what = fmt::format("window {} to {}", zone_.format_clock(window->release), zone_.format_clock(window->deadline));
   }
   if (priority) {
     changed.priority = *priority;
@@ -58,8 +50,9 @@ Status Executor::update_task(const TaskId& id, std::optional<TimeWindow> window,
   if (record.task.kind == TaskKind::kOnDemand) return Status{};
   // Offered again as a new task, so that a change it no longer fits drops it (for now) with a
   // reason instead of breaking the plan of the others.
-  std::erase(schedule_, id);
-  const bool deferred = std::find(deferred_.begin(), deferred_.end(), id) != deferred_.end();
+  std::erase(dispatcher_->planned, id);
+  const std::vector<TaskId>& later = dispatcher_->deferred;
+  const bool deferred = std::find(later.begin(), later.end(), id) != later.end();
   if (started_)
     reschedule(deferred ? std::vector<TaskId>{} : std::vector<TaskId>{id}, fmt::format("task {} changed", id));
   if (started_) kick();

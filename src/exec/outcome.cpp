@@ -6,7 +6,7 @@
 namespace rondo::exec {
 namespace {
 
-constexpr std::array<std::pair<Outcome, std::string_view>, 30> kNames{{
+constexpr std::array<std::pair<Outcome, std::string_view>, 32> kNames{{
     {Outcome::kNone, ""},
     {Outcome::kAdded, "added"},
     {Outcome::kScheduled, "scheduled"},
@@ -35,6 +35,8 @@ constexpr std::array<std::pair<Outcome, std::string_view>, 30> kNames{{
     {Outcome::kOverrunHeld, "overrun held"},
     {Outcome::kRunsAfterCurrent, "runs after current"},
     {Outcome::kInvalidRequest, "invalid request"},
+    {Outcome::kPickupFailed, "pickup failed"},
+    {Outcome::kReturnPlanned, "return planned"},
     {Outcome::kObservation, "observation"},
     {Outcome::kBattery, "battery"},
 }};

@@ -57,6 +57,12 @@ void TaskBook::transition(const TaskId& id, TaskState state, Outcome outcome, co
     write_errors_.push_back(ok.error().message);
 }
 
+void TaskBook::set_progress(const TaskId& id, std::size_t actions_done) {
+  records_.at(id).actions_done = actions_done;
+  if (auto ok = store::set_task_progress(store_, id, Json{{"actions_done", actions_done}}); !ok)
+    write_errors_.push_back(ok.error().message);
+}
+
 void TaskBook::note(const TaskId& id, const std::string& event, Outcome outcome, const std::string& reason) {
   append({.time = clock_.now(), .task_id = id, .event = event, .code = std::string(to_string(outcome)), .reason = reason});
 }
@@ -65,6 +71,15 @@ void TaskBook::note_robot(const std::string& event, Outcome outcome, const std::
   append({.time = clock_.now(),
           .subject = store::Subject::kRobot,
           .about = "robot",
+          .event = event,
+          .code = std::string(to_string(outcome)),
+          .reason = reason});
+}
+
+void TaskBook::note_schedule(const std::string& event, Outcome outcome, const std::string& reason) {
+  append({.time = clock_.now(),
+          .subject = store::Subject::kSchedule,
+          .about = "schedule",
           .event = event,
           .code = std::string(to_string(outcome)),
           .reason = reason});

@@ -8,7 +8,7 @@ namespace {
 
 Result<RequestTemplate> decode_template(const Field& f, const map::TopoMap& map) {
   RONDO_RETURN_IF_ERROR(f.expect_keys(
-      {"name", "weight", "places", "activity", "duration", "priority", "actions", "interruptible"}));
+      {"name", "weight", "places", "activity", "duration", "priority", "actions", "interruptible", "deliver"}));
   RequestTemplate t;
   RONDO_ASSIGN_OR_RETURN(auto name, f.required("name"));
   RONDO_ASSIGN_OR_RETURN(t.name, name.as_string());
@@ -37,6 +37,31 @@ Result<RequestTemplate> decode_template(const Field& f, const map::TopoMap& map)
   }
   if (auto i = f.optional("interruptible")) {
     RONDO_ASSIGN_OR_RETURN(t.task.interruptible, i->as_bool());
+  }
+  if (auto deliver = f.optional("deliver")) {
+    RONDO_RETURN_IF_ERROR(deliver->expect_keys({"to", "objects", "within"}));
+    DeliveryTemplate dt;
+    RONDO_ASSIGN_OR_RETURN(auto to, deliver->required("to"));
+    RONDO_ASSIGN_OR_RETURN(auto to_items, to.items());
+    for (const auto& item : to_items) {
+      RONDO_ASSIGN_OR_RETURN(auto node, item.as_string());
+      if (!map.find_node(node)) return item.error(fmt::format("map '{}' has no node '{}'", map.name(), node));
+      dt.to.push_back(std::move(node));
+    }
+    if (dt.to.empty()) return to.error("a delivery needs at least one place to bring things to");
+    if (dt.to.size() == 1 && t.places.size() == 1 && dt.to.front() == t.places.front())
+      return to.error("a delivery needs a place to bring things to other than where it collects them");
+    RONDO_ASSIGN_OR_RETURN(auto objects, deliver->required("objects"));
+    RONDO_ASSIGN_OR_RETURN(auto object_items, objects.items());
+    for (const auto& item : object_items) {
+      RONDO_ASSIGN_OR_RETURN(auto o, item.as_string());
+      if (o.empty()) return item.error("an object needs a name");
+      dt.objects.push_back(std::move(o));
+    }
+    if (dt.objects.empty()) return objects.error("a delivery needs at least one kind of object");
+    RONDO_RETURN_IF_ERROR(detail::read_duration(*deliver, "within", dt.within));
+    if (dt.within < t.task.duration) return deliver->error_at("within", "shorter than the task's duration");
+    t.deliver = std::move(dt);
   }
   Task probe = t.task;
   probe.id = t.name;

@@ -32,12 +32,43 @@ Request RequestGenerator::make(Time at, Rng& rng) const {
     }
     pick -= t.weight;
   }
-  Request r{at, chosen->task};
+  Request r{at, chosen->task, std::nullopt};
   r.task.id = request_id(spec_.id_prefix, zone_, at);
   r.task.kind = TaskKind::kOnDemand;
   r.task.window.reset();
   r.task.start_node = chosen->places[rng.uniform_int(chosen->places.size())];
+  if (chosen->deliver) make_delivery(*chosen->deliver, r, rng);
   return r;
+}
+
+void RequestGenerator::make_delivery(const DeliveryTemplate& d, Request& r, Rng& rng) const {
+  const std::string job = r.task.id;
+  const std::string object = d.objects[rng.uniform_int(d.objects.size())];
+  std::vector<std::string> to;
+  for (const std::string& n : d.to)
+    if (n != r.task.start_node) to.push_back(n);
+  if (to.empty()) to = d.to;  // decode() makes sure there is another place
+  Task& pickup = r.task;
+  pickup.kind = TaskKind::kStandard;
+  pickup.window = TimeWindow{r.at, r.at + d.within};
+  pickup.id = job + "-pickup";
+  pickup.activity = fmt::format("collect the {} at {}", object, pickup.start_node);
+  pickup.actions = {Action{.name = "load", .args = {{"object", object}}}};
+  Task drop = pickup;
+  drop.id = job + "-drop";
+  drop.start_node = to[rng.uniform_int(to.size())];
+  drop.activity = fmt::format("bring the {} to {}", object, drop.start_node);
+  drop.actions = {Action{.name = "unload", .args = {{"object", object}}}};
+  pickup.delivery = Delivery{.job = job, .role = DeliveryRole::kPickup, .object = object, .appearance = object, .load = 1};
+  drop.delivery = pickup.delivery;
+  drop.delivery->role = DeliveryRole::kDrop;
+  r.drop = std::move(drop);
+}
+
+std::vector<Task> Request::tasks() const {
+  std::vector<Task> out{task};
+  if (drop) out.push_back(*drop);
+  return out;
 }
 
 std::vector<Request> RequestGenerator::between(Time from, Time to, Rng& rng) const {

@@ -8,68 +8,18 @@
 #include <string>
 #include <vector>
 
+#include "rondo/schedule/default_scheduler.h"
+#include "rondo/store/task_table.h"
 #include "rondo/store/traversal_log.h"
 #include "scenario.h"
-#include "scripted_robot.h"
+#include "scripted_executor.h"
 
 namespace rondo::exec::testing {
 namespace {
 
 using ::testing::HasSubstr;
 
-// The scenario map with the executor on a ScriptedRobot at the dock, at 08:00 on a Monday.
-class Scripted {
- public:
-  explicit Scripted(ExecutorOptions options = {}, map::TopoMap map = scenario_map())
-      : map_(std::move(map)),
-        zone_(TimeZone::named("Europe/London").value()),
-        clock_(zone_.parse_time("2026-11-23T08:00").value()),
-        db_(fresh_db_path()),
-        store_(store::Store::open(db_, {.sync_commits = false}).value()),
-        robot_(clock_, map_, *map_.find_node("Dock")) {
-    options.dock = *map_.find_node("Dock");
-    options.refit_at.reset();
-    executor_ = std::make_unique<Executor>(clock_, robot_, map_, store_, zone_, options);
-  }
-  ~Scripted() {
-    executor_.reset();
-    std::error_code ec;
-    std::filesystem::remove(db_, ec);
-  }
-  Executor& executor() { return *executor_; }
-  ScriptedRobot& robot() { return robot_; }
-  store::Store& store() { return store_; }
-  Time at(const std::string& local) const { return zone_.parse_time("2026-11-23T" + local).value(); }
-  void run_until(const std::string& local) { clock_.run_until(at(local)); }
-  void settle() { clock_.run_until(clock_.now()); }  // delivers what was posted, time stands still
-  // Answers every edge with success after 20 s until the robot stands at `node`.
-  void drive_to(const std::string& node) {
-    const map::NodeIndex target = *map_.find_node(node);
-    for (int guard = 0; robot_.location() != target && guard < 50; ++guard) {
-      settle();
-      ASSERT_TRUE(robot_.driving()) << "the executor asked for no edge on the way to " << node;
-      clock_.run_until(clock_.now() + seconds(20));
-      robot_.finish_edge(EdgeOutcome::kSucceeded, seconds(20));
-      settle();
-    }
-  }
-  std::string state(const std::string& id) const { return to_string(executor_->tasks().at(id).state); }
-  std::string code_of(const std::string& id, const std::string& event) const {
-    return last_event_field(store_, id, event, &store::Event::code);
-  }
-  std::string reason_of(const std::string& id, const std::string& event) const {
-    return last_event_field(store_, id, event, &store::Event::reason);
-  }
-
- private:
-  map::TopoMap map_;
-  TimeZone zone_;
-  SimClock clock_;
-  std::filesystem::path db_;
-  store::Store store_;
-  ScriptedRobot robot_;
-  std::unique_ptr<Executor> executor_;
-};
+using Scripted = ScriptedExecutor;
 
 TEST(ScriptedRobot, ARouteIsHandedOverWithItsHorizonAndTheRobotIsActivated) {
   Scripted s;
@@ -238,6 +188,88 @@ TEST(ScriptedRobot, CancellingARunningTaskThatCannotBeInterruptedWaitsForTheRobo
   s.settle();
   EXPECT_TRUE(s.robot().asked("cancel"));
   EXPECT_EQ(s.state("A"), "cancelled");
+}
+
+TEST(ScriptedRobot, ATaskThatEndsElsewhereIsDrivenThereAfterItsActions) {
+  Scripted s;
+  Task a = task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5));
+  a.end_node = "Kitchen";
+  ASSERT_TRUE(s.executor().add_task(a, "test").ok());
+  s.executor().start();
+  EXPECT_EQ(s.executor().phase(), ExecutorPhase::kIdle);
+  s.settle();
+  EXPECT_EQ(s.executor().phase(), ExecutorPhase::kNavigating);
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
+  EXPECT_EQ(s.executor().phase(), ExecutorPhase::kActing);
+  s.robot().finish_action(ActionOutcome::kSucceeded);
+  s.settle();
+  EXPECT_EQ(s.state("A"), "navigating");  // its actions are done, but it ends at the Kitchen
+  EXPECT_EQ(s.executor().phase(), ExecutorPhase::kNavigating);
+  EXPECT_EQ(s.robot().calls.back(), "drive Office_Hall +1");
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Kitchen"));
+  EXPECT_EQ(s.state("A"), "succeeded");
+  EXPECT_THAT(s.reason_of("A", "succeeded"), HasSubstr("done: "));
+  EXPECT_EQ(s.executor().current_task(), std::nullopt);
+}
+
+// A scheduler that counts its calls and asks the default one.
+class CountingScheduler final : public schedule::Scheduler {
+ public:
+  explicit CountingScheduler(int& calls) : calls_(calls) {}
+  std::string_view name() const override { return "counting"; }
+  schedule::Schedule solve(const schedule::Problem& problem, const schedule::StopCondition& stop) override {
+    ++calls_;
+    return inner_.solve(problem, stop);
+  }
+
+ private:
+  int& calls_;
+  schedule::DefaultScheduler inner_;
+};
+
+TEST(ScriptedRobot, TheSchedulerAndTheModelsAreInjected) {
+  int calls = 0;
+  const map::TopoMap map = scenario_map();
+  auto models = std::make_shared<plan::LearnedEdgeModels>(map, nullptr);
+  Scripted s({}, map, ExecutorParts{.models = models, .scheduler = std::make_unique<CountingScheduler>(calls)});
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:30"), s.at("09:00"), minutes(5)), "test").ok());
+  ASSERT_TRUE(s.executor().add_task(task("B", "Lab", s.at("08:00"), s.at("10:00"), minutes(5)), "test").ok());
+  s.executor().start();
+  EXPECT_GE(calls, 1);
+  EXPECT_EQ(&s.executor().models(), models.get());
+  EXPECT_EQ(s.executor().stats().schedules, calls);
+}
+
+TEST(ScriptedRobot, APreemptedTaskKeepsItsProgressAndGoesOnAfterTheActionsItDid) {
+  Scripted s;
+  Task a = task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(6));
+  a.actions = {Action{.name = "one", .args = {}}, Action{.name = "two", .args = {}}, Action{.name = "three", .args = {}}};
+  ASSERT_TRUE(s.executor().add_task(a, "test").ok());
+  s.executor().start();
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
+  EXPECT_EQ(s.robot().calls.back(), "act one");
+  s.robot().finish_action(ActionOutcome::kSucceeded);
+  s.settle();
+  EXPECT_EQ(s.robot().calls.back(), "act two");
+  EXPECT_EQ(store::get_task(s.store(), "A").value().progress, (Json{{"actions_done", 1}}));
+  ASSERT_TRUE(s.executor().add_task(on_demand("OD", "Lab", minutes(5)), "request").ok());
+  s.settle();  // the robot answers the preemption's cancel
+  EXPECT_TRUE(s.robot().asked("cancel"));
+  EXPECT_EQ(s.state("A"), "queued");
+  EXPECT_EQ(s.executor().tasks().at("A").actions_done, 1u);
+  EXPECT_EQ(s.executor().tasks().at("A").remaining(), minutes(4));
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Lab"));
+  s.robot().finish_action(ActionOutcome::kSucceeded);
+  s.settle();
+  EXPECT_EQ(s.state("OD"), "succeeded");
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
+  EXPECT_EQ(s.robot().calls.back(), "act two");  // not "one" again
+  s.robot().finish_action(ActionOutcome::kSucceeded);
+  s.settle();
+  s.robot().finish_action(ActionOutcome::kSucceeded);
+  s.settle();
+  EXPECT_EQ(s.state("A"), "succeeded");
+  EXPECT_EQ(store::get_task(s.store(), "A").value().progress, (Json{{"actions_done", 3}}));
 }
 
 }  // namespace

@@ -107,6 +107,39 @@ RC_GTEST_PROP(RequestGenerator, DisjointCallsNeverRepeatAnId, (std::uint64_t see
   }
 }
 
+// A delivery template makes a linked pickup and drop, at two different places, in one window.
+TEST(RequestGenerator, ADeliveryRequestIsAPickupAndADropOfOneJob) {
+  auto doc = Document::parse(
+      "per_day: 50\ntemplates:\n  - name: post\n    places: [Hall, Dock]\n    duration: 1m\n"
+      "    deliver: {to: [Hall, Dock], objects: [letter, parcel], within: 90m}\n",
+      DocumentFormat::kYaml, "requests.yaml");
+  ASSERT_TRUE(doc.ok());
+  auto people = RequestGenerator::decode(*doc, small_map(), london());
+  ASSERT_TRUE(people.ok()) << people.error().message;
+  Rng rng(3);
+  const auto requests = people->between(local("2026-11-23T08:00"), local("2026-11-24T08:00"), rng);
+  ASSERT_GT(requests.size(), 10u);
+  for (const Request& r : requests) {
+    ASSERT_TRUE(r.drop.has_value());
+    const std::vector<Task> both = r.tasks();
+    ASSERT_EQ(both.size(), 2u);
+    EXPECT_TRUE(validate(both).ok()) << validate(both).error().message;
+    const Task& p = both[0];
+    const Task& d = both[1];
+    EXPECT_EQ(p.kind, TaskKind::kStandard);
+    EXPECT_EQ(p.delivery->role, DeliveryRole::kPickup);
+    EXPECT_EQ(d.delivery->role, DeliveryRole::kDrop);
+    EXPECT_EQ(p.delivery->job, d.delivery->job);
+    EXPECT_EQ(p.id, p.delivery->job + "-pickup");
+    EXPECT_NE(p.start_node, d.start_node);
+    EXPECT_EQ(p.window, (TimeWindow{r.at, r.at + minutes(90)}));
+    EXPECT_EQ(d.window, p.window);
+    EXPECT_EQ(p.actions.front().name, "load");
+    EXPECT_EQ(d.actions.front().name, "unload");
+    EXPECT_EQ(d.actions.front().args.at("object"), d.delivery->object);
+  }
+}
+
 struct BadRequests {
   const char* text;
   const char* message;
@@ -130,7 +163,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadRequests{"templates:\n  - name: t\n    places: [Hall, Attic]\n", "requests.yaml:3: templates[0].places[1]: map 'small' has no node 'Attic'"},
         BadRequests{"templates:\n  - name: t\n    places: [Hall]\n    colour: red\n", "colour"},
         BadRequests{"days: [someday]\ntemplates: []\n", "requests.yaml:1: days[0]: unknown day"},
-        BadRequests{"per_day: -1\ntemplates: []\n", "requests.yaml:1: per_day: must be from 0"}));
+        BadRequests{"per_day: -1\ntemplates: []\n", "requests.yaml:1: per_day: must be from 0"},
+        BadRequests{"templates:\n  - name: t\n    places: [Hall]\n    deliver: {to: [Attic], objects: [x]}\n",
+                    "requests.yaml:4: templates[0].deliver.to[0]: map 'small' has no node 'Attic'"},
+        BadRequests{"templates:\n  - name: t\n    places: [Hall]\n    deliver: {to: [Hall], objects: [x]}\n",
+                    "other than where it collects"},
+        BadRequests{"templates:\n  - name: t\n    places: [Hall]\n    deliver: {to: [Dock], objects: []}\n",
+                    "at least one kind of object"},
+        BadRequests{"templates:\n  - name: t\n    places: [Hall]\n    deliver: {to: [Dock], objects: [x], by: 2h}\n",
+                    "by"}));
 
 }  // namespace
 }  // namespace rondo::sim

@@ -9,6 +9,11 @@
 //   ex.add_task(task, "api");                  // standard: trySchedule; on-demand: runs at once
 //   clock.run_until(end);
 //
+// Its parts (docs/executor.md): the task book (records, state changes, the event log), the
+// dispatcher (what runs next, and the queues), the task run (one task as its steps: wait, navigate,
+// act, navigate to its end place; src/exec/steps.h) and the scheduler call (scheduling.h). The
+// executor wires them to the robot's callbacks, the clock and the store.
+//
 // What it does (every task transition goes to the store's event log with an outcome code and a
 // reason, through the TaskBook; every succeeded or failed edge attempt to the traversal log):
 // - standard tasks: trySchedule old + new; when they do not all fit, drop the lowest-priority new
@@ -31,7 +36,6 @@
 #pragma once
 
 #include <cstdint>
-#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -45,62 +49,42 @@
 #include "rondo/core/task.h"
 #include "rondo/core/timezone.h"
 #include "rondo/exec/clock.h"
+#include "rondo/exec/executor_types.h"
 #include "rondo/exec/map_travel.h"
 #include "rondo/exec/outcome.h"
 #include "rondo/exec/robot.h"
+#include "rondo/exec/step.h"
 #include "rondo/exec/task_book.h"
-#include "rondo/learn/edge_models.h"
 #include "rondo/map/topo_map.h"
 #include "rondo/plan/learned_edge_models.h"
 #include "rondo/plan/travel_oracle.h"
-#include "rondo/schedule/default_scheduler.h"
+#include "rondo/schedule/scheduler.h"
 #include "rondo/store/store.h"
 
 namespace rondo::exec {
 
-struct ExecutorOptions {
-  map::NodeIndex dock = 0;
-  double navigation_overrun = 2.0;       // preempt navigation past this x expected travel + slack
-  Duration navigation_slack = seconds(60);
-  double action_overrun = 1.5;           // preempt actions past this x processing time + slack
-  Duration action_slack = seconds(30);
-  Duration dock_when_waiting_over = minutes(15);  // longer waits are spent on the charger
-  int max_failed_edges = 25;             // a navigation gives up after this many failed attempts
-  std::optional<Duration> refit_at = hours(2);    // local time of day; nothing = never refit
-  int duration_bins = 24;                // time-of-day bins of the refitted travel-time models
-  Duration slot_width = minutes(15);     // travel-time slots of the planner
-  std::int64_t scheduler_polls = 20'000;  // deterministic budget of each scheduler call (docs/scheduling.md)
-  std::uint64_t seed = 1;                // ties in dropping
-  std::string robot_name = "robot";      // the robot's row in the store's robot_state
+class Deliveries;
+class Dispatcher;
+class NavigateStep;
+class TaskRun;
+
+// What the executor plans with, when the caller wants to choose (as rmf_task::TaskPlanner takes
+// its configuration). Empty parts get the defaults: edge models from the map's distances (refitted
+// nightly from the robot's own log) and schedule::DefaultScheduler.
+struct ExecutorParts {
+  std::shared_ptr<plan::LearnedEdgeModels> models{};
+  std::unique_ptr<schedule::Scheduler> scheduler{};
 };
 
-// Figures of the run so far, for the report.
-struct ExecutorStats {
-  int navigation_attempts = 0;
-  int navigation_successes = 0;
-  Duration travelling{0};  // edge attempts
-  Duration acting{0};      // actions
-  Duration waiting{0};     // waiting for a window to open
-  Duration busy{0};        // a task in progress: its travel, waiting and actions
-  int refits = 0;
-  int schedules = 0;       // scheduler calls
-};
-
-// One navigation of a task to its start: what the executor expected when it left, and what
-// happened. The travel-estimate error of a run is read from these.
-struct NavigationRecord {
-  TaskId task;
-  Time start{};
-  Duration expected{0};
-  Duration actual{0};
-  bool arrived = false;
-};
+// Where the executor is, for people and the service API.
+enum class ExecutorPhase { kIdle, kWaiting, kNavigating, kActing, kDocking };
+const char* to_string(ExecutorPhase phase);
 
 class Executor final : public RobotListener {
  public:
   // Precondition: `dock` is a node of `map`; clock, robot, map and store outlive the executor.
   Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::Store& store, const TimeZone& zone,
-           ExecutorOptions options);
+           ExecutorOptions options, ExecutorParts parts = {});
   ~Executor() override;
   Executor(const Executor&) = delete;
   Executor& operator=(const Executor&) = delete;
@@ -128,6 +112,11 @@ class Executor final : public RobotListener {
   // Store writes that failed (the run goes on; the caller reports them).
   const std::vector<std::string>& write_errors() const { return book_.write_errors(); }
   const plan::LearnedEdgeModels& models() const { return *models_; }
+  ExecutorPhase phase() const;
+  // The objects on board now (delivery jobs picked up and not yet dropped).
+  std::vector<OnBoard> on_board() const;
+  std::optional<TaskId> current_task() const;
+  bool paused() const { return in_fault_; }
 
   // RobotListener
   void on_edge_finished(const EdgeAttempt& attempt) override;
@@ -136,7 +125,6 @@ class Executor final : public RobotListener {
   void on_observation(const Observation& observation) override;
   void on_fault(const RobotFault& fault) override;
   void on_ready() override;
-  bool paused() const { return fault_.has_value(); }
 
   // --- The service's view and changes (`rondo serve`, src/exec/executor_service.cpp) ---
   // What the executor is doing now, for the HTTP API's robot and schedule views.
@@ -161,51 +149,50 @@ class Executor final : public RobotListener {
   Status remove_routine(const std::string& name);
 
  private:
-  enum class Phase { kIdle, kWaiting, kNavigating, kActing, kDocking };
-  enum class CancelIntent { kNone, kNavigationOverrun, kActionOverrun, kPreempt, kCancel, kLeaveDockTrip };
-
   // bookkeeping (executor.cpp)
-  Status accept(const Task& task);
+  Status accept(const Task& task) const;
   // Validates, stores (all or nothing) and records tasks; returns the standard ones (on-demand ones
   // are queued).
   Result<std::vector<TaskId>> insert_tasks(std::vector<Task> tasks, std::string_view source);
+  bool interruptible_now() const;
+  bool running_standard() const;  // a standard task navigates or acts
+  void preempt_for_on_demand();
+
+  // the robot (executor_robot.cpp)
   void log_battery();
   // The robot's last known state in the store (its node, pose, battery, fault), for a restart.
   void save_robot_state();
-  bool interruptible_now() const;
-  std::string fmt_time(Time t) const;
+  void learn_from(const EdgeAttempt& attempt);
+
+  // running (executor_running.cpp)
+  void kick();  // reconsider what to do now
+  void next();
+  void start_run(const TaskId& id, std::optional<Time> wait_until);
+  void run_ended(TaskEnd end);
+  void end_wait();  // the waiting task goes back to the executor, undecided
+  void go_to_dock();
+  void trip_ended(StepEnd end);
+  void look_again_at(Time at);
+  void preempt_for(Outcome outcome, const std::string& reason, std::vector<TaskId> then_schedule);
+  void requeue_preempted(const TaskId& id, Outcome outcome, const std::string& reason);
+  // Frees the run or the trip later: it ended in a callback of its own, still on the stack.
+  void retire_run();
+  void retire_trip();
 
   // scheduling (executor_scheduling.cpp)
   void reschedule(std::vector<TaskId> new_ids, const std::string& why);
   void apply_schedule(const std::vector<TaskId>& ids, const schedule::Schedule& s, const std::string& why);
   std::pair<map::NodeIndex, Time> free_at() const;  // where and when the robot is next free
-
-  // running (executor_running.cpp)
-  void kick();  // reconsider what to do now
-  void next();
-  void start_task(const TaskId& id);
-  void begin_navigation(map::NodeIndex target, Duration expected);
-  void step_navigation();
-  void abandon_navigation(Outcome outcome, const std::string& reason);
-  std::vector<map::EdgeIndex> expected_route(const plan::Policy& policy, map::NodeIndex from) const;
-  void arrived();
-  void start_actions();
-  void run_next_action();
-  void finish_task(TaskState state, Outcome outcome, const std::string& reason);
-  // Starts the navigation or action monitor: it fires past factor x expected + slack.
-  TimerId arm_monitor(CancelIntent why, const char* what, const char* of, Duration expected, double factor,
-                      Duration slack);
-  void monitor_fired(CancelIntent why, const std::string& reason);
-  void handle_cancelled();
-  void go_to_dock();
-  void clear_timers();
-  void preempt_for(Outcome outcome, const std::string& reason, std::vector<TaskId> then_schedule);
-  void stop_current(CancelIntent intent, Outcome outcome, const std::string& reason);
-  void requeue_preempted(const TaskId& id, Outcome outcome, const std::string& reason);
   // The deferred tasks that can still meet their windows (the others end dropped, for good).
   std::vector<TaskId> reoffer_deferred();
-  void suspend_monitors();
-  void resume_monitors();
+
+  // deliveries (executor_deliveries.cpp)
+  // Drops whose pickup ended without the object fail too, and an object on board with no drop
+  // pending gets a return task (once per job).
+  std::vector<TaskId> settle_jobs();  // the returns it made: new tasks to schedule
+  std::vector<OnBoard> on_board_when_free() const;  // after the running task
+  // A cancelled delivery task whose object is not on board takes the rest of its job with it.
+  void cancel_job_of(const TaskId& id, const std::string& why);
 
   // daily (executor_daily.cpp)
   void create_routine_tasks(std::chrono::year_month_day day);
@@ -222,42 +209,26 @@ class Executor final : public RobotListener {
   std::shared_ptr<plan::LearnedEdgeModels> models_;
   std::unique_ptr<plan::TravelOracle> planner_;
   std::unique_ptr<TravelCache> travel_;
-  schedule::DefaultScheduler solver_;
+  std::unique_ptr<schedule::Scheduler> scheduler_;
   std::mt19937_64 rng_;
 
   TaskBook book_;
+  std::unique_ptr<Dispatcher> dispatcher_;
+  std::unique_ptr<Deliveries> deliveries_;
   std::vector<Routine> routines_;
-  std::vector<TaskId> schedule_;        // standard tasks to run, in planned order
-  std::deque<TaskId> on_demand_;        // on-demand tasks waiting for the running one to end
-  std::vector<TaskId> deferred_;        // dropped for now: offered again at every reschedule
-  std::optional<std::string> cancel_pending_;  // cancel the running task at its next interruptible moment
-
-  Phase phase_ = Phase::kIdle;
-  std::optional<TaskId> current_;       // the task being waited for, navigated to or acted on
-  map::NodeIndex nav_target_ = 0;
-  Time nav_start_{};
-  Duration nav_expected_{0};
-  int failed_edges_ = 0;
-  std::size_t action_index_ = 0;
-  Time acting_start_{};
-  Time wait_start_{};
-  bool robot_interruptible_ = true;
-  CancelIntent cancel_intent_ = CancelIntent::kNone;
-  Outcome cancel_outcome_ = Outcome::kNone;
-  std::string cancel_reason_;
-  std::optional<std::pair<CancelIntent, std::string>> overrun_pending_;  // monitor fired while not interruptible
-  std::vector<TaskId> after_cancel_schedule_;  // new tasks to schedule once the preempted task is out
-  TimerId wait_timer_ = 0, nav_monitor_ = 0, action_monitor_ = 0;
-  struct MonitorDue {
-    Time at{};                     // when the armed monitor fires
-    std::string reason;            // what it says then
-    std::optional<Duration> left;  // set while suspended: the time it still had
-  };
-  MonitorDue nav_due_, action_due_;   // when each armed monitor fires, and what it says
-  std::optional<RobotFault> fault_;   // dispatch and monitors stand still while set
-  std::optional<Time> fault_since_;
   ExecutorStats stats_;
   std::vector<NavigationRecord> navigations_;
+  bool in_fault_ = false;
+  StepContext steps_;  // what every step works with
+
+  std::unique_ptr<TaskRun> run_;        // the task waited for, navigated to or acted on
+  std::unique_ptr<NavigateStep> trip_;  // the executor's own trip to the dock
+  std::vector<std::unique_ptr<Step>> retired_steps_;  // ended in a callback still on the stack:
+  std::vector<std::unique_ptr<TaskRun>> retired_runs_;  //   freed at the next robot callback
+  std::vector<TaskId> after_preempt_;   // new tasks to schedule once the preempted task is out
+  TimerId look_again_ = 0;              // idle: look again at the queues then
+  std::optional<RobotFault> fault_;
+  std::optional<Time> fault_since_;
   bool started_ = false;
 };
 

@@ -41,6 +41,8 @@ enum class Outcome {
   kOverrunHeld,               // a monitor fired while the task could not be interrupted
   kRunsAfterCurrent,          // an on-demand task waits for a task that cannot be interrupted
   kInvalidRequest,            // a request refused at the door
+  kPickupFailed,              // a drop that cannot happen: its pickup ended without the object
+  kReturnPlanned,             // a drop that did not happen: a new task takes the object back
   kObservation,               // the robot saw something that matters
   kBattery,                   // a battery reading
 };

@@ -12,6 +12,8 @@
 //   book.note_robot("fault", Outcome::kRobotFault, "lost connection");
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <map>
 #include <optional>
 #include <string>
@@ -40,6 +42,16 @@ struct TaskRecord {
   // Dropped by the last schedule but not given up: offered again at every reschedule while its
   // window can still be met (the outcome and reason of that drop are kept for the final one).
   std::optional<std::pair<Outcome, std::string>> dropped_for_now{};
+  // Progress, kept when the task is preempted or interrupted: a re-run starts after the actions
+  // already done (stored as the task's progress, {"actions_done": n}).
+  std::size_t actions_done = 0;
+
+  std::size_t action_count() const { return std::max<std::size_t>(1, task.actions.size()); }
+  // The processing time still to spend: the share of the actions not done yet.
+  Duration remaining() const {
+    const std::size_t n = action_count();
+    return task.duration * static_cast<std::int64_t>(n - std::min(actions_done, n)) / static_cast<std::int64_t>(n);
+  }
 };
 
 class TaskBook {
@@ -59,10 +71,13 @@ class TaskBook {
 
   // Moves the task to `state`, stores the change and its event.
   void transition(const TaskId& id, TaskState state, Outcome outcome, const std::string& reason);
+  // Records and stores how many of the task's actions are done.
+  void set_progress(const TaskId& id, std::size_t actions_done);
   // An event of a task that is not a change of its state.
   void note(const TaskId& id, const std::string& event, Outcome outcome, const std::string& reason);
   // Events about the robot, a request (`about`: its id) or the schedule.
   void note_robot(const std::string& event, Outcome outcome, const std::string& reason);
+  void note_schedule(const std::string& event, Outcome outcome, const std::string& reason);
   void note_request(const std::string& about, const std::string& event, Outcome outcome, const std::string& reason);
 
   // How many events were written that are not final states, by event name and code (for the

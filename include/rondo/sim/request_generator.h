@@ -11,11 +11,13 @@
 // the arguments and the rng state. Ids are "<prefix>-<local date>-<hhmmss>" (e.g.
 // "req-2026-11-23-103412"): unique within a call, and across calls on disjoint intervals. Each
 // task is on-demand, valid (rondo::validate), starts at one of its template's places, chosen at
-// random, and copies the template's activity, duration, priority, actions and interruptible flag.
+// random, and copies the template's activity, duration, priority, actions and interruptible flag;
+// a delivery template's request is a pickup and a drop instead (DeliveryTemplate), valid together.
 #pragma once
 
 #include <chrono>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,7 +32,19 @@ namespace rondo::sim {
 
 struct Request {
   Time at;
-  Task task;
+  Task task;                 // an on-demand task, or a delivery's pickup
+  std::optional<Task> drop;  // a delivery's drop
+
+  std::vector<Task> tasks() const;  // what to add to the executor, together
+};
+
+// A courier request: a delivery job of two standard tasks, a pickup at one of the template's
+// places (action `load`) and a drop at another place of `to` (action `unload`), both within
+// `within` of the request, linked as Task::delivery with the request's id as the job.
+struct DeliveryTemplate {
+  std::vector<std::string> to{};       // node names; non-empty
+  std::vector<std::string> objects{};  // what is carried, chosen at random; non-empty
+  Duration within = hours(2);
 };
 
 // One kind of request: the task to make (without id, start node or window) and where people ask
@@ -40,6 +54,7 @@ struct RequestTemplate {
   double weight = 1;
   std::vector<std::string> places{};  // node names; non-empty
   Task task{};
+  std::optional<DeliveryTemplate> deliver{};
 };
 
 struct RequestSpec {
@@ -66,6 +81,7 @@ class RequestGenerator {
 
  private:
   Request make(Time at, Rng& rng) const;
+  void make_delivery(const DeliveryTemplate& d, Request& r, Rng& rng) const;
   RequestSpec spec_;
   TimeZone zone_;
 };

@@ -1,0 +1,62 @@
+// The dispatcher: what the robot does next when it is free. It owns the executor's queues (the
+// planned order of standard tasks, on-demand tasks waiting their turn, tasks dropped for now) and
+// reads the book and the travel estimates; the executor carries out its decisions.
+//
+//   Decision d = dispatcher.next(robot.location(), clock.now());
+//   switch (d.kind) { case Decision::Kind::kRun: ... }
+#pragma once
+
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "rondo/core/timezone.h"
+#include "rondo/exec/executor_types.h"
+#include "rondo/exec/map_travel.h"
+#include "rondo/exec/outcome.h"
+#include "rondo/exec/task_book.h"
+#include "rondo/map/topo_map.h"
+
+namespace rondo::exec {
+
+struct Decision {
+  enum class Kind {
+    kRun,        // start `task` now
+    kWait,       // `task` is next but early: wait where the robot is until `until`, then go
+    kFail,       // `task` can no longer start in time (`outcome`, `reason`); decide again after it
+    kDock,       // go to the dock (idle, or a long wait ahead)
+    kIdleUntil,  // on the dock with a long wait ahead: look again at `until`
+    kStay,       // nothing to do, on the dock
+  };
+  Kind kind = Kind::kStay;
+  TaskId task{};
+  Time until{};
+  Outcome outcome = Outcome::kNone;
+  std::string reason{};
+};
+
+class Dispatcher {
+ public:
+  // Everything given outlives the dispatcher.
+  Dispatcher(const map::TopoMap& map, const TravelCache& travel, const TaskBook& book, const ExecutorOptions& options,
+             const TimeZone& zone)
+      : map_(map), travel_(travel), book_(book), options_(options), zone_(zone) {}
+
+  std::vector<TaskId> planned;   // standard tasks to run, in the schedule's order
+  std::deque<TaskId> on_demand;  // on-demand tasks waiting for the robot
+  std::vector<TaskId> deferred;  // dropped for now: offered again at every reschedule
+
+  // The next thing to do from `here` at `now`. A decision about a task takes it off its queue.
+  Decision next(map::NodeIndex here, Time now);
+  // Takes a task off every queue.
+  void forget(const TaskId& id);
+
+ private:
+  const map::TopoMap& map_;
+  const TravelCache& travel_;
+  const TaskBook& book_;
+  const ExecutorOptions& options_;
+  const TimeZone& zone_;
+};
+
+}  // namespace rondo::exec

@@ -1,0 +1,103 @@
+// The executor's delivery jobs (MISSION.md §5): a pickup and its drop stand or fall together, what
+// is on board is planned with (capacity, look-alike objects), and an object is never left in the
+// robot: a drop that did not happen gets a task that takes the object back.
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "deliveries.h"
+#include "dispatcher.h"
+#include "rondo/exec/executor.h"
+#include "task_run.h"
+
+namespace rondo::exec {
+
+std::vector<OnBoard> Executor::on_board() const { return deliveries_->on_board(book_); }
+
+std::vector<OnBoard> Executor::on_board_when_free() const {
+  std::vector<OnBoard> items = on_board();
+  if (!run_ || run_->waiting() || !run_->task().delivery) return items;
+  const Delivery& d = *run_->task().delivery;
+  if (d.role == DeliveryRole::kPickup)
+    items.push_back({.job = d.job, .object = d.object, .appearance = d.appearance, .load = d.load,
+                     .picked_up_by = run_->id()});
+  else
+    std::erase_if(items, [&](const OnBoard& o) { return o.job == d.job; });
+  return items;
+}
+
+void Executor::cancel_job_of(const TaskId& id, const std::string& why) {
+  const Task& t = book_.at(id).task;
+  if (!t.delivery || deliveries_->is_on_board(book_, t.delivery->job)) return;
+  const Deliveries::Job* job = deliveries_->job(t.delivery->job);
+  std::vector<TaskId> others = job->drops;
+  if (job->pickup) others.push_back(*job->pickup);
+  for (const TaskId& other : others)
+    if (other != id && !is_final(book_.at(other).state))
+      (void)cancel_task(other, fmt::format("with the rest of its delivery ({})", why));
+}
+
+std::vector<TaskId> Executor::settle_jobs() {
+  std::vector<TaskId> returns;
+  const std::vector<std::string> open(deliveries_->open().begin(), deliveries_->open().end());
+  for (const std::string& name : open) {
+    const Deliveries::Job& job = *deliveries_->job(name);
+    const bool on = deliveries_->is_on_board(book_, name);
+    const bool pickup_live = job.pickup && !is_final(book_.at(*job.pickup).state);
+    std::vector<TaskId> pending;
+    for (const TaskId& d : job.drops)
+      if (!is_final(book_.at(d).state)) pending.push_back(d);
+    if (!on && !pickup_live) {  // delivered, or nothing to deliver any more
+      const std::string why =
+          job.pickup ? fmt::format("its pickup {} {}: nothing to deliver", *job.pickup,
+                                   to_string(book_.at(*job.pickup).state))
+                     : std::string("its job has no pickup and nothing of it is on board");
+      for (const TaskId& d : pending) {
+        if (run_ && run_->id() == d) continue;  // a drop that runs ends by itself
+        if (run_ && run_->waiting() && run_->id() == d) end_wait();
+        dispatcher_->forget(d);
+        book_.at(d).planned_start.reset();
+        book_.at(d).planned_end.reset();
+        book_.transition(d, TaskState::kFailed, Outcome::kPickupFailed, why);
+      }
+      deliveries_->close(name);
+      continue;
+    }
+    if (!on || !pending.empty()) continue;
+    // On board, and no drop of it is pending: take it back, once.
+    const TaskRecord& last = book_.at(job.drops.back());
+    const Delivery& what = *last.task.delivery;
+    if (job.drops.size() >= 2) {
+      book_.note(last.task.id, "stays on board", Outcome::kReturnPlanned,
+                 fmt::format("the {} stays on board: its return ended {}", what.object, to_string(last.state)));
+      deliveries_->close(name);
+      continue;
+    }
+    Task back;
+    back.id = last.task.id + "-return";
+    for (int n = 2; book_.contains(back.id); ++n) back.id = fmt::format("{}-return{}", last.task.id, n);
+    back.start_node = options_.return_to.empty() ? book_.at(*job.pickup).task.start_node : options_.return_to;
+    back.activity = fmt::format("take the {} back to {}", what.object, back.start_node);
+    const Time now = clock_.now();
+    back.window = TimeWindow{now, now + std::max(options_.return_within, last.task.duration)};
+    back.duration = last.task.duration;
+    back.priority = last.task.priority;
+    back.actions = {Action{.name = "unload", .args = {{"object", what.object}}}};
+    back.delivery = Delivery{.job = name, .role = DeliveryRole::kDrop, .object = what.object,
+                             .appearance = what.appearance, .load = what.load};
+    if (auto ok = book_.add({back}, "executor"); !ok) {
+      book_.write_error(ok.error().message);
+      deliveries_->close(name);
+      continue;
+    }
+    deliveries_->add(back);
+    book_.note(last.task.id, "return planned", Outcome::kReturnPlanned,
+               fmt::format("the {} is on board after this drop {}: task {} takes it back to {} by {}", what.object,
+                           to_string(last.state), back.id, back.start_node,
+                           zone_.format_clock(back.window->deadline)));
+    returns.push_back(back.id);
+  }
+  return returns;
+}
+
+}  // namespace rondo::exec

@@ -1,0 +1,134 @@
+// The executor listening to its robot: every edge attempt logged (the traversal log for learning
+// data, the event log for the rest), answers forwarded to the running step, observations and the
+// battery written to the store, and faults that pause dispatch and hold the monitors still.
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "dispatcher.h"
+#include "rondo/exec/executor.h"
+#include "rondo/store/observations.h"
+#include "rondo/store/robot_state.h"
+#include "rondo/store/traversal_log.h"
+#include "task_run.h"
+#include "text.h"
+
+namespace rondo::exec {
+
+void Executor::learn_from(const EdgeAttempt& a) {
+  const map::Edge& edge = map_.edge(a.edge);
+  if (is_learning_data(a.outcome)) {
+    // Experience of the way: the traversal log, which the models learn from.
+    const Traversal t{.edge_id = edge.id, .from = edge.from, .to = edge.to, .start = a.start, .duration = a.duration,
+                      .success = a.succeeded()};
+    if (auto ok = store::add_traversal(store_, t); !ok) book_.write_error(ok.error().message);
+    ++stats_.navigation_attempts;
+    if (a.succeeded()) ++stats_.navigation_successes;
+    return;
+  }
+  // A cancelled attempt or one cut by a fault says nothing about the way: the event log only.
+  const Outcome code = a.outcome == EdgeOutcome::kCancelled ? Outcome::kCancelled : Outcome::kRobotFault;
+  const std::string what = fmt::format("edge {} {} after {}{}{}", edge.id, to_string(a.outcome),
+                                       duration_text(a.duration), a.message.empty() ? "" : ": ", a.message);
+  if (run_)
+    book_.note(run_->id(), "edge", code, what);
+  else
+    book_.note_robot("edge", code, what);
+}
+
+void Executor::on_edge_finished(const EdgeAttempt& a) {
+  retired_runs_.clear();
+  retired_steps_.clear();
+  stats_.travelling += a.duration;
+  learn_from(a);
+  save_robot_state();
+  if (run_) {
+    if (Step* s = run_->current()) s->on_edge_finished(a);
+  } else if (trip_) {
+    trip_->on_edge_finished(a);
+  } else if (a.outcome == EdgeOutcome::kCancelled) {
+    next();
+  }
+}
+
+void Executor::on_action_finished(const ActionResult& result) {
+  retired_runs_.clear();
+  retired_steps_.clear();
+  stats_.acting += result.duration;
+  if (run_) {
+    if (Step* s = run_->current()) s->on_action_finished(result);
+  } else if (result.outcome == ActionOutcome::kCancelled) {
+    next();
+  }
+}
+
+void Executor::on_interruptible_changed(bool interruptible) {
+  if (!run_ || run_->set_robot_interruptible(interruptible) || !interruptible) return;
+  if (!dispatcher_->on_demand.empty() && running_standard() && interruptible_now()) preempt_for_on_demand();
+}
+
+void Executor::log_battery() {
+  const store::Observation o{.what = "battery", .where = map_.node(robot_.location()).name, .when = clock_.now(),
+                             .value = std::clamp(robot_.battery(), 0.0, 1.0), .text = std::nullopt};
+  if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
+}
+
+void Executor::save_robot_state() {
+  const std::optional<map::Pose> pose = robot_.position();
+  store::RobotState st{.robot = options_.robot_name,
+                       .node = map_.node(robot_.location()).name,
+                       .battery = std::clamp(robot_.battery(), 0.0, 1.0),
+                       .updated = clock_.now()};
+  if (pose) {
+    st.x = pose->x;
+    st.y = pose->y;
+    st.yaw = pose->yaw;
+  }
+  if (fault_) st.fault = fault_->message;
+  if (auto ok = store::save_robot_state(store_, st); !ok) book_.write_error(ok.error().message);
+}
+
+void Executor::on_observation(const Observation& seen) {
+  const store::Observation o{.what = seen.what, .where = seen.where, .when = seen.when, .value = seen.value,
+                             .text = seen.text.empty() ? std::nullopt : std::optional<std::string>(seen.text)};
+  if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
+}
+
+void Executor::on_fault(const RobotFault& fault) {
+  const bool first = !fault_;
+  fault_ = fault;
+  if (!first) return;
+  in_fault_ = true;
+  fault_since_ = clock_.now();
+  save_robot_state();
+  book_.note_robot("fault", Outcome::kRobotFault,
+                   fmt::format("{}: {}; dispatch paused", to_string(fault.kind), fault.message));
+  if (run_) {
+    if (Step* s = run_->current()) s->suspend();
+  } else if (trip_) {
+    trip_->suspend();
+  } else if (look_again_ != 0) {  // idle: ready() looks again instead
+    clock_.cancel(look_again_);
+    look_again_ = 0;
+  }
+}
+
+void Executor::on_ready() {
+  if (!fault_) return;
+  retired_runs_.clear();
+  retired_steps_.clear();
+  const Duration down = clock_.now() - fault_since_.value_or(clock_.now());
+  fault_.reset();
+  fault_since_.reset();
+  in_fault_ = false;
+  book_.note_robot("ready", Outcome::kRobotReady,
+                   fmt::format("ready again after {}; dispatch resumes", duration_text(down)));
+  if (run_) {
+    if (Step* s = run_->current()) s->resume();
+    return;
+  }
+  if (trip_) return trip_->resume();
+  kick();
+}
+
+}  // namespace rondo::exec

@@ -1,0 +1,93 @@
+#include <fmt/format.h>
+
+#include "rondo/exec/map_travel.h"
+#include "rondo/plan/travel_oracle.h"
+#include "steps.h"
+#include "text.h"
+
+namespace rondo::exec {
+
+NavigateStep::NavigateStep(StepContext& ctx, StepHooks hooks, Purpose purpose, std::optional<TaskId> task,
+                           map::NodeIndex target)
+    : RobotStep(ctx, std::move(hooks)), purpose_(purpose), task_(std::move(task)), target_(target) {}
+
+void NavigateStep::start() {
+  const Time now = ctx_.clock.now();
+  const map::NodeIndex here = ctx_.robot.location();
+  started_ = now;
+  expected_ = ctx_.travel.travel(here, target_, now);
+  if (purpose_ == Purpose::kDock) return advance();
+  if (purpose_ == Purpose::kToEnd && here == target_) return end({.status = StepEnd::Status::kDone});
+  const std::string& to = ctx_.map.node(target_).name;
+  const std::string& from = ctx_.map.node(here).name;
+  if (expected_ >= kUnreachable) {
+    return end({.status = StepEnd::Status::kFailed,
+                .outcome = Outcome::kNoRoute,
+                .reason = fmt::format("no route: from {} to {} at {}", from, to, ctx_.clock_text(now))});
+  }
+  ctx_.book.transition(*task_, TaskState::kNavigating, Outcome::kDeparted,
+                       fmt::format("to {}{} from {}, expected travel {}", to,
+                                   purpose_ == Purpose::kToEnd ? " (its end place)" : "", from,
+                                   duration_text(expected_)));
+  const ExecutorOptions& o = ctx_.options;
+  monitor_.arm(Monitor::limit("navigation overrun: still travelling", "the expected travel time", expected_,
+                              o.navigation_overrun, o.navigation_slack),
+               [this](const std::string& why) { hooks_.overrun(Outcome::kNavigationOverrun, why); });
+  if (ctx_.in_fault) monitor_.suspend();
+  advance();
+}
+
+void NavigateStep::advance() {
+  const map::NodeIndex here = ctx_.robot.location();
+  if (here == target_) return arrived();
+  if (ctx_.in_fault) return;  // resume() goes on from where the robot is
+  if (failed_edges_ >= ctx_.options.max_failed_edges) {
+    return end({.status = StepEnd::Status::kFailed,
+                .outcome = Outcome::kNavigationGaveUp,
+                .reason = fmt::format("navigation gave up: {} failed edge attempts near {}", failed_edges_,
+                                      ctx_.map.node(here).name)});
+  }
+  if (!ctx_.planner.policy(target_, ctx_.clock.now()).next_edge(here)) {
+    return end({.status = StepEnd::Status::kFailed,
+                .outcome = Outcome::kNoRoute,
+                .reason = fmt::format("no route: from {} to {} at {}", ctx_.map.node(here).name,
+                                      ctx_.map.node(target_).name, ctx_.clock_text(ctx_.clock.now()))});
+  }
+  // The next edge is committed; the rest of the policy's expected route is the horizon.
+  ctx_.robot.drive(Route{.edges = expected_route(here), .committed = 1});
+}
+
+// The edges the policy expects to take from `from` to the target if every attempt succeeds (the
+// first is the policy's next edge), cut where it would loop.
+std::vector<map::EdgeIndex> NavigateStep::expected_route(map::NodeIndex from) const {
+  const plan::Policy& policy = ctx_.planner.policy(target_, ctx_.clock.now());
+  std::vector<map::EdgeIndex> route;
+  std::vector<bool> seen(ctx_.map.node_count(), false);
+  map::NodeIndex at = from;
+  while (at != target_ && !seen[at] && route.size() < ctx_.map.node_count()) {
+    seen[at] = true;
+    const std::optional<map::EdgeIndex> e = policy.next_edge(at);
+    if (!e) break;
+    route.push_back(*e);
+    at = ctx_.map.to_index(*e);
+  }
+  return route;
+}
+
+void NavigateStep::arrived() {
+  monitor_.cancel();
+  if (purpose_ == Purpose::kToStart)
+    ctx_.navigations.push_back({.task = *task_, .start = started_, .expected = expected_,
+                                .actual = ctx_.clock.now() - started_, .arrived = true});
+  end({.status = StepEnd::Status::kDone});
+}
+
+void NavigateStep::on_edge_finished(const EdgeAttempt& a) {
+  if (a.outcome == EdgeOutcome::kCancelled) return end({.status = StepEnd::Status::kHalted});
+  if (ctx_.robot.busy()) return;  // more of a committed route to come
+  if (halting()) return end({.status = StepEnd::Status::kHalted});
+  if (a.outcome == EdgeOutcome::kFailed) ++failed_edges_;
+  advance();
+}
+
+}  // namespace rondo::exec

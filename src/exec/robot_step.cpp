@@ -1,0 +1,22 @@
+#include "steps.h"
+
+namespace rondo::exec {
+
+void RobotStep::halt() {
+  if (halting_ || ended()) return;
+  halting_ = true;
+  monitor_.cancel();
+  if (ctx_.robot.busy())
+    ctx_.robot.cancel();  // its cancelled edge or action ends the step
+  else
+    end({.status = StepEnd::Status::kHalted});
+}
+
+void RobotStep::resume() {
+  monitor_.resume();
+  if (ctx_.robot.busy()) return;
+  if (halting_) return end({.status = StepEnd::Status::kHalted});
+  go_on();
+}
+
+}  // namespace rondo::exec

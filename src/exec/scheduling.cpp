@@ -1,0 +1,83 @@
+#include "scheduling.h"
+
+#include <map>
+#include <memory>
+
+#include "rondo/schedule/stop_condition.h"
+
+namespace rondo::exec {
+
+Outcome drop_outcome(schedule::DropCause cause) {
+  switch (cause) {
+    case schedule::DropCause::kUnreachable: return Outcome::kOutOfReach;
+    case schedule::DropCause::kHigherPriority: return Outcome::kDroppedForHigherPriority;
+    case schedule::DropCause::kLowestPriority: return Outcome::kDroppedLowestPriority;
+    case schedule::DropCause::kDoesNotFit: break;
+  }
+  return Outcome::kDoesNotFit;
+}
+
+Result<schedule::TryScheduleResult> schedule_pending(const ScheduleInputs& in, const PendingTasks& pending,
+                                             map::NodeIndex here, Time free,
+                                             std::optional<schedule::RunningTask> running) {
+  schedule::Problem problem;
+  std::vector<map::NodeIndex> nodes{here};
+  std::map<map::NodeIndex, schedule::LocationIndex> location{{here, 0}};
+  const auto location_of = [&](const std::string& name) {
+    const map::NodeIndex n = *in.map.find_node(name);
+    auto [it, inserted] = location.emplace(n, nodes.size());
+    if (inserted) nodes.push_back(n);
+    return it->second;
+  };
+  std::map<TaskId, std::size_t> index;
+  for (std::size_t i = 0; i < pending.ids.size(); ++i) index.emplace(pending.ids[i], i);
+  for (const TaskId& id : pending.ids) {
+    const TaskRecord& r = in.book.at(id);
+    const Task& t = r.task;
+    const schedule::LocationIndex start = location_of(t.start_node);
+    problem.tasks.push_back({.id = id,
+                             .release = t.window->release,
+                             .deadline = t.window->deadline,
+                             .duration = r.remaining(),
+                             .priority = t.priority,
+                             .start_location = start,
+                             .end_location = t.end_node.empty() ? start : location_of(t.end_node)});
+    schedule::ProblemTask& pt = problem.tasks.back();
+    if (t.delivery)
+      pt.transfer = schedule::ItemTransfer{
+          .job = t.delivery->job,
+          .action = t.delivery->role == DeliveryRole::kPickup ? schedule::ItemAction::kPickup
+                                                              : schedule::ItemAction::kDrop,
+          .appearance = t.delivery->appearance,
+          .load = t.delivery->load};
+    for (const TaskId& a : t.after)
+      if (const auto it = index.find(a); it != index.end()) pt.after.push_back(it->second);
+  }
+  problem.robot.capacity = in.capacity;
+  for (const OnBoard& o : in.on_board)
+    problem.robot.on_board.push_back({.job = o.job, .appearance = o.appearance, .load = o.load});
+  for (map::NodeIndex n : nodes) problem.location_names.push_back(in.map.node(n).name);
+  problem.robot.location = 0;
+  problem.robot.time = free;
+  problem.travel = std::make_shared<MapTravel>(in.travel, nodes);
+
+  RONDO_RETURN_IF_ERROR(schedule::validate(problem));
+  schedule::TryScheduleRequest request{.problem = std::move(problem), .new_tasks = {}, .zone = in.zone};
+  for (std::size_t i = pending.old_count; i < pending.ids.size(); ++i) request.new_tasks.push_back(i);
+  for (std::size_t i = pending.first_reoffered; i < pending.ids.size(); ++i) request.cannot_preempt.push_back(i);
+  request.running = std::move(running);
+  schedule::PollBudgetStop stop(in.polls);
+  schedule::TryScheduleResult result = schedule::try_schedule(request, in.scheduler, stop, in.rng);
+  if (result.outcome != schedule::TryScheduleOutcome::kOldTasksInfeasible) return result;
+  // What was planned no longer fits (a task overran, an on-demand task came first): every task
+  // competes again, and the lowest priorities give way.
+  const int attempts = result.attempts;
+  request.new_tasks.clear();
+  for (std::size_t i = 0; i < pending.ids.size(); ++i) request.new_tasks.push_back(i);
+  schedule::PollBudgetStop again(in.polls);
+  result = schedule::try_schedule(request, in.scheduler, again, in.rng);
+  result.attempts += attempts;
+  return result;
+}
+
+}  // namespace rondo::exec

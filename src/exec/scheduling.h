@@ -1,0 +1,54 @@
+// The executor's call to the scheduler: a schedule::Problem of the pending standard tasks, from
+// where and when the robot is next free, solved with trySchedule (MISSION.md §3). When what was
+// planned no longer fits, every task competes again and the lowest priorities give way.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include "rondo/core/timezone.h"
+#include "deliveries.h"
+#include "rondo/exec/map_travel.h"
+#include "rondo/exec/outcome.h"
+#include "rondo/exec/task_book.h"
+#include "rondo/map/topo_map.h"
+#include "rondo/schedule/scheduler.h"
+#include "rondo/schedule/try_schedule.h"
+
+namespace rondo::exec {
+
+// The tasks to schedule: the ones already planned first, then the new ones, then the ones offered
+// again after a drop (which may be dropped again but never preempt the running task).
+struct PendingTasks {
+  std::vector<TaskId> ids;
+  std::size_t old_count = 0;
+  std::size_t first_reoffered = 0;
+};
+
+struct ScheduleInputs {
+  const map::TopoMap& map;
+  const TravelCache& travel;
+  const TaskBook& book;
+  const TimeZone& zone;
+  schedule::Scheduler& scheduler;
+  std::int64_t polls;  // budget of each solver call
+  std::mt19937_64& rng;
+  std::int64_t capacity = 0;              // 0 = unlimited
+  std::vector<OnBoard> on_board{};        // when the robot is next free
+};
+
+// Delivery tasks carry their transfer (precedence, load, look-alike rule), `after` the tasks among
+// `pending` (the others have ended or run now), and the robot its capacity and what is on board.
+// Precondition: every id is a standard task of the book with a window and a start node.
+// kInvalidInput when the problem is not well formed (schedule::validate's message).
+Result<schedule::TryScheduleResult> schedule_pending(const ScheduleInputs& in, const PendingTasks& pending,
+                                             map::NodeIndex here, Time free,
+                                             std::optional<schedule::RunningTask> running);
+
+// The outcome code of a scheduler's drop.
+Outcome drop_outcome(schedule::DropCause cause);
+
+}  // namespace rondo::exec

@@ -1,0 +1,105 @@
+// The steps of rondo's tasks (rondo/exec/step.h): wait, navigate, act. Each is a small state
+// machine; the task run (task_run.h) strings them together.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "monitor.h"
+#include "rondo/exec/step.h"
+
+namespace rondo::exec {
+
+// Early for a task: waits where the robot is until it is time to leave for the window.
+class WaitStep final : public Step {
+ public:
+  WaitStep(StepContext& ctx, StepHooks hooks, TaskId task, Time until);
+  ~WaitStep() override;
+  const char* name() const override { return "wait"; }
+  void start() override;
+  void halt() override;
+  // Stops waiting without reporting an end: the caller decides what happens to the task.
+  void abandon();
+
+ private:
+  void stop_timer();
+
+  TaskId task_;
+  Time until_;
+  Time since_{};
+  TimerId timer_ = 0;
+};
+
+// A step that has the robot work (drive, act), watched by a monitor: halting cancels what the
+// robot does, and the step ends halted when the robot has answered; a fault holds the monitor.
+class RobotStep : public Step {
+ public:
+  RobotStep(StepContext& ctx, StepHooks hooks) : Step(ctx, std::move(hooks)), monitor_(ctx.clock) {}
+  void halt() override;
+  void suspend() override { monitor_.suspend(); }
+  void resume() override;
+
+ protected:
+  virtual void go_on() = 0;  // the robot is free again and no halt is asked: the next command
+  bool halting() const { return halting_; }
+  Monitor monitor_;
+
+ private:
+  bool halting_ = false;
+};
+
+// Follows the MDP policy edge by edge to `target`, re-planning after every edge (so after a
+// failed one); every attempt is the executor's to log. A task's navigation to its start is
+// watched by the navigation monitor and recorded (NavigationRecord); the executor's own trips (to
+// the dock) are not.
+class NavigateStep final : public RobotStep {
+ public:
+  enum class Purpose { kToStart, kToEnd, kDock };
+  NavigateStep(StepContext& ctx, StepHooks hooks, Purpose purpose, std::optional<TaskId> task, map::NodeIndex target);
+  const char* name() const override { return "navigate"; }
+  void start() override;
+  void on_edge_finished(const EdgeAttempt& attempt) override;
+
+  Time started() const { return started_; }
+  Duration expected() const { return expected_; }
+  map::NodeIndex target() const { return target_; }
+
+ private:
+  void go_on() override { advance(); }
+  void advance();  // the next edge, or the end
+  void arrived();
+  std::vector<map::EdgeIndex> expected_route(map::NodeIndex from) const;
+
+  Purpose purpose_;
+  std::optional<TaskId> task_;
+  map::NodeIndex target_;
+  Time started_{};
+  Duration expected_{0};
+  int failed_edges_ = 0;
+};
+
+// At the task's place: runs its actions one after the other, watched by the action monitor. A
+// cancel that waited for an interruptible moment takes effect between two actions.
+class ActStep final : public RobotStep {
+ public:
+  ActStep(StepContext& ctx, StepHooks hooks, TaskId task, const NavigateStep& arrival);
+  const char* name() const override { return "act"; }
+  void start() override;
+  void on_action_finished(const ActionResult& result) override;
+
+  Time since() const { return since_; }
+  Time expected_end() const { return since_ + expected_; }  // of its actions, as planned
+
+ private:
+  void go_on() override { run_next(); }
+  void run_next();
+
+  TaskId task_;
+  const NavigateStep& arrival_;
+  Time since_{};
+  Duration expected_{0};  // the processing time still to spend when it began
+  std::size_t index_ = 0;
+};
+
+}  // namespace rondo::exec

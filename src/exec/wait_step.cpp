@@ -1,0 +1,44 @@
+#include <fmt/format.h>
+
+#include "steps.h"
+#include "text.h"
+
+namespace rondo::exec {
+
+WaitStep::WaitStep(StepContext& ctx, StepHooks hooks, TaskId task, Time until)
+    : Step(ctx, std::move(hooks)), task_(std::move(task)), until_(until) {}
+
+WaitStep::~WaitStep() { stop_timer(); }
+
+void WaitStep::start() {
+  since_ = ctx_.clock.now();
+  const Task& task = ctx_.book.at(task_).task;
+  ctx_.book.transition(task_, TaskState::kWaiting, Outcome::kEarly,
+                       fmt::format("early: waits {} at {} so as to arrive at {} when the window opens at {}",
+                                   duration_text(until_ - since_), ctx_.map.node(ctx_.robot.location()).name,
+                                   task.start_node, ctx_.clock_text(task.window->release)));
+  timer_ = ctx_.clock.schedule_at(until_, [this] {
+    timer_ = 0;
+    ctx_.stats.waiting += ctx_.clock.now() - since_;
+    end({.status = StepEnd::Status::kDone});
+  });
+}
+
+void WaitStep::stop_timer() {
+  if (timer_ == 0) return;
+  ctx_.clock.cancel(timer_);
+  timer_ = 0;
+  ctx_.stats.waiting += ctx_.clock.now() - since_;
+}
+
+void WaitStep::halt() {
+  stop_timer();
+  end({.status = StepEnd::Status::kHalted});
+}
+
+void WaitStep::abandon() {
+  stop_timer();
+  end_silently();
+}
+
+}  // namespace rondo::exec

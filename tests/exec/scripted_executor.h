@@ -1,0 +1,69 @@
+// The executor on a ScriptedRobot (scripted_robot.h) on the scenario map, at the dock, at 08:00
+// on a Monday: the fixture of the scripted-robot tests.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "rondo/exec/executor.h"
+#include "scenario.h"
+#include "scripted_robot.h"
+
+namespace rondo::exec::testing {
+
+// The scenario map with the executor on a ScriptedRobot at the dock, at 08:00 on a Monday.
+class ScriptedExecutor {
+ public:
+  explicit ScriptedExecutor(ExecutorOptions options = {}, map::TopoMap map = scenario_map(), ExecutorParts parts = {})
+      : map_(std::move(map)),
+        zone_(TimeZone::named("Europe/London").value()),
+        clock_(zone_.parse_time("2026-11-23T08:00").value()),
+        db_(fresh_db_path()),
+        store_(store::Store::open(db_, {.sync_commits = false}).value()),
+        robot_(clock_, map_, *map_.find_node("Dock")) {
+    options.dock = *map_.find_node("Dock");
+    options.refit_at.reset();
+    executor_ = std::make_unique<Executor>(clock_, robot_, map_, store_, zone_, options, std::move(parts));
+  }
+  ~ScriptedExecutor() {
+    executor_.reset();
+    std::error_code ec;
+    std::filesystem::remove(db_, ec);
+  }
+  Executor& executor() { return *executor_; }
+  ScriptedRobot& robot() { return robot_; }
+  store::Store& store() { return store_; }
+  Time at(const std::string& local) const { return zone_.parse_time("2026-11-23T" + local).value(); }
+  void run_until(const std::string& local) { clock_.run_until(at(local)); }
+  void settle() { clock_.run_until(clock_.now()); }  // delivers what was posted, time stands still
+  // Answers every edge with success after 20 s until the robot stands at `node`.
+  void drive_to(const std::string& node) {
+    const map::NodeIndex target = *map_.find_node(node);
+    for (int guard = 0; robot_.location() != target && guard < 50; ++guard) {
+      settle();
+      ASSERT_TRUE(robot_.driving()) << "the executor asked for no edge on the way to " << node;
+      clock_.run_until(clock_.now() + seconds(20));
+      robot_.finish_edge(EdgeOutcome::kSucceeded, seconds(20));
+      settle();
+    }
+  }
+  std::string state(const std::string& id) const { return to_string(executor_->tasks().at(id).state); }
+  std::string code_of(const std::string& id, const std::string& event) const {
+    return last_event_field(store_, id, event, &store::Event::code);
+  }
+  std::string reason_of(const std::string& id, const std::string& event) const {
+    return last_event_field(store_, id, event, &store::Event::reason);
+  }
+
+ protected:
+  map::TopoMap map_;
+  TimeZone zone_;
+  SimClock clock_;
+  std::filesystem::path db_;
+  store::Store store_;
+  ScriptedRobot robot_;
+  std::unique_ptr<Executor> executor_;
+};
+
+}  // namespace rondo::exec::testing
