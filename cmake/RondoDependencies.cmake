@@ -8,6 +8,8 @@ find_package(SQLite3 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(fmt REQUIRED)
 find_package(spdlog REQUIRED)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(HTTPLIB REQUIRED IMPORTED_TARGET cpp-httplib)  # libcpp-httplib-dev, rondo::service
 find_package(PahoMqttCpp REQUIRED)  # libpaho-mqttpp-dev (with libpaho-mqtt-dev), rondo::vda5050
 if(RONDO_BUILD_TESTS)
   find_package(GTest REQUIRED)

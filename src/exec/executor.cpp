@@ -64,6 +64,10 @@ Executor::~Executor() {
 Status Executor::accept(const Task& task) const {
   if (auto ok = validate(task, "task " + task.id); !ok) return ok;
   if (book_.contains(task.id)) return Error::invalid(fmt::format("task {}: the id is already taken", task.id));
+  return runs_here(task);
+}
+
+Status Executor::runs_here(const Task& task) const {
   for (const std::string* node : {&task.start_node, &task.end_node}) {
     if (!node->empty() && !map_.find_node(*node))
       return Error::invalid(fmt::format("task {}: node '{}' is not on the map", task.id, *node));

@@ -79,6 +79,13 @@ Status Executor::restore() {
   for (const TaskId& id : book_.order()) {
     TaskRecord& r = book_.at(id);
     if (is_final(r.state)) continue;
+    // The deployment may have changed meanwhile (a node renamed): a task it can no longer run
+    // ends with that reason instead of being run on a place that is gone.
+    if (Status here = runs_here(r.task); !here) {
+      book_.transition(id, TaskState::kFailed, Outcome::kNoLongerValid,
+                       "no longer valid after the restart: " + here.error().message);
+      continue;
+    }
     const bool on_demand = r.task.kind == TaskKind::kOnDemand;
     if (r.state != TaskState::kQueued) {
       // It was waiting for, driving to or acting on this task when the executive stopped.

@@ -6,7 +6,7 @@
 namespace rondo::exec {
 namespace {
 
-constexpr std::array<std::pair<Outcome, std::string_view>, 32> kNames{{
+constexpr std::array<std::pair<Outcome, std::string_view>, 33> kNames{{
     {Outcome::kNone, ""},
     {Outcome::kAdded, "added"},
     {Outcome::kScheduled, "scheduled"},
@@ -37,6 +37,7 @@ constexpr std::array<std::pair<Outcome, std::string_view>, 32> kNames{{
     {Outcome::kInvalidRequest, "invalid request"},
     {Outcome::kPickupFailed, "pickup failed"},
     {Outcome::kReturnPlanned, "return planned"},
+    {Outcome::kNoLongerValid, "no longer valid"},
     {Outcome::kObservation, "observation"},
     {Outcome::kBattery, "battery"},
 }};

@@ -122,6 +122,16 @@ Status set_task_progress(Store& store, std::string_view id, const Json& progress
   });
 }
 
+Status set_task_definition(Store& store, std::string_view id, const Json& task) {
+  return guarded(store, fmt::format("changing task '{}'", id), [&]() -> Status {
+    SQLite::Statement update(connection(store), "UPDATE tasks SET task_json = ? WHERE id = ?");
+    update.bind(1, task.dump());
+    update.bind(2, std::string(id));
+    if (update.exec() == 0) return Error::not_found(fmt::format("{}: no task '{}'", store.file().string(), id));
+    return {};
+  });
+}
+
 Result<TaskRecord> get_task(const Store& store, std::string_view id) {
   return guarded(store, fmt::format("reading task '{}'", id), [&]() -> Result<TaskRecord> {
     SQLite::Statement query(connection(store), std::string(kSelectTask) + " WHERE id = ?");

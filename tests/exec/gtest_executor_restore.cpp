@@ -10,6 +10,7 @@
 #include <set>
 
 #include "rondo/core/routine.h"
+#include "rondo/core/task_codec.h"
 #include "rondo/store/read_back.h"
 #include "rondo/store/robot_state.h"
 #include "rondo/store/task_table.h"
@@ -272,6 +273,31 @@ TEST(ExecutorRestore, RestoreRunsOnlyBeforeStartAndOnAnEmptyBook) {
   const Status late = life.executor().restore();
   ASSERT_FALSE(late.ok());
   EXPECT_EQ(late.error().code, ErrorCode::kInternal);
+}
+
+// The deployment changed while the executive was down: a stored task on a node that is gone ends
+// with that reason at the restart, and the rest runs.
+TEST(ExecutorRestore, AStoredTaskOnANodeThatIsGoneEndsNoLongerValid) {
+  const auto db = fresh_db_path();
+  const Time start = TimeZone::named("Europe/London").value().parse_time("2026-11-23T08:00").value();
+  {
+    auto store = store::Store::open(db, {.sync_commits = false}).value();
+    Task gone = task("Gone", "Office", start, start + hours(2), minutes(5));
+    gone.start_node = "Attic";  // renamed away in the edited deployment
+    const Task fine = task("Fine", "Office", start, start + hours(2), minutes(5));
+    const store::TaskRecord rows[] = {
+        {.id = "Gone", .task = encode(gone), .state = "queued", .created = start, .updated = start},
+        {.id = "Fine", .task = encode(fine), .state = "queued", .created = start, .updated = start}};
+    ASSERT_TRUE(store::add_tasks(store, rows, "accepted", "added").ok());
+  }
+  Life next(db, start);
+  ASSERT_TRUE(next.executor().restore().ok());
+  next.executor().start();
+  EXPECT_EQ(next.state("Gone"), "failed");
+  EXPECT_EQ(next.executor().tasks().at("Gone").outcome, Outcome::kNoLongerValid);
+  EXPECT_THAT(next.executor().tasks().at("Gone").reason, HasSubstr("'Attic' is not on the map"));
+  next.run_until("10:00");
+  EXPECT_EQ(next.state("Fine"), "succeeded");
 }
 
 }  // namespace

@@ -140,9 +140,32 @@ class Executor final : public RobotListener {
   void on_fault(const RobotFault& fault) override;
   void on_ready() override;
 
+  // --- The service's view and changes (`rondo serve`, src/exec/executor_service.cpp) ---
+  // What the executor is doing now, for the HTTP API's robot and schedule views.
+  struct Activity {
+    std::string phase;               // "idle", "waiting", "navigating", "acting", "docking"
+    std::optional<TaskId> current;   // the task waited for, navigated to or acted on
+    std::optional<RobotFault> fault; // dispatch stands still while set
+    std::vector<TaskId> planned;     // the standard tasks to run, in planned order
+    std::vector<TaskId> on_demand;   // on-demand tasks waiting for the running one
+  };
+  Activity activity() const;
+  // Changes a waiting task's window and/or priority (stored, with a `changed` event) and
+  // reschedules; the task keeps its id and its history. kNotFound for an unknown task, kConflict
+  // for a final or running one, kInvalidInput for a change that cannot be meant (a deadline before
+  // the release, a duration longer than the window, a window for an on-demand task).
+  Status update_task(const TaskId& id, std::optional<TimeWindow> window, std::optional<int> priority);
+  const std::vector<Routine>& routines() const { return routines_; }
+  // Adds a routine while running: today's instances that can still be met are added at once.
+  // kInvalidInput for a name already taken or a node not on the map.
+  Status add_routine_now(Routine routine);
+  // Forgets a routine: no more instances from the next day on (today's stay). kNotFound if unknown.
+  Status remove_routine(const std::string& name);
+
  private:
   // bookkeeping (executor.cpp)
   Status accept(const Task& task) const;
+  Status runs_here(const Task& task) const;  // its places are on the map
   // Validates, stores (all or nothing) and records tasks; returns the standard ones (on-demand ones
   // are queued).
   Result<std::vector<TaskId>> insert_tasks(std::vector<Task> tasks, std::string_view source);

@@ -43,6 +43,7 @@ enum class Outcome {
   kInvalidRequest,            // a request refused at the door
   kPickupFailed,              // a drop that cannot happen: its pickup ended without the object
   kReturnPlanned,             // a drop that did not happen: a new task takes the object back
+  kNoLongerValid,             // a stored task that the changed deployment cannot run (restore)
   kObservation,               // the robot saw something that matters
   kBattery,                   // a battery reading
 };

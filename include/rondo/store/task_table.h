@@ -53,6 +53,10 @@ Status set_task_state(Store& store, std::string_view id, std::string_view state,
 // Replaces task `id`'s progress. Errors: kNotFound (no such task), kStorage.
 Status set_task_progress(Store& store, std::string_view id, const Json& progress);
 
+// Replaces task `id`'s definition (its window or priority changed while it waits; the executor
+// appends the event that says so). Errors: kNotFound (no such task), kStorage.
+Status set_task_definition(Store& store, std::string_view id, const Json& task);
+
 // Errors: kNotFound (no such task), kStorage (including stored JSON that no longer parses).
 Result<TaskRecord> get_task(const Store& store, std::string_view id);
 

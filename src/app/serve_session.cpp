@@ -1,0 +1,141 @@
+#include "serve_session.h"
+
+#include <fmt/format.h>
+#include <pthread.h>
+#include <signal.h>
+
+#include <atomic>
+#include <chrono>
+#include <ostream>
+#include <thread>
+
+#include "deployment_parts.h"
+#include "rondo/exec/clock.h"
+#include "rondo/exec/executor.h"
+#include "rondo/service/server.h"
+#include "rondo/sim/request_generator.h"
+#include "rondo/sim/sim_robot.h"
+#include "rondo/store/robot_state.h"
+#include "rondo/store/store.h"
+#include "rondo/store/task_table.h"
+
+namespace rondo::app {
+namespace {
+
+// The signals the service stops on, blocked in every thread and taken by one sigwait thread, so
+// no work happens in a signal handler. SIGUSR1 wakes that thread when the service ends otherwise.
+sigset_t stop_signals() {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGTERM);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGUSR1);
+  return set;
+}
+
+}  // namespace
+
+void schedule_people(exec::Clock& clock, exec::Executor& executor, sim::RequestGenerator& people, sim::Rng& rng,
+                     const TimeZone& zone, Time from) {
+  const auto day = zone.local_date(from);
+  const Time to = zone.at(std::chrono::year_month_day{std::chrono::sys_days{day} + std::chrono::days{1}}, Duration{0});
+  for (sim::Request& r : people.between(from, to, rng))
+    clock.schedule_at(r.at, [&executor, tasks = r.tasks()]() mutable {
+      if (!executor.book().contains(tasks.front().id)) (void)executor.add_tasks(std::move(tasks), "request");
+    });
+  clock.schedule_at(
+      to, [&clock, &executor, &people, &rng, &zone, to] { schedule_people(clock, executor, people, rng, zone, to); });
+}
+
+Status serve_deployment(const ServeRequest& request, std::ostream& log) {
+  const Deployment& d = request.deployment;
+  if (!(request.speed > 0) || request.speed > 1e6)
+    return Error::invalid(fmt::format("--speed: {} is not between 0 (excluded) and 1000000", request.speed));
+  std::optional<std::string> token;
+  if (request.token_file) {
+    RONDO_ASSIGN_OR_RETURN(std::string t, service::load_token_file(*request.token_file));
+    token = std::move(t);
+  } else if (!service::is_loopback_host(request.host)) {
+    return Error::invalid(fmt::format("--listen {}: a host other than loopback needs --token-file", request.host));
+  }
+  RONDO_ASSIGN_OR_RETURN(DeploymentParts parts, load_parts(d));
+  std::error_code ec;
+  std::filesystem::create_directories(request.data, ec);
+  if (ec) return Error::io(fmt::format("{}: cannot create the data folder: {}", request.data.string(), ec.message()));
+  RONDO_ASSIGN_OR_RETURN(store::Store db, store::Store::open(request.data / "rondo.sqlite", {.sync_commits = true}));
+  RONDO_ASSIGN_OR_RETURN(std::vector<store::TaskRecord> stored, store::list_tasks(db));
+  RONDO_RETURN_IF_ERROR(store::set_meta(db, "serve.deployment", d.name));
+  RONDO_RETURN_IF_ERROR(
+      store::set_meta(db, "serve.deployment_file", std::filesystem::absolute(d.file).lexically_normal().string()));
+
+  exec::SystemClock clock(request.speed);
+  // After a restart the robot is where it was last known to be.
+  map::NodeIndex start_at = parts.dock;
+  if (!stored.empty()) {
+    RONDO_ASSIGN_OR_RETURN(const std::optional<store::RobotState> last,
+                           store::load_robot_state(db, d.executor.robot_name));
+    if (last)
+      if (const auto n = parts.map.find_node(last->node)) start_at = *n;
+  }
+  sim::SimRobot robot(clock, parts.map, parts.world, {.start = start_at, .dock = parts.dock, .seed = d.seed});
+  exec::ExecutorOptions options = d.executor;
+  options.dock = parts.dock;
+  options.seed = d.seed;
+  exec::Executor executor(clock, robot, parts.map, db, d.zone, options);
+  executor.add_routines(parts.plan.routines);
+  // A data folder that holds a run is restored (kill -9 and start again loses nothing); stored
+  // tasks that the deployment, edited meanwhile, can no longer run end with that reason. The
+  // deployment's one-off tasks are added to a fresh store only.
+  if (!stored.empty())
+    RONDO_RETURN_IF_ERROR(executor.restore());
+  else if (!parts.plan.tasks.empty())
+    RONDO_RETURN_IF_ERROR(executor.add_tasks(parts.plan.tasks, "deployment"));
+  executor.start();
+  sim::Rng people_rng(d.seed * 0x9E3779B97F4A7C15ULL + 17);
+  if (parts.people) schedule_people(clock, executor, *parts.people, people_rng, d.zone, clock.now());
+
+  service::Server server({.clock = clock,
+                          .executor = executor,
+                          .robot = robot,
+                          .store = db,
+                          .map = parts.map,
+                          .zone = d.zone,
+                          .deployment = d.name},
+                         {.host = request.host, .port = request.port, .token = token});
+  RONDO_ASSIGN_OR_RETURN(const int port, server.bind());
+  log << fmt::format("rondo serve: {} on http://{}:{}/ (speed {}, data {}, {})\n", d.name, request.host, port,
+                     request.speed, request.data.string(), token ? "writes need the token" : "writes open on loopback")
+      << std::flush;
+
+  const sigset_t signals = stop_signals();
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);  // before any thread starts: they inherit it
+  std::atomic<bool> http_done{false};
+  std::thread http([&server, &http_done] {
+    server.run();
+    http_done = true;
+  });
+  std::thread waiter([&] {
+    int sig = 0;
+    sigwait(&signals, &sig);
+    if (sig != SIGUSR1)
+      log << fmt::format("rondo serve: {}: stopping\n", sig == SIGTERM ? "SIGTERM" : "SIGINT") << std::flush;
+    // No new requests; the ones in progress are answered (the clock still runs). Asked again until
+    // the server has gone, in case the signal came before it was listening.
+    while (!http_done) {
+      server.stop();
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    http.join();
+    clock.post([&] {
+      robot.deactivate();  // halts the robot where it is
+      clock.stop();
+    });
+  });
+  clock.run_until(clock.now() + hours(24 * 365 * 100));
+  pthread_kill(waiter.native_handle(), SIGUSR1);  // a no-op when a signal already woke it
+  waiter.join();
+  log << "rondo serve: stopped\n";
+  return Status{};
+}
+
+}  // namespace rondo::app

@@ -1,0 +1,43 @@
+// `rondo serve`: the executive live on the system clock (optionally X times faster), on the
+// deployment's simulated robot and world, with its store in a data folder and the HTTP API of
+// rondo::service. It runs until SIGTERM or SIGINT, then stops taking requests, lets the requests
+// in progress (and so the commit in progress) finish, halts the robot and returns 0.
+//
+//   ServeRequest r{.deployment = *load_deployment(file), .data = "rondo-data"};
+//   Result<int> code = serve_deployment(r, std::cerr);
+#pragma once
+
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+#include "deployment.h"
+#include "rondo/core/result.h"
+#include "rondo/exec/clock.h"
+#include "rondo/exec/executor.h"
+#include "rondo/sim/request_generator.h"
+#include "rondo/sim/rng.h"
+
+namespace rondo::app {
+
+struct ServeRequest {
+  Deployment deployment;
+  std::string host = "127.0.0.1";
+  int port = 8080;
+  std::filesystem::path data = "rondo-data";
+  std::optional<std::filesystem::path> token_file;
+  double speed = 1.0;
+};
+
+// kInvalidInput (exit 2) for a bad deployment, token file, or a non-loopback host without a token;
+// kIo when the address cannot be bound. Returns once a signal has stopped the service.
+Status serve_deployment(const ServeRequest& request, std::ostream& log);
+
+// The simulated people's requests from `from` to the end of its local day, each added to the
+// executor (source "request") when it falls due, as in `rondo run`; at the day's end the next day's
+// are drawn, and so on. Precondition: everything outlives the clock's events.
+void schedule_people(exec::Clock& clock, exec::Executor& executor, sim::RequestGenerator& people, sim::Rng& rng,
+                     const TimeZone& zone, Time from);
+
+}  // namespace rondo::app

@@ -1,0 +1,91 @@
+// The service's additions to the executor (`rondo serve`, rondo::service): a read-only view of
+// what it is doing, and the changes a person makes while it runs (a waiting task's window or
+// priority, routines added and removed). Everything here runs on the clock's thread, like the
+// rest of the executor; the HTTP threads reach it only through Clock::post().
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "dispatcher.h"
+#include "rondo/core/task_codec.h"
+#include "rondo/exec/executor.h"
+#include "rondo/store/task_table.h"
+
+namespace rondo::exec {
+Executor::Activity Executor::activity() const {
+  Activity a;
+  a.phase = to_string(phase());
+  a.current = current_task();
+  a.fault = fault_;
+  a.planned = dispatcher_->planned;
+  a.on_demand.assign(dispatcher_->on_demand.begin(), dispatcher_->on_demand.end());
+  return a;
+}
+
+Status Executor::update_task(const TaskId& id, std::optional<TimeWindow> window, std::optional<int> priority) {
+  if (!book_.contains(id)) return Error::not_found(fmt::format("no task '{}'", id));
+  TaskRecord& record = book_.at(id);
+  if (is_final(record.state))
+    return Error{ErrorCode::kConflict, fmt::format("task {} is already {}", id, to_string(record.state))};
+  if (record.state != TaskState::kQueued || current_task() == id)
+    return Error{ErrorCode::kConflict,
+                 fmt::format("task {} is {}: only a queued task can be changed", id, to_string(record.state))};
+  Task changed = record.task;
+  std::string what;
+  if (window) {
+    if (changed.kind == TaskKind::kOnDemand)
+      return Error::invalid(fmt::format("task {}: window: an on-demand task has no window", id));
+    changed.window = *window;
+    what = fmt::format("window {} to {}", zone_.format_clock(window->release), zone_.format_clock(window->deadline));
+  }
+  if (priority) {
+    changed.priority = *priority;
+    what += fmt::format("{}priority {}", what.empty() ? "" : ", ", *priority);
+  }
+  if (auto ok = validate(changed, "task " + id); !ok) return ok;
+  if (what.empty()) return Status{};
+  RONDO_RETURN_IF_ERROR(store::set_task_definition(store_, id, encode(changed)));
+  record.task = std::move(changed);
+  book_.note(id, "changed", Outcome::kNone, "changed: " + what);
+  if (record.task.kind == TaskKind::kOnDemand) return Status{};
+  // Offered again as a new task, so that a change it no longer fits drops it (for now) with a
+  // reason instead of breaking the plan of the others.
+  std::erase(dispatcher_->planned, id);
+  const std::vector<TaskId>& later = dispatcher_->deferred;
+  const bool deferred = std::find(later.begin(), later.end(), id) != later.end();
+  if (started_)
+    reschedule(deferred ? std::vector<TaskId>{} : std::vector<TaskId>{id}, fmt::format("task {} changed", id));
+  if (started_) kick();
+  return Status{};
+}
+
+Status Executor::add_routine_now(Routine routine) {
+  for (const Routine& r : routines_)
+    if (r.name == routine.name) return Error::invalid(fmt::format("routine '{}': the name is already taken", r.name));
+  for (const std::string* node : {&routine.task.start_node, &routine.task.end_node})
+    if (!node->empty() && !map_.find_node(*node))
+      return Error::invalid(fmt::format("routine '{}': node '{}' is not on the map", routine.name, *node));
+  const std::string name = routine.name;
+  routines_.push_back(std::move(routine));
+  if (!started_) return Status{};
+  std::vector<Task> batch;
+  const Time now = clock_.now();
+  for (Task& t : instances_on(routines_.back(), zone_.local_date(now), zone_))
+    if (t.window && t.window->deadline - t.duration > now && !book_.contains(t.id)) batch.push_back(std::move(t));
+  if (batch.empty()) return Status{};
+  if (auto ok = add_tasks(std::move(batch), "routine"); !ok) {
+    routines_.pop_back();
+    return ok;
+  }
+  kick();
+  return Status{};
+}
+
+Status Executor::remove_routine(const std::string& name) {
+  const auto it = std::find_if(routines_.begin(), routines_.end(), [&](const Routine& r) { return r.name == name; });
+  if (it == routines_.end()) return Error::not_found(fmt::format("no routine '{}'", name));
+  routines_.erase(it);
+  return Status{};
+}
+
+}  // namespace rondo::exec

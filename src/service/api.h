@@ -1,0 +1,93 @@
+// Inside rondo::service: the pieces the route files share. Not a public header.
+#pragma once
+
+#include <httplib.h>
+
+#include <atomic>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "rondo/core/document.h"
+#include "rondo/core/result.h"
+#include "rondo/service/server.h"
+
+namespace rondo::service {
+
+// A response: a JSON body (or text, for /metrics and the event stream) and its status.
+struct Reply {
+  int status = 200;
+  Json body = Json::object();
+  std::string text{};  // used instead of body when content_type is not JSON
+  std::string content_type = "application/json";
+  std::vector<std::pair<std::string, std::string>> headers{};
+};
+
+// The error body {"error": {"code", "message", "field"}}; the field is null when none is known.
+Reply error_reply(int status, std::string code, std::string message, std::string field = "");
+// The reply for a library error: kInvalidInput 422, kNotFound 404, kConflict 409, else 500. The
+// field path is read from the message ("request:3: tasks[0].window.deadline: ...").
+Reply error_reply(const Error& error);
+// The field path an error message names after its source and line, or "" when it names none.
+std::string field_of(const std::string& message);
+
+// Request latency and counts, by route, for /metrics. Thread-safe.
+class RequestMetrics {
+ public:
+  void record(const std::string& route, int status, double seconds);
+  std::string prometheus() const;
+
+ private:
+  struct Route {
+    std::map<int, long> by_status;
+    double seconds = 0;
+    long count = 0;
+    std::vector<long> buckets;  // cumulative counts at kBounds
+  };
+  mutable std::mutex mutex_;
+  std::map<std::string, Route> routes_;
+};
+
+struct Api {
+  ServiceContext ctx;
+  ServerOptions options;
+  RequestMetrics metrics;
+  std::atomic<bool> stopping{false};
+  std::atomic<int> streams{0};
+
+  // Runs `work` on the clock's thread and waits for its reply (503 when it does not come within
+  // the answer timeout, e.g. while shutting down).
+  Reply on_clock(std::function<Reply()> work);
+};
+
+using Handler = std::function<Reply(Api&, const httplib::Request&)>;
+struct Route {
+  std::string method;  // GET, POST, PATCH, DELETE
+  std::string path;    // OpenAPI form: /api/v1/tasks/{id}
+  bool write = false;  // needs the token when there is one
+  Handler handler;
+  bool stream = false;  // the event stream: answered by event_stream() itself
+};
+
+void add_task_routes(std::vector<Route>& routes);
+void add_robot_routes(std::vector<Route>& routes);
+void add_meta_routes(std::vector<Route>& routes);  // health, metrics, OpenAPI
+void add_dashboard_routes(std::vector<Route>& routes);
+
+// The event stream (GET /api/v1/events): sets a chunked provider on `res`.
+void event_stream(Api& api, const httplib::Request& req, httplib::Response& res);
+
+// The body of a task file as text, with the deployment's time zone when it names none.
+std::string with_default_zone(Json body, const TimeZone& zone);
+
+// JSON views (json_views.cpp)
+Json time_json(std::optional<Time> t);
+Json task_json(const exec::TaskRecord& record);
+Json event_json(const store::Event& event);
+// A query parameter as a time ("2026-11-23T09:00:00Z"); an error names the parameter.
+Result<std::optional<Time>> query_time(const httplib::Request& req, const char* name);
+Result<std::optional<long>> query_int(const httplib::Request& req, const char* name, long min, long max);
+
+}  // namespace rondo::service

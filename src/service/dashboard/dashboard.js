@@ -1,0 +1,305 @@
+// The rondo dashboard: today's schedule (planned against actual), the map with the robot, the
+// task list with cancel buttons, a form to add a task, one path's rhythm over the day, and the
+// live event feed. Plain JavaScript and SVG, served by the binary itself; no build step.
+// The token (when the service has one) is asked for once and kept in this tab's session storage.
+"use strict";
+
+const SVG = "http://www.w3.org/2000/svg";
+const FINAL = new Set(["succeeded", "failed", "cancelled", "dropped", "preempted"]);
+const STATE_WORDS = {
+  queued: "waiting its turn", waiting: "waiting to start", navigating: "on the way", acting: "being done",
+  succeeded: "done", failed: "failed", cancelled: "cancelled", dropped: "dropped", preempted: "interrupted",
+};
+const PHASE_WORDS = {
+  idle: "is free", waiting: "is waiting for a task's time", navigating: "is on the way to a task",
+  acting: "is doing a task", docking: "is going back to its charger",
+};
+const view = { zone: "UTC", tasks: [], names: new Map(), map: null, robot: null, schedule: null };
+
+const $ = (selector) => document.querySelector(selector);
+function el(tag, attrs = {}, text) {
+  const node = tag.startsWith("svg:") ? document.createElementNS(SVG, tag.slice(4)) : document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs)) node.setAttribute(k, v);
+  if (text !== undefined) node.textContent = text;
+  return node;
+}
+
+async function api(method, path, body) {
+  for (let attempt = 0; attempt < 2; attempt++) {
+    const headers = { "Content-Type": "application/json" };
+    const token = sessionStorage.getItem("rondo-token");
+    if (token && method !== "GET") headers.Authorization = "Bearer " + token;
+    const res = await fetch(path, { method, headers, body: body === undefined ? undefined : JSON.stringify(body) });
+    if ((res.status === 401 || res.status === 403) && method !== "GET" && attempt === 0) {
+      const given = window.prompt("Changes need this service's access token:");
+      if (!given) throw new Error("no access token given");
+      sessionStorage.setItem("rondo-token", given.trim());
+      continue;
+    }
+    const data = await res.json().catch(() => ({}));
+    if (!res.ok) throw new Error(data.error ? data.error.message : "the service answered " + res.status);
+    return data;
+  }
+  throw new Error("the access token was not accepted");
+}
+
+function clock(iso) {
+  if (!iso) return "";
+  return new Intl.DateTimeFormat(undefined, { timeZone: view.zone, hour: "2-digit", minute: "2-digit" })
+    .format(new Date(iso));
+}
+function dayAndClock(iso) {
+  if (!iso) return "";
+  return new Intl.DateTimeFormat(undefined, { timeZone: view.zone, weekday: "short", hour: "2-digit", minute: "2-digit" })
+    .format(new Date(iso));
+}
+function taskName(task) { return task.activity || task.id; }
+function showProblem(message) {
+  const p = $("#problem");
+  p.hidden = !message;
+  p.textContent = message || "";
+}
+
+// --- the robot --------------------------------------------------------------------------------
+async function refreshRobot() {
+  const r = await api("GET", "/api/v1/robot");
+  view.robot = r;
+  let line = `The robot ${PHASE_WORDS[r.phase] || r.phase}`;
+  if (r.current_task) line += `: ${view.names.get(r.current_task) || "a task"}`;
+  line += `. It is at ${r.node}, battery ${Math.round(r.battery * 100)} %${r.charging ? ", charging" : ""}.`;
+  if (r.faults.length) line += ` Problem: ${r.faults.map((f) => f.message).join("; ")}.`;
+  $("#robot-line").textContent = line;
+  drawMap();
+}
+
+// --- the schedule as a Gantt chart ----------------------------------------------------------------
+async function refreshSchedule() {
+  const s = await api("GET", "/api/v1/schedule");
+  view.schedule = s;
+  view.zone = s.zone || "UTC";
+  drawGantt();
+}
+
+function drawGantt() {
+  const s = view.schedule;
+  const box = $("#gantt");
+  box.replaceChildren();
+  if (!s) return;
+  const rows = s.tasks;
+  const width = 1100, label = 260, rowH = 20, top = 22;
+  const from = Date.parse(s.from), to = Date.parse(s.to);
+  const x = (iso) => label + Math.max(0, Math.min(1, (Date.parse(iso) - from) / (to - from))) * (width - label - 10);
+  const svg = el("svg:svg", { width, height: top + rows.length * rowH + 10, role: "img", "aria-label": "today's schedule" });
+  for (let h = 0; h <= 24; h += 2) {
+    const t = new Date(from + h * 3600e3).toISOString();
+    svg.append(el("svg:line", { x1: x(t), x2: x(t), y1: top - 4, y2: top + rows.length * rowH, stroke: "#e3e6ea" }));
+    if (h < 24) svg.append(el("svg:text", { x: x(t) + 2, y: 12 }, clock(t)));
+  }
+  rows.forEach((t, i) => {
+    const y = top + i * rowH;
+    const g = el("svg:g", { class: "gantt-row", "data-task": t.id });
+    g.append(el("svg:text", { x: 0, y: y + 14 }, `${taskName(t)} (${t.start_node})`.slice(0, 42)));
+    if (t.window) {
+      g.append(el("svg:rect", { x: x(t.window.release), y: y + 3, height: rowH - 6, fill: "#dde3ea",
+        width: Math.max(2, x(t.window.deadline) - x(t.window.release)) }));
+    }
+    if (t.planned.start) {
+      g.append(el("svg:rect", { x: x(t.planned.start), y: y + 5, height: rowH - 10, fill: "none", stroke: "#1d70b8",
+        "stroke-width": 2, width: Math.max(3, x(t.planned.end || t.planned.start) - x(t.planned.start)) }));
+    }
+    if (t.actual.start) {
+      const end = t.actual.end || s.now;
+      const colour = t.state === "succeeded" ? "#2e8540" : t.state === "failed" ? "#b00020" : t.state === "cancelled" ? "#888" : "#1d70b8";
+      g.append(el("svg:rect", { x: x(t.actual.start), y: y + 8, height: rowH - 16, fill: colour,
+        width: Math.max(3, x(end) - x(t.actual.start)) }));
+    }
+    const tip = el("svg:title", {}, `${taskName(t)}: ${STATE_WORDS[t.state] || t.state}${t.reason ? " (" + t.reason + ")" : ""}`);
+    g.append(tip);
+    svg.append(g);
+  });
+  svg.append(el("svg:line", { x1: x(s.now), x2: x(s.now), y1: top - 6, y2: top + rows.length * rowH, stroke: "#d4351c", "stroke-width": 2 }));
+  box.append(svg);
+  if (!rows.length) box.append(el("p", {}, "Nothing is planned for today."));
+}
+
+// --- the map ------------------------------------------------------------------------------------
+let edgeColours = new Map();
+async function refreshEdges() {
+  const e = await api("GET", "/api/v1/edges");
+  edgeColours = new Map(e.edges.map((d) => [d.id, d.p]));
+  drawMap();
+}
+
+function drawMap() {
+  const m = view.map;
+  if (!m) return;
+  const box = $("#map");
+  box.replaceChildren();
+  const xs = m.nodes.map((n) => n.pose.x), ys = m.nodes.map((n) => n.pose.y);
+  const minX = Math.min(...xs), maxX = Math.max(...xs), minY = Math.min(...ys), maxY = Math.max(...ys);
+  const W = 560, H = 420, pad = 20;
+  const k = Math.min((W - 2 * pad) / Math.max(1e-6, maxX - minX), (H - 2 * pad) / Math.max(1e-6, maxY - minY));
+  const px = (x) => pad + (x - minX) * k, py = (y) => H - pad - (y - minY) * k;
+  const at = new Map(m.nodes.map((n) => [n.name, n.pose]));
+  const svg = el("svg:svg", { width: W, height: H, role: "img", "aria-label": "map" });
+  for (const e of m.edges) {
+    const a = at.get(e.from), b = at.get(e.to);
+    const p = edgeColours.has(e.id) ? edgeColours.get(e.id) : 1;
+    const line = el("svg:line", { x1: px(a.x), y1: py(a.y), x2: px(b.x), y2: py(b.y),
+      stroke: `hsl(${Math.round(p * 120)}, 70%, 42%)`, "stroke-width": 2 });
+    line.append(el("svg:title", {}, `${e.from} to ${e.to}: gets through ${Math.round(p * 100)} % of the time now`));
+    svg.append(line);
+  }
+  const target = view.robot && view.robot.current_task ? (view.tasks.find((t) => t.id === view.robot.current_task) || {}).start_node : null;
+  for (const n of m.nodes) {
+    const c = el("svg:circle", { cx: px(n.pose.x), cy: py(n.pose.y), r: n.name === target ? 7 : 3.5,
+      fill: n.name === target ? "#ffbf47" : "#1d3557" });
+    c.append(el("svg:title", {}, n.name));
+    svg.append(c);
+  }
+  if (view.robot && view.robot.pose) {
+    const r = el("svg:circle", { id: "robot-dot", cx: px(view.robot.pose.x), cy: py(view.robot.pose.y), r: 8,
+      fill: "#d4351c", stroke: "white", "stroke-width": 2 });
+    r.append(el("svg:title", {}, `the robot, at ${view.robot.node}`));
+    svg.append(r);
+  }
+  box.append(svg);
+}
+
+// --- tasks --------------------------------------------------------------------------------------
+async function refreshTasks() {
+  const filter = $("#state-filter").value;
+  const t = await api("GET", "/api/v1/tasks?limit=1000" + (filter ? "&state=" + filter : ""));
+  view.tasks = t.tasks;
+  for (const task of t.tasks) view.names.set(task.id, taskName(task));
+  const body = $("#tasks tbody");
+  body.replaceChildren();
+  for (const task of t.tasks.slice().reverse()) {
+    const row = el("tr", { "data-task": task.id });
+    row.append(el("td", {}, taskName(task)), el("td", {}, task.start_node || "where the robot is"));
+    row.append(el("td", {}, task.window ? `${dayAndClock(task.window.release)} to ${clock(task.window.deadline)}` : "now"));
+    row.append(el("td", { class: "state s-" + task.state }, STATE_WORDS[task.state] || task.state));
+    row.append(el("td", { class: "reason" }, task.reason));
+    const cell = el("td");
+    if (!FINAL.has(task.state)) {
+      const b = el("button", { type: "button", class: "cancel" }, "Cancel");
+      b.addEventListener("click", async () => {
+        if (!window.confirm(`Cancel "${taskName(task)}"?`)) return;
+        try { await api("POST", `/api/v1/tasks/${encodeURIComponent(task.id)}/cancel`, { reason: "cancelled on the dashboard" }); showProblem(""); }
+        catch (err) { showProblem(err.message); }
+        refreshSoon();
+      });
+      cell.append(b);
+    }
+    row.append(cell);
+    body.append(row);
+  }
+}
+
+function setUpForm() {
+  const select = $("#add-form select[name=place]");
+  for (const name of view.map.nodes.map((n) => n.name).sort()) select.append(el("option", { value: name }, name));
+  const local = (d) => new Date(d.getTime() - d.getTimezoneOffset() * 60e3).toISOString().slice(0, 16);
+  const now = new Date();
+  $("#add-form input[name=from]").value = local(now);
+  $("#add-form input[name=to]").value = local(new Date(now.getTime() + 2 * 3600e3));
+  $("#add-form").addEventListener("submit", async (ev) => {
+    ev.preventDefault();
+    const f = new FormData(ev.target);
+    const task = {
+      id: "web-" + Date.now().toString(36),
+      activity: f.get("activity"),
+      window: { release: new Date(f.get("from")).toISOString(), deadline: new Date(f.get("to")).toISOString() },
+      duration: Number(f.get("minutes")) * 60,
+      priority: Number(f.get("priority")),
+      start_node: f.get("place"),
+    };
+    const result = $("#add-result");
+    try {
+      await api("POST", "/api/v1/tasks", { tasks: [task] });
+      result.textContent = `Added "${task.activity}".`;
+      showProblem("");
+    } catch (err) {
+      result.textContent = "Not added: " + err.message;
+    }
+    refreshSoon();
+  });
+}
+
+// --- one path's rhythm ----------------------------------------------------------------------------
+async function drawRhythm() {
+  const id = $("#edge-select").value;
+  const box = $("#rhythm");
+  box.replaceChildren();
+  if (!id) return;
+  const m = await api("GET", `/api/v1/edges/${encodeURIComponent(id)}/model?step_minutes=15`);
+  const W = 560, H = 220, left = 40, bottom = 20;
+  const n = m.points.length;
+  const x = (i) => left + (i / Math.max(1, n - 1)) * (W - left - 10);
+  const maxS = Math.max(1, ...m.points.map((p) => (p.quantiles_s ? p.quantiles_s.q90 : p.expected_s)));
+  const yp = (p) => 10 + (1 - p) * (H - bottom - 20);
+  const ys = (s) => 10 + (1 - s / maxS) * (H - bottom - 20);
+  const svg = el("svg:svg", { width: W, height: H, role: "img", "aria-label": "the path over the day" });
+  const line = (values, colour, dash) => el("svg:polyline", { fill: "none", stroke: colour, "stroke-width": 2,
+    "stroke-dasharray": dash || "", points: values.map((v, i) => `${x(i)},${v}`).join(" ") });
+  svg.append(line(m.points.map((p) => yp(p.p)), "#2e8540"));
+  svg.append(line(m.points.map((p) => ys(p.expected_s)), "#1d70b8", "4 3"));
+  if (m.points[0].quantiles_s) svg.append(line(m.points.map((p) => ys(p.quantiles_s.q90)), "#9bb8d8", "2 3"));
+  for (let i = 0; i < n; i += 16) svg.append(el("svg:text", { x: x(i), y: H - 4 }, clock(m.points[i].time)));
+  svg.append(el("svg:text", { x: 0, y: 14 }, "100 %"), el("svg:text", { x: 0, y: H - bottom - 10 }, "0 %"));
+  box.append(svg);
+  box.append(el("p", { class: "legend" },
+    `Green: chance of getting through. Blue, dashed: expected time (up to ${Math.round(maxS)} s).` +
+    (m.model === "learned" ? ` Learned from ${m.attempts} trips.` : " Nothing learned yet: an estimate from the distance.")));
+}
+
+// --- the live feed --------------------------------------------------------------------------------
+function startFeed() {
+  const feed = $("#feed");
+  const source = new EventSource("/api/v1/events?tail=50");
+  source.onmessage = (msg) => {
+    const e = JSON.parse(msg.data);
+    const who = e.task_id ? view.names.get(e.task_id) || "a task" : e.subject === "robot" ? "The robot" : e.subject;
+    const words = STATE_WORDS[e.event] || e.event;
+    feed.prepend(el("li", {}, `${dayAndClock(e.time)}: ${who}: ${words}${e.reason ? " (" + e.reason + ")" : ""}`));
+    while (feed.children.length > 100) feed.lastChild.remove();
+    refreshSoon();
+  };
+  source.onerror = () => showProblem("Lost the connection to the service; trying again…");
+  source.onopen = () => showProblem("");
+}
+
+let pending = null;
+function refreshSoon() {
+  if (pending) return;
+  pending = setTimeout(async () => {
+    pending = null;
+    try { await Promise.all([refreshTasks(), refreshSchedule(), refreshRobot()]); }
+    catch (err) { showProblem(err.message); }
+  }, 300);
+}
+
+async function start() {
+  try {
+    const health = await api("GET", "/healthz");
+    $("#title").textContent = `The robot's day: ${health.deployment}`;
+    view.map = await api("GET", "/api/v1/map");
+    await refreshSchedule();
+    await refreshTasks();
+    await refreshRobot();
+    await refreshEdges();
+    setUpForm();
+    const edges = $("#edge-select");
+    for (const e of view.map.edges) edges.append(el("option", { value: e.id }, `${e.from} to ${e.to}`));
+    edges.addEventListener("change", () => drawRhythm().catch((err) => showProblem(err.message)));
+    await drawRhythm();
+    $("#state-filter").addEventListener("change", () => refreshTasks().catch((err) => showProblem(err.message)));
+    startFeed();
+    setInterval(() => refreshRobot().catch((err) => showProblem(err.message)), 2000);
+    setInterval(() => refreshEdges().catch((err) => showProblem(err.message)), 60000);
+  } catch (err) {
+    showProblem("The service does not answer: " + err.message);
+  }
+}
+
+start();

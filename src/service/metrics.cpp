@@ -1,0 +1,102 @@
+// /metrics in the Prometheus text format: request counts and latency by route (here), and the
+// executive's figures (tasks by state, scheduler calls, the robot) read on the clock's thread.
+#include <fmt/format.h>
+
+#include <array>
+
+#include "api.h"
+
+namespace rondo::service {
+namespace {
+
+constexpr std::array<double, 10> kBounds = {0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.5, 1, 5};
+
+std::string label(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '\\' || c == '"') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+void RequestMetrics::record(const std::string& route, int status, double seconds) {
+  std::lock_guard lock(mutex_);
+  Route& r = routes_[route];
+  if (r.buckets.empty()) r.buckets.assign(kBounds.size(), 0);
+  ++r.by_status[status];
+  ++r.count;
+  r.seconds += seconds;
+  for (std::size_t i = 0; i < kBounds.size(); ++i)
+    if (seconds <= kBounds[i]) ++r.buckets[i];
+}
+
+std::string RequestMetrics::prometheus() const {
+  std::lock_guard lock(mutex_);
+  std::string out =
+      "# HELP rondo_http_requests_total HTTP requests answered, by route and status.\n"
+      "# TYPE rondo_http_requests_total counter\n";
+  for (const auto& [route, r] : routes_)
+    for (const auto& [status, n] : r.by_status)
+      out += fmt::format("rondo_http_requests_total{{route=\"{}\",status=\"{}\"}} {}\n", label(route), status, n);
+  out +=
+      "# HELP rondo_http_request_seconds Time to answer a request, by route.\n"
+      "# TYPE rondo_http_request_seconds histogram\n";
+  for (const auto& [route, r] : routes_) {
+    for (std::size_t i = 0; i < kBounds.size(); ++i)
+      out += fmt::format("rondo_http_request_seconds_bucket{{route=\"{}\",le=\"{}\"}} {}\n", label(route), kBounds[i],
+                         r.buckets[i]);
+    out += fmt::format("rondo_http_request_seconds_bucket{{route=\"{}\",le=\"+Inf\"}} {}\n", label(route), r.count);
+    out += fmt::format("rondo_http_request_seconds_sum{{route=\"{}\"}} {}\n", label(route), r.seconds);
+    out += fmt::format("rondo_http_request_seconds_count{{route=\"{}\"}} {}\n", label(route), r.count);
+  }
+  return out;
+}
+
+Reply metrics_reply(Api& api) {
+  Reply reply = api.on_clock([&api] {
+    std::map<std::string, int> by_state;
+    for (TaskState s : {TaskState::kQueued, TaskState::kWaiting, TaskState::kNavigating, TaskState::kActing,
+                        TaskState::kSucceeded, TaskState::kFailed, TaskState::kCancelled, TaskState::kDropped})
+      by_state[to_string(s)] = 0;
+    for (const auto& [id, r] : api.ctx.executor.tasks()) ++by_state[to_string(r.state)];
+    const exec::ExecutorStats& st = api.ctx.executor.stats();
+    const exec::Robot& robot = api.ctx.robot;
+    std::string out =
+        "# HELP rondo_tasks Tasks the executor holds, by state.\n"
+        "# TYPE rondo_tasks gauge\n";
+    for (const auto& [state, n] : by_state) out += fmt::format("rondo_tasks{{state=\"{}\"}} {}\n", state, n);
+    out += fmt::format(
+        "# HELP rondo_schedule_calls_total Scheduler calls.\n# TYPE rondo_schedule_calls_total counter\n"
+        "rondo_schedule_calls_total {}\n"
+        "# HELP rondo_refits_total Nightly refits of the edge models.\n# TYPE rondo_refits_total counter\n"
+        "rondo_refits_total {}\n"
+        "# HELP rondo_navigation_attempts_total Navigations to a task's place.\n"
+        "# TYPE rondo_navigation_attempts_total counter\nrondo_navigation_attempts_total {}\n"
+        "# HELP rondo_robot_battery Battery charge, 0..1.\n# TYPE rondo_robot_battery gauge\nrondo_robot_battery {}\n"
+        "# HELP rondo_robot_charging 1 while on the charger.\n# TYPE rondo_robot_charging gauge\nrondo_robot_charging "
+        "{}\n"
+        "# HELP rondo_robot_busy 1 while driving or acting.\n# TYPE rondo_robot_busy gauge\nrondo_robot_busy {}\n"
+        "# HELP rondo_robot_fault 1 while the robot reports a fault.\n# TYPE rondo_robot_fault gauge\n"
+        "rondo_robot_fault {}\n"
+        "# HELP rondo_store_write_errors Store writes that failed.\n# TYPE rondo_store_write_errors gauge\n"
+        "rondo_store_write_errors {}\n",
+        st.schedules, st.refits, st.navigation_attempts, robot.battery(), robot.charging() ? 1 : 0,
+        robot.busy() ? 1 : 0, robot.fault() ? 1 : 0, api.ctx.executor.write_errors().size());
+    Reply r;
+    r.text = std::move(out);
+    r.content_type = "text/plain; version=0.0.4";
+    return r;
+  });
+  if (reply.content_type != "application/json") {
+    reply.text += fmt::format(
+        "# HELP rondo_event_streams Open event streams.\n# TYPE rondo_event_streams gauge\nrondo_event_streams {}\n",
+        api.streams.load());
+    reply.text += api.metrics.prometheus();
+  }
+  return reply;
+}
+
+}  // namespace rondo::service

@@ -1,0 +1,226 @@
+// /api/v1: the robot, the map, the schedule (planned against actual), an edge's learned model
+// over a day, and the routines.
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "api.h"
+#include "rondo/core/task_codec.h"
+#include "rondo/map/map_yaml.h"
+#include "rondo/plan/learned_edge_models.h"
+
+namespace rondo::service {
+namespace {
+
+Json fault_json(const std::optional<exec::RobotFault>& f) {
+  if (!f) return Json(nullptr);
+  return Json{{"kind", exec::to_string(f->kind)}, {"message", f->message}};
+}
+
+Reply robot(Api& api, const httplib::Request&) {
+  return api.on_clock([&api] {
+    const exec::Robot& robot = api.ctx.robot;
+    const exec::Executor::Activity a = api.ctx.executor.activity();
+    const auto pose = robot.position();
+    Json faults = Json::array();
+    if (auto f = robot.fault()) faults.push_back(fault_json(f));
+    Reply r;
+    r.body = Json{{"time", format_time(api.ctx.clock.now())},
+                  {"node", api.ctx.map.node(robot.location()).name},
+                  {"pose", pose ? Json{{"x", pose->x}, {"y", pose->y}, {"yaw", pose->yaw}} : Json(nullptr)},
+                  {"phase", a.phase},
+                  {"current_task", a.current ? Json(*a.current) : Json(nullptr)},
+                  {"busy", robot.busy()},
+                  {"battery", robot.battery()},
+                  {"charging", robot.charging()},
+                  {"dispatch_paused", a.fault.has_value()},
+                  {"faults", std::move(faults)}};
+    return r;
+  });
+}
+
+Reply map_view(Api& api, const httplib::Request&) {
+  Reply r;
+  r.body = map::map_to_json(api.ctx.map);  // the map is immutable: no need for the clock's thread
+  return r;
+}
+
+// The local day a `date` parameter names ("" : today's).
+Result<std::chrono::year_month_day> local_day(const std::string& date, const TimeZone& zone, Time now) {
+  if (date.empty()) return zone.local_date(now);
+  auto t = parse_time(date + "T12:00:00Z");
+  if (!t) return Error::invalid(fmt::format("query: date: expected YYYY-MM-DD, found '{}'", date));
+  return std::chrono::year_month_day{std::chrono::floor<std::chrono::days>(*t)};
+}
+
+std::string date_param(const httplib::Request& req) {
+  return req.has_param("date") ? req.get_param_value("date") : "";
+}
+
+std::chrono::year_month_day next_day(std::chrono::year_month_day d) {
+  return std::chrono::year_month_day{std::chrono::sys_days{d} + std::chrono::days{1}};
+}
+
+Reply schedule(Api& api, const httplib::Request& req) {
+  return api.on_clock([&api, date = date_param(req)] {
+    const Time now = api.ctx.clock.now();
+    auto day = local_day(date, api.ctx.zone, now);
+    if (!day) return error_reply(422, "invalid", day.error().message, "date");
+    const Time from = api.ctx.zone.at(*day, Duration{0});
+    const Time to = api.ctx.zone.at(next_day(*day), Duration{0});
+    const exec::Executor::Activity a = api.ctx.executor.activity();
+    Json tasks = Json::array();
+    for (const TaskId& id : api.ctx.executor.task_order()) {
+      const exec::TaskRecord& t = api.ctx.executor.tasks().at(id);
+      const auto in_day = [&](std::optional<Time> x) { return x && *x >= from && *x < to; };
+      const bool window_in = t.task.window && t.task.window->deadline > from && t.task.window->release < to;
+      if (!window_in && !in_day(t.planned_start) && !in_day(t.started) && !in_day(t.added)) continue;
+      tasks.push_back(Json{{"id", id},
+                           {"activity", t.task.activity},
+                           {"start_node", t.task.start_node},
+                           {"state", to_string(t.state)},
+                           {"code", std::string(exec::to_string(t.outcome))},
+                           {"reason", t.reason},
+                           {"window", t.task.window ? Json{{"release", format_time(t.task.window->release)},
+                                                           {"deadline", format_time(t.task.window->deadline)}}
+                                                    : Json(nullptr)},
+                           {"planned", Json{{"start", time_json(t.planned_start)}, {"end", time_json(t.planned_end)}}},
+                           {"actual", Json{{"start", time_json(t.started)}, {"end", time_json(t.ended)}}}});
+    }
+    Reply reply;
+    reply.body = Json{{"date", fmt::format("{:04d}-{:02d}-{:02d}", static_cast<int>(day->year()),
+                                           static_cast<unsigned>(day->month()), static_cast<unsigned>(day->day()))},
+                      {"zone", api.ctx.zone.name()},
+                      {"from", format_time(from)},
+                      {"to", format_time(to)},
+                      {"now", format_time(now)},
+                      {"current_task", a.current ? Json(*a.current) : Json(nullptr)},
+                      {"planned_order", a.planned},
+                      {"tasks", std::move(tasks)}};
+    return reply;
+  });
+}
+
+Reply edge_model(Api& api, const httplib::Request& req) {
+  const std::string edge_id = req.matches[1];
+  const auto edge = api.ctx.map.find_edge(edge_id);
+  if (!edge)
+    return error_reply(404, "not_found", fmt::format("no edge '{}' on the map '{}'", edge_id, api.ctx.map.name()));
+  auto step = query_int(req, "step_minutes", 1, 240);
+  if (!step) return error_reply(422, "invalid", step.error().message, "step_minutes");
+  const long step_min = step->value_or(15);
+  return api.on_clock([&api, e = *edge, edge_id, date = date_param(req), step_min] {
+    auto day = local_day(date, api.ctx.zone, api.ctx.clock.now());
+    if (!day) return error_reply(422, "invalid", day.error().message, "date");
+    const plan::LearnedEdgeModels& models = api.ctx.executor.models();
+    const std::size_t index = models.model_index(e);
+    const auto& fitted = models.models();
+    const bool learned = fitted && index != plan::LearnedEdgeModels::kUnknown;
+    const Time from = api.ctx.zone.at(*day, Duration{0});
+    const Time to = api.ctx.zone.at(next_day(*day), Duration{0});
+    Json points = Json::array();
+    for (Time t = from; t < to; t += minutes(step_min)) {
+      const plan::EdgeOutcome o = models.outcome(e, t);
+      Json p{{"time", format_time(t)}, {"p", o.success_probability}, {"expected_s", o.expected_seconds}};
+      if (learned)
+        p["quantiles_s"] = Json{{"q10", fitted->quantile_seconds(index, t, 0.1)},
+                                {"q50", fitted->quantile_seconds(index, t, 0.5)},
+                                {"q90", fitted->quantile_seconds(index, t, 0.9)}};
+      else
+        p["quantiles_s"] = nullptr;
+      points.push_back(std::move(p));
+    }
+    Reply reply;
+    reply.body = Json{{"edge", edge_id},
+                      {"from_node", api.ctx.map.edges()[e].from},
+                      {"to_node", api.ctx.map.edges()[e].to},
+                      {"model", learned ? "learned" : "prior"},
+                      {"attempts", learned ? fitted->attempts(index) : 0},
+                      {"zone", api.ctx.zone.name()},
+                      {"points", std::move(points)}};
+    return reply;
+  });
+}
+
+// Every edge's success probability and expected travel time at one instant (the map's colours).
+Reply edges_now(Api& api, const httplib::Request& req) {
+  auto at = query_time(req, "at");
+  if (!at) return error_reply(422, "invalid", at.error().message, "at");
+  return api.on_clock([&api, at = *at] {
+    const Time t = at.value_or(api.ctx.clock.now());
+    const plan::LearnedEdgeModels& models = api.ctx.executor.models();
+    Json list = Json::array();
+    for (map::EdgeIndex e = 0; e < api.ctx.map.edge_count(); ++e) {
+      const plan::EdgeOutcome o = models.outcome(e, t);
+      const map::Edge& edge = api.ctx.map.edges()[e];
+      list.push_back(Json{{"id", edge.id},
+                          {"from", edge.from},
+                          {"to", edge.to},
+                          {"p", o.success_probability},
+                          {"expected_s", o.expected_seconds},
+                          {"learned", models.models() && models.model_index(e) != plan::LearnedEdgeModels::kUnknown}});
+    }
+    Reply reply;
+    reply.body = Json{{"time", format_time(t)}, {"edges", std::move(list)}};
+    return reply;
+  });
+}
+
+Reply routines(Api& api, const httplib::Request&) {
+  return api.on_clock([&api] {
+    Json list = Json::array();
+    for (const Routine& r : api.ctx.executor.routines()) list.push_back(encode(r));
+    Reply reply;
+    reply.body = Json{{"routines", std::move(list)}};
+    return reply;
+  });
+}
+
+Reply add_routines(Api& api, const httplib::Request& req) {
+  Json j = Json::parse(req.body, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) return error_reply(400, "malformed", "the body is not a JSON object");
+  const map::TopoMap& map = api.ctx.map;
+  const PlaceCheck places{[&map](std::string_view n) { return map.find_node(n).has_value(); }, map.name()};
+  auto file = parse_task_file(with_default_zone(j, api.ctx.zone), DocumentFormat::kJson, "request", &places);
+  if (!file) return error_reply(file.error());
+  if (!file->tasks.empty())
+    return error_reply(422, "invalid", "request: tasks: add tasks through /api/v1/tasks", "tasks");
+  if (file->routines.empty()) return error_reply(422, "invalid", "request: routines: no routine to add", "routines");
+  return api.on_clock([&api, list = std::move(file->routines)]() mutable {
+    Json added = Json::array();
+    for (Routine& r : list) {
+      Json encoded = encode(r);
+      if (Status ok = api.ctx.executor.add_routine_now(std::move(r)); !ok) return error_reply(ok.error());
+      added.push_back(std::move(encoded));
+    }
+    Reply reply;
+    reply.status = 201;
+    reply.body = Json{{"routines", std::move(added)}};
+    return reply;
+  });
+}
+
+Reply remove_routine(Api& api, const httplib::Request& req) {
+  const std::string name = req.matches[1];
+  return api.on_clock([&api, name] {
+    if (Status ok = api.ctx.executor.remove_routine(name); !ok) return error_reply(ok.error());
+    Reply reply;
+    reply.body = Json{{"removed", name}};
+    return reply;
+  });
+}
+
+}  // namespace
+
+void add_robot_routes(std::vector<Route>& routes) {
+  routes.push_back({"GET", "/api/v1/robot", false, robot});
+  routes.push_back({"GET", "/api/v1/map", false, map_view});
+  routes.push_back({"GET", "/api/v1/schedule", false, schedule});
+  routes.push_back({"GET", "/api/v1/edges", false, edges_now});
+  routes.push_back({"GET", "/api/v1/edges/{id}/model", false, edge_model});
+  routes.push_back({"GET", "/api/v1/routines", false, routines});
+  routes.push_back({"POST", "/api/v1/routines", true, add_routines});
+  routes.push_back({"DELETE", "/api/v1/routines/{name}", true, remove_routine});
+}
+
+}  // namespace rondo::service

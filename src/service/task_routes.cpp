@@ -1,0 +1,244 @@
+// /api/v1/tasks: submit (with Idempotency-Key), list with filters and paging, one task with its
+// events, cancel, and change a waiting task's window or priority.
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "api.h"
+#include "rondo/core/task_codec.h"
+#include "rondo/store/events.h"
+#include "rondo/store/robot_state.h"
+#include "rondo/store/task_table.h"
+
+namespace rondo::service {
+namespace {
+
+constexpr std::size_t kMaxKeyLength = 200;
+
+// FNV-1a: a stable fingerprint of a request body, stored with its idempotency key.
+std::string fingerprint(std::string_view text) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (char c : text) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 1099511628211ULL;
+  }
+  return fmt::format("{:016x}", h);
+}
+
+Result<Json> parse_body(const httplib::Request& req) {
+  Json j = Json::parse(req.body, nullptr, false);
+  if (j.is_discarded()) return Error::invalid("the body is not JSON");
+  if (!j.is_object()) return Error::invalid("the body must be a JSON object");
+  return j;
+}
+
+Reply malformed(const std::string& what) {
+  return error_reply(400, "malformed", what);
+}
+
+Reply created(Api& api, const std::vector<TaskId>& ids) {
+  Json tasks = Json::array();
+  for (const TaskId& id : ids)
+    if (api.ctx.executor.tasks().contains(id)) tasks.push_back(task_json(api.ctx.executor.tasks().at(id)));
+  Reply r;
+  r.status = 201;
+  r.body = Json{{"tasks", std::move(tasks)}};
+  return r;
+}
+
+// On the clock's thread. The key is written as pending before the tasks and as answered after, so
+// a crash between the two still finds the tasks on a retry: pending + every task stored = answered.
+Reply submit_on_clock(Api& api, std::vector<Task> tasks, const std::string& key, const std::string& print) {
+  store::Store& db = api.ctx.store;
+  std::vector<TaskId> ids;
+  for (const Task& t : tasks) ids.push_back(t.id);
+  const std::string meta_key = "idempotency." + key;
+  if (!key.empty()) {
+    auto stored = store::get_meta(db, meta_key);
+    if (!stored) return error_reply(stored.error());
+    if (*stored) {
+      Json rec = Json::parse(**stored, nullptr, false);
+      if (rec.is_discarded() || rec.value("fingerprint", "") != print)
+        return error_reply(422, "idempotency_mismatch", "this Idempotency-Key was used with another request",
+                           "Idempotency-Key");
+      if (rec.contains("reply")) {
+        Reply r;
+        r.status = rec["reply"].value("status", 201);
+        r.body = rec["reply"]["body"];
+        return r;
+      }
+      // Pending: the first attempt stopped between its two writes.
+      const bool all_stored = std::all_of(ids.begin(), ids.end(), [&](const TaskId& id) {
+        return api.ctx.executor.tasks().contains(id) || store::get_task(db, id).ok();
+      });
+      if (all_stored) return created(api, ids);
+    } else if (auto ok = store::set_meta(db, meta_key, Json{{"fingerprint", print}}.dump()); !ok) {
+      return error_reply(ok.error());
+    }
+  }
+  if (Status ok = api.ctx.executor.add_tasks(std::move(tasks), "api"); !ok) return error_reply(ok.error());
+  Reply r = created(api, ids);
+  if (!key.empty())
+    (void)store::set_meta(db, meta_key,
+                          Json{{"fingerprint", print}, {"reply", Json{{"status", r.status}, {"body", r.body}}}}.dump());
+  return r;
+}
+
+Reply submit(Api& api, const httplib::Request& req) {
+  const std::string key = req.get_header_value("Idempotency-Key");
+  if (key.size() > kMaxKeyLength || std::any_of(key.begin(), key.end(), [](char c) { return c < 0x21 || c > 0x7e; }))
+    return error_reply(422, "invalid", "Idempotency-Key: printable ASCII, at most 200 characters", "Idempotency-Key");
+  auto body = parse_body(req);
+  if (!body) return malformed(body.error().message);
+  const map::TopoMap& map = api.ctx.map;
+  const PlaceCheck places{[&map](std::string_view n) { return map.find_node(n).has_value(); }, map.name()};
+  auto file = parse_task_file(with_default_zone(*body, api.ctx.zone), DocumentFormat::kJson, "request", &places);
+  if (!file) return error_reply(file.error());
+  if (!file->routines.empty())
+    return error_reply(422, "invalid", "request: routines: add routines through /api/v1/routines", "routines");
+  if (file->tasks.empty()) return error_reply(422, "invalid", "request: tasks: no task to add", "tasks");
+  return api.on_clock([&api, tasks = std::move(file->tasks), key, print = fingerprint(req.body)]() mutable {
+    return submit_on_clock(api, std::move(tasks), key, print);
+  });
+}
+
+bool window_overlaps(const exec::TaskRecord& r, std::optional<Time> from, std::optional<Time> to) {
+  if (!from && !to) return true;
+  if (!r.task.window) return false;
+  return (!from || r.task.window->deadline > *from) && (!to || r.task.window->release < *to);
+}
+
+Reply list(Api& api, const httplib::Request& req) {
+  std::optional<TaskState> state;
+  if (req.has_param("state")) {
+    auto s = parse_task_state(req.get_param_value("state"));
+    if (!s) return error_reply(422, "invalid", "query: state: " + s.error().message, "state");
+    state = *s;
+  }
+  const std::string source = req.has_param("source") ? req.get_param_value("source") : "";
+  auto from = query_time(req, "from");
+  if (!from) return error_reply(422, "invalid", from.error().message, "from");
+  auto to = query_time(req, "to");
+  if (!to) return error_reply(422, "invalid", to.error().message, "to");
+  auto limit = query_int(req, "limit", 1, 1000);
+  if (!limit) return error_reply(422, "invalid", limit.error().message, "limit");
+  auto offset = query_int(req, "offset", 0, std::numeric_limits<int>::max());
+  if (!offset) return error_reply(422, "invalid", offset.error().message, "offset");
+  const long lim = limit->value_or(100), off = offset->value_or(0);
+  return api.on_clock([&api, state, source, from = *from, to = *to, lim, off] {
+    Json tasks = Json::array();
+    long matched = 0;
+    for (const TaskId& id : api.ctx.executor.task_order()) {
+      const exec::TaskRecord& r = api.ctx.executor.tasks().at(id);
+      if ((state && r.state != *state) || (!source.empty() && r.source != source) || !window_overlaps(r, from, to))
+        continue;
+      if (matched >= off && matched < off + lim) tasks.push_back(task_json(r));
+      ++matched;
+    }
+    Reply reply;
+    reply.body = Json{{"total", matched}, {"offset", off}, {"limit", lim}, {"tasks", std::move(tasks)}};
+    return reply;
+  });
+}
+
+Reply one(Api& api, const httplib::Request& req) {
+  const std::string id = req.matches[1];
+  return api.on_clock([&api, id] {
+    auto events = store::read_events_of(api.ctx.store, id);
+    if (!events) return error_reply(events.error());
+    Json history = Json::array();
+    for (const store::Event& e : *events) history.push_back(event_json(e));
+    Reply reply;
+    if (api.ctx.executor.tasks().contains(id)) {
+      reply.body = task_json(api.ctx.executor.tasks().at(id));
+    } else {
+      auto stored = store::get_task(api.ctx.store, id);
+      if (!stored) return error_reply(404, "not_found", fmt::format("no task '{}'", id));
+      reply.body = Json{{"id", stored->id},
+                        {"state", stored->state},
+                        {"source", stored->source},
+                        {"added", format_time(stored->created)},
+                        {"task", stored->task}};
+    }
+    reply.body["events"] = std::move(history);
+    return reply;
+  });
+}
+
+Reply cancel(Api& api, const httplib::Request& req) {
+  const std::string id = req.matches[1];
+  std::string reason = "cancelled through the API";
+  if (!req.body.empty()) {
+    auto body = parse_body(req);
+    if (!body) return malformed(body.error().message);
+    for (const auto& [k, v] : body->items()) {
+      if (k != "reason") return error_reply(422, "invalid", fmt::format("request: {}: unknown field", k), k);
+      if (!v.is_string()) return error_reply(422, "invalid", "request: reason: expected text", "reason");
+      reason = v.get<std::string>();
+    }
+  }
+  return api.on_clock([&api, id, reason] {
+    if (Status ok = api.ctx.executor.cancel_task(id, reason); !ok) return error_reply(ok.error());
+    Reply r;
+    r.body = task_json(api.ctx.executor.tasks().at(id));
+    return r;
+  });
+}
+
+Result<Time> time_field(const Json& j, const std::string& path) {
+  if (!j.is_string())
+    return Error::invalid(fmt::format("request: {}: expected a time like 2026-11-23T09:00:00Z", path));
+  auto t = parse_time(j.get<std::string>());
+  if (!t) return Error::invalid(fmt::format("request: {}: {}", path, t.error().message));
+  return *t;
+}
+
+Reply change(Api& api, const httplib::Request& req) {
+  const std::string id = req.matches[1];
+  auto body = parse_body(req);
+  if (!body) return malformed(body.error().message);
+  std::optional<TimeWindow> window;
+  std::optional<int> priority;
+  for (const auto& [k, v] : body->items()) {
+    if (k == "priority") {
+      if (!v.is_number_integer())
+        return error_reply(422, "invalid", "request: priority: expected a whole number", "priority");
+      priority = v.get<int>();
+    } else if (k == "window") {
+      if (!v.is_object() || !v.contains("release") || !v.contains("deadline") || v.size() != 2)
+        return error_reply(422, "invalid", "request: window: expected {release, deadline}", "window");
+      auto release = time_field(v["release"], "window.release");
+      if (!release) return error_reply(release.error());
+      auto deadline = time_field(v["deadline"], "window.deadline");
+      if (!deadline) return error_reply(deadline.error());
+      window = TimeWindow{*release, *deadline};
+    } else {
+      return error_reply(422, "invalid", fmt::format("request: {}: unknown field (window, priority)", k), k);
+    }
+  }
+  if (!window && !priority) return error_reply(422, "invalid", "request: nothing to change (window, priority)");
+  return api.on_clock([&api, id, window, priority] {
+    if (Status ok = api.ctx.executor.update_task(id, window, priority); !ok) {
+      Reply r = error_reply(ok.error());
+      // "task t1.window: the deadline ..." from validate(): name the request's field.
+      if (r.status == 422 && window && ok.error().message.find("window") != std::string::npos)
+        r.body["error"]["field"] = "window";
+      return r;
+    }
+    Reply r;
+    r.body = task_json(api.ctx.executor.tasks().at(id));
+    return r;
+  });
+}
+
+}  // namespace
+
+void add_task_routes(std::vector<Route>& routes) {
+  routes.push_back({"POST", "/api/v1/tasks", true, submit});
+  routes.push_back({"GET", "/api/v1/tasks", false, list});
+  routes.push_back({"GET", "/api/v1/tasks/{id}", false, one});
+  routes.push_back({"PATCH", "/api/v1/tasks/{id}", true, change});
+  routes.push_back({"POST", "/api/v1/tasks/{id}/cancel", true, cancel});
+}
+
+}  // namespace rondo::service

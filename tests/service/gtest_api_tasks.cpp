@@ -1,0 +1,201 @@
+// Submitting, listing, reading, cancelling and changing tasks through the API, and the
+// Idempotency-Key (also across a restart on the same data folder).
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <future>
+
+#include "live_service.h"
+#include "rondo/store/events.h"
+#include "rondo/store/task_table.h"
+#include "test_files.h"
+
+namespace rondo::test {
+namespace {
+
+TEST(ApiTasks, SubmissionIsCommittedBeforeTheAnswerAndReadBackWithItsEvents) {
+  const auto data = fresh_dir("rondo-service-test", "submit");
+  LiveService s(data);
+  auto cli = s.client();
+  auto r = cli.Post("/api/v1/tasks", s.task_body("door-1"), "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 201) << r->body;
+  Json j = body_of(r);
+  ASSERT_EQ(j["tasks"].size(), 1u);
+  EXPECT_EQ(j["tasks"][0]["id"], "door-1");
+  EXPECT_EQ(j["tasks"][0]["source"], "api");
+  // Another connection to the file sees it at once: the answer came after the commit.
+  auto reader = store::Store::open(data / "rondo.sqlite", {.mode = store::OpenMode::kReadOnly});
+  ASSERT_TRUE(reader.ok()) << reader.error().message;
+  auto stored = store::get_task(*reader, "door-1");
+  ASSERT_TRUE(stored.ok()) << stored.error().message;
+  EXPECT_EQ(stored->source, "api");
+
+  auto one = cli.Get("/api/v1/tasks/door-1");
+  ASSERT_TRUE(one);
+  ASSERT_EQ(one->status, 200);
+  Json t = body_of(one);
+  EXPECT_EQ(t["state"], "queued");
+  ASSERT_FALSE(t["events"].empty());
+  EXPECT_EQ(t["events"][0]["event"], "queued");
+  EXPECT_TRUE(t["planned"]["start"].is_string()) << t.dump();  // scheduled with the others
+
+  auto missing = cli.Get("/api/v1/tasks/no-such-task");
+  ASSERT_TRUE(missing);
+  EXPECT_EQ(missing->status, 404);
+  EXPECT_EQ(body_of(missing)["error"]["code"], "not_found");
+}
+
+TEST(ApiTasks, ListFiltersByStateSourceAndWindowAndPages) {
+  LiveService s(fresh_dir("rondo-service-test", "list"));
+  auto cli = s.client();
+  for (int i = 0; i < 5; ++i)
+    ASSERT_EQ(cli.Post("/api/v1/tasks", s.task_body("t" + std::to_string(i), hours(1 + i)), "application/json")->status,
+              201);
+  ASSERT_EQ(cli.Post("/api/v1/tasks/t0/cancel", "", "application/json")->status, 200);
+
+  Json all = body_of(cli.Get("/api/v1/tasks?source=api"));
+  EXPECT_EQ(all["total"], 5);
+  Json cancelled = body_of(cli.Get("/api/v1/tasks?state=cancelled"));
+  ASSERT_EQ(cancelled["total"], 1);
+  EXPECT_EQ(cancelled["tasks"][0]["id"], "t0");
+  Json page = body_of(cli.Get("/api/v1/tasks?source=api&limit=2&offset=2"));
+  EXPECT_EQ(page["total"], 5);
+  ASSERT_EQ(page["tasks"].size(), 2u);
+  EXPECT_EQ(page["tasks"][0]["id"], "t2");
+  EXPECT_EQ(page["tasks"][1]["id"], "t3");
+  // Windows that end after from and open before to: t3 opens at +4h, t4 at +5h.
+  const std::string from = format_time(s.clock().now() + hours(4) + minutes(30));
+  Json late = body_of(cli.Get(("/api/v1/tasks?source=api&from=" + from).c_str()));
+  EXPECT_EQ(late["total"], 3) << late.dump();  // t2 (+3h..+5h), t3, t4
+  Json none = body_of(cli.Get("/api/v1/tasks?source=nobody"));
+  EXPECT_EQ(none["total"], 0);
+
+  for (const char* bad : {"/api/v1/tasks?state=sleeping", "/api/v1/tasks?limit=0", "/api/v1/tasks?offset=x",
+                          "/api/v1/tasks?from=yesterday"}) {
+    auto r = cli.Get(bad);
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 422) << bad;
+    EXPECT_TRUE(body_of(r)["error"]["field"].is_string()) << bad;
+  }
+}
+
+TEST(ApiTasks, CancelEndsAQueuedTaskAndAFinalOneIsAConflict) {
+  LiveService s(fresh_dir("rondo-service-test", "cancel"));
+  auto cli = s.client();
+  ASSERT_EQ(cli.Post("/api/v1/tasks", s.task_body("c1"), "application/json")->status, 201);
+  auto r = cli.Post("/api/v1/tasks/c1/cancel", R"({"reason": "not needed today"})", "application/json");
+  ASSERT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(body_of(r)["state"], "cancelled");
+  EXPECT_NE(body_of(r)["reason"].get<std::string>().find("not needed today"), std::string::npos);
+  auto again = cli.Post("/api/v1/tasks/c1/cancel", "", "application/json");
+  EXPECT_EQ(again->status, 409);
+  EXPECT_EQ(body_of(again)["error"]["code"], "conflict");
+  EXPECT_EQ(cli.Post("/api/v1/tasks/nobody/cancel", "", "application/json")->status, 404);
+  EXPECT_EQ(cli.Post("/api/v1/tasks/c1/cancel", "{", "application/json")->status, 400);
+  auto odd = cli.Post("/api/v1/tasks/c1/cancel", R"({"why": "x"})", "application/json");
+  EXPECT_EQ(odd->status, 422);
+  EXPECT_EQ(body_of(odd)["error"]["field"], "why");
+}
+
+TEST(ApiTasks, ChangingWindowOrPriorityReschedulesAndIsStored) {
+  const auto data = fresh_dir("rondo-service-test", "change");
+  LiveService s(data);
+  auto cli = s.client();
+  ASSERT_EQ(cli.Post("/api/v1/tasks", s.task_body("p1", hours(1)), "application/json")->status, 201);
+  const Time release = s.clock().now() + hours(6);
+  const std::string window = fmt::format(R"({{"window": {{"release": "{}", "deadline": "{}"}}, "priority": 7}})",
+                                         format_time(release), format_time(release + hours(1)));
+  auto r = cli.Patch("/api/v1/tasks/p1", window, "application/json");
+  ASSERT_EQ(r->status, 200) << r->body;
+  Json t = body_of(r);
+  EXPECT_EQ(t["priority"], 7);
+  EXPECT_EQ(t["window"]["release"], format_time(release));
+  // Planned inside the new window.
+  ASSERT_TRUE(t["planned"]["start"].is_string()) << t.dump();
+  EXPECT_GE(*parse_time(t["planned"]["start"].get<std::string>()), release);
+  auto reader = store::Store::open(data / "rondo.sqlite", {.mode = store::OpenMode::kReadOnly});
+  auto stored = store::get_task(*reader, "p1");
+  ASSERT_TRUE(stored.ok());
+  EXPECT_EQ(stored->task["priority"], 7);
+  auto events = store::read_events_of(*reader, "p1");
+  ASSERT_TRUE(events.ok());
+  EXPECT_TRUE(std::any_of(events->begin(), events->end(), [](const store::Event& e) { return e.event == "changed"; }));
+
+  const std::string backwards = fmt::format(R"({{"window": {{"release": "{}", "deadline": "{}"}}}})",
+                                            format_time(release), format_time(release - hours(1)));
+  auto bad = cli.Patch("/api/v1/tasks/p1", backwards, "application/json");
+  EXPECT_EQ(bad->status, 422) << bad->body;
+  EXPECT_EQ(body_of(bad)["error"]["field"], "window");
+  auto wrong_type = cli.Patch("/api/v1/tasks/p1", R"({"priority": "high"})", "application/json");
+  EXPECT_EQ(wrong_type->status, 422);
+  EXPECT_EQ(body_of(wrong_type)["error"]["field"], "priority");
+  EXPECT_EQ(cli.Patch("/api/v1/tasks/p1", "[1,", "application/json")->status, 400);
+  EXPECT_EQ(cli.Patch("/api/v1/tasks/nobody", R"({"priority": 1})", "application/json")->status, 404);
+  ASSERT_EQ(cli.Post("/api/v1/tasks/p1/cancel", "", "application/json")->status, 200);
+  EXPECT_EQ(cli.Patch("/api/v1/tasks/p1", R"({"priority": 1})", "application/json")->status, 409);
+}
+
+TEST(ApiTasks, AnIdempotencyKeyReturnsTheFirstAnswerEvenAfterARestart) {
+  const auto data = fresh_dir("rondo-service-test", "idempotent");
+  std::string first_body;
+  std::string body;
+  {
+    LiveService s(data);
+    auto cli = s.client();
+    body = s.task_body("once", hours(3));
+    const httplib::Headers key{{"Idempotency-Key", "k-123"}};
+    auto first = cli.Post("/api/v1/tasks", key, body, "application/json");
+    ASSERT_EQ(first->status, 201) << first->body;
+    first_body = first->body;
+    auto second = cli.Post("/api/v1/tasks", key, body, "application/json");
+    ASSERT_EQ(second->status, 201) << second->body;
+    EXPECT_EQ(body_of(second), body_of(first));
+    EXPECT_EQ(body_of(cli.Get("/api/v1/tasks?source=api"))["total"], 1);
+    // The same key for another request is refused, naming the header.
+    auto other = cli.Post("/api/v1/tasks", key, s.task_body("twice"), "application/json");
+    EXPECT_EQ(other->status, 422);
+    EXPECT_EQ(body_of(other)["error"]["field"], "Idempotency-Key");
+    // Without the key the same ids are refused: never a second task.
+    EXPECT_EQ(cli.Post("/api/v1/tasks", body, "application/json")->status, 422);
+  }
+  LiveService again(data);
+  auto cli = again.client();
+  auto retried = cli.Post("/api/v1/tasks", {{"Idempotency-Key", "k-123"}}, body, "application/json");
+  ASSERT_EQ(retried->status, 201) << retried->body;
+  EXPECT_EQ(body_of(retried), Json::parse(first_body));
+  auto reader = store::Store::open(data / "rondo.sqlite", {.mode = store::OpenMode::kReadOnly});
+  auto all = store::list_tasks(*reader);
+  ASSERT_TRUE(all.ok());
+  EXPECT_EQ(std::count_if(all->begin(), all->end(), [](const store::TaskRecord& t) { return t.id == "once"; }), 1);
+}
+
+// A submission the executive's thread cannot take in time is withdrawn: 503, and never carried
+// out later behind the client's back.
+TEST(ApiTasks, ASubmissionNotTakenInTimeIsWithdrawnNotDoneLater) {
+  const auto data = fresh_dir("rondo-service-test", "withdrawn");
+  LiveService s(data, {.answer_timeout = std::chrono::milliseconds(200)});
+  std::promise<void> release;
+  std::shared_future<void> released = release.get_future().share();
+  std::atomic<bool> blocked{false};
+  s.clock().post([&blocked, released] {  // the executive is busy until the test says so
+    blocked = true;
+    released.wait();
+  });
+  ASSERT_TRUE(eventually([&] { return blocked.load(); }));
+  auto cli = s.client();
+  auto r = cli.Post("/api/v1/tasks", s.task_body("late"), "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 503) << r->body;
+  release.set_value();
+  // Once the executive is free again, the withdrawn request has not been carried out.
+  EXPECT_EQ(cli.Get("/healthz")->status, 200);
+  EXPECT_EQ(cli.Get("/api/v1/tasks/late")->status, 404);
+  auto reader = store::Store::open(data / "rondo.sqlite", {.mode = store::OpenMode::kReadOnly});
+  ASSERT_TRUE(reader.ok());
+  EXPECT_FALSE(store::get_task(*reader, "late").ok());
+}
+
+}  // namespace
+}  // namespace rondo::test

@@ -1,0 +1,126 @@
+// `rondo serve` as a process: it serves the G4S example, and SIGTERM stops it cleanly (exit 0)
+// with an event stream open and every answered task in the store.
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <regex>
+#include <thread>
+
+#include "live_service.h"
+#include "rondo/store/task_table.h"
+#include "test_files.h"
+
+namespace rondo::test {
+namespace {
+
+struct Child {
+  pid_t pid = -1;
+  int err = -1;  // its stderr
+  std::string seen;
+  bool reaped = false;
+  Child() = default;
+  Child(Child&& o) noexcept : pid(o.pid), err(o.err), seen(std::move(o.seen)), reaped(o.reaped) { o.pid = -1; }
+  Child(const Child&) = delete;
+  ~Child() {  // a test that failed early leaves no server behind
+    if (pid > 0 && !reaped) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, nullptr, 0);
+    }
+  }
+  // Reads its stderr until `pattern` matches (or the deadline); returns the first group.
+  std::string wait_for(const std::regex& pattern, std::chrono::seconds deadline = std::chrono::seconds(60)) {
+    const auto end = std::chrono::steady_clock::now() + deadline;
+    std::smatch m;
+    while (!std::regex_search(seen, m, pattern) && std::chrono::steady_clock::now() < end) {
+      pollfd p{err, POLLIN, 0};
+      if (::poll(&p, 1, 100) <= 0) continue;
+      char buf[512];
+      const ssize_t n = ::read(err, buf, sizeof buf);
+      if (n <= 0) break;
+      seen.append(buf, static_cast<std::size_t>(n));
+    }
+    return std::regex_search(seen, m, pattern) ? m[1].str() : "";
+  }
+  // The exit status, waiting up to the deadline; -1 if it is still running then.
+  int wait_exit(std::chrono::seconds deadline = std::chrono::seconds(60)) {
+    const auto end = std::chrono::steady_clock::now() + deadline;
+    while (std::chrono::steady_clock::now() < end) {
+      int status = 0;
+      if (::waitpid(pid, &status, WNOHANG) == pid)
+        return reaped = true, WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));  // polling: the deadline is the bound
+    }
+    return -1;
+  }
+};
+
+Child spawn(const std::vector<std::string>& args) {
+  int fds[2];
+  EXPECT_EQ(::pipe(fds), 0);
+  Child c;
+  c.pid = ::fork();
+  if (c.pid == 0) {
+    ::dup2(fds[1], STDERR_FILENO);
+    ::close(fds[0]);
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  ::close(fds[1]);
+  c.err = fds[0];
+  return c;
+}
+
+TEST(ServeCommand, ServesAndStopsCleanlyOnSigterm) {
+  const auto dir = fresh_dir("rondo-service-test", "process");
+  Child c =
+      spawn({RONDO_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", (dir / "data").string(), "--speed", "10"});
+  const std::string port_text = c.wait_for(std::regex(R"(on http://127\.0\.0\.1:(\d+)/)"));
+  ASSERT_FALSE(port_text.empty()) << c.seen;
+  httplib::Client cli("127.0.0.1", std::stoi(port_text));
+  cli.set_read_timeout(std::chrono::seconds(60));
+  auto health = cli.Get("/healthz");
+  ASSERT_TRUE(health);
+  EXPECT_EQ(body_of(health)["deployment"], "g4s");
+  // Routine tasks of today are there (the G4S example's routines).
+  EXPECT_EQ(cli.Get("/api/v1/tasks")->status, 200);
+  const Time release = std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now()) + hours(1);
+  const std::string task = fmt::format(R"({{"tasks": [{{"id": "late-1", "window": {{"release": "{}", "deadline": "{}"}},
+      "duration": 60, "start_node": "WayPoint2"}}]}})",
+                                       format_time(release), format_time(release + hours(1)));
+  auto r = cli.Post("/api/v1/tasks", task, "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 201) << r->body;
+
+  // An open event stream does not hold the shutdown up.
+  std::atomic<bool> streaming{false};
+  std::thread stream([&] {
+    httplib::Client s("127.0.0.1", std::stoi(port_text));
+    s.set_read_timeout(std::chrono::seconds(60));
+    (void)s.Get("/api/v1/events", [&](const char*, std::size_t) {
+      streaming = true;
+      return true;
+    });
+  });
+  ASSERT_TRUE(eventually([&] { return streaming.load(); }));
+  ASSERT_EQ(::kill(c.pid, SIGTERM), 0);
+  EXPECT_EQ(c.wait_exit(), 0) << c.seen;
+  stream.join();
+  c.wait_for(std::regex("(stopped)"), std::chrono::seconds(5));
+  EXPECT_NE(c.seen.find("SIGTERM: stopping"), std::string::npos) << c.seen;
+  ::close(c.err);
+  auto db = store::Store::open(dir / "data" / "rondo.sqlite", {.mode = store::OpenMode::kReadOnly});
+  ASSERT_TRUE(db.ok()) << db.error().message;
+  EXPECT_TRUE(store::get_task(*db, "late-1").ok());
+}
+
+}  // namespace
+}  // namespace rondo::test

@@ -1,0 +1,115 @@
+#include "live_service.h"
+
+#include <fmt/format.h>
+
+#include <future>
+
+namespace rondo::test {
+namespace {
+
+app::DeploymentParts g4s_parts() {
+  auto d = app::load_deployment(std::filesystem::path(RONDO_SOURCE_DIR) / "examples/g4s/deployment.yaml");
+  if (!d) throw std::runtime_error(d.error().message);
+  auto parts = app::load_parts(*d);
+  if (!parts) throw std::runtime_error(parts.error().message);
+  parts->people.reset();  // the tests add their own tasks
+  return std::move(*parts);
+}
+
+store::Store open_store(const std::filesystem::path& data) {
+  std::filesystem::create_directories(data);
+  auto s = store::Store::open(data / "rondo.sqlite", {.sync_commits = false});
+  if (!s) throw std::runtime_error(s.error().message);
+  return std::move(*s);
+}
+
+}  // namespace
+
+LiveService::LiveService(const std::filesystem::path& data, LiveOptions o)
+    : parts_(g4s_parts()), store_(open_store(data)), clock_(o.speed), token_(o.token) {
+  robot_ = std::make_unique<sim::SimRobot>(clock_, parts_.map, parts_.world,
+                                           sim::SimRobotOptions{.start = parts_.dock, .dock = parts_.dock, .seed = 3});
+  exec::ExecutorOptions eo;
+  eo.dock = parts_.dock;
+  executor_ = std::make_unique<exec::Executor>(clock_, *robot_, parts_.map, store_, TimeZone::utc(), eo);
+  executor_->start();
+  server_ = std::make_unique<service::Server>(service::ServiceContext{.clock = clock_,
+                                                                      .executor = *executor_,
+                                                                      .robot = *robot_,
+                                                                      .store = store_,
+                                                                      .map = parts_.map,
+                                                                      .zone = TimeZone::utc(),
+                                                                      .deployment = "g4s"},
+                                              service::ServerOptions{.host = "127.0.0.1",
+                                                                     .port = 0,
+                                                                     .token = o.token,
+                                                                     .body_limit = o.body_limit,
+                                                                     .read_timeout = o.read_timeout, .answer_timeout = o.answer_timeout,
+                                                                     .stream_poll = std::chrono::milliseconds(20),
+                                                                     .stream_keepalive = seconds(1),
+                                                                     .threads = o.threads});
+  auto port = server_->bind();
+  if (!port) throw std::runtime_error(port.error().message);
+  port_ = *port;
+  clock_thread_ = std::thread([this] { clock_.run_until(clock_.now() + hours(24 * 365)); });
+  http_thread_ = std::thread([this] { server_->run(); });
+}
+
+LiveService::~LiveService() {
+  server_->stop();
+  http_thread_.join();
+  clock_.post([this] { clock_.stop(); });
+  clock_thread_.join();
+}
+
+httplib::Client LiveService::client() const {
+  httplib::Client c("127.0.0.1", port_);
+  c.set_read_timeout(std::chrono::seconds(60));
+  c.set_connection_timeout(std::chrono::seconds(10));
+  return c;
+}
+
+httplib::Headers LiveService::auth() const {
+  if (!token_) return {};
+  return {{"Authorization", "Bearer " + *token_}};
+}
+
+void LiveService::on_clock(const std::function<void()>& f) {
+  std::promise<void> done;
+  clock_.post([&] {
+    f();
+    done.set_value();
+  });
+  done.get_future().wait();
+}
+
+std::string LiveService::task_body(const std::string& id, Duration from_now, Duration width, Duration duration) const {
+  const Time release = clock_.now() + from_now;
+  return fmt::format(R"({{"tasks": [{{"id": "{}", "activity": "look at the door", "window": {{"release": "{}",
+      "deadline": "{}"}}, "duration": {}, "start_node": "WayPoint2"}}]}})",
+                     id, format_time(release), format_time(release + width), to_seconds(duration));
+}
+
+Json body_of(const httplib::Result& r) {
+  if (!r) {
+    ADD_FAILURE() << "no response: " << httplib::to_string(r.error());
+    return nullptr;
+  }
+  Json j = Json::parse(r->body, nullptr, false);
+  if (j.is_discarded()) {
+    ADD_FAILURE() << "not JSON: " << r->body;
+    return nullptr;
+  }
+  return j;
+}
+
+bool eventually(const std::function<bool()>& done, Duration deadline) {
+  const auto end = std::chrono::steady_clock::now() + deadline;
+  while (std::chrono::steady_clock::now() < end) {
+    if (done()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));  // polling: the deadline is the bound
+  }
+  return done();
+}
+
+}  // namespace rondo::test

@@ -1,0 +1,73 @@
+// A live service for the API tests: the G4S example's map and simulated world, an executor on a
+// SystemClock running on its own thread, and a service::Server on an ephemeral loopback port,
+// with an httplib client pointed at it. Conditions are awaited with generous deadlines.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <httplib.h>
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "deployment.h"
+#include "deployment_parts.h"
+#include "rondo/core/document.h"
+#include "rondo/exec/clock.h"
+#include "rondo/exec/executor.h"
+#include "rondo/service/server.h"
+#include "rondo/sim/sim_robot.h"
+#include "rondo/store/store.h"
+
+namespace rondo::test {
+
+struct LiveOptions {
+  std::optional<std::string> token = std::nullopt;
+  std::size_t body_limit = 1 << 20;
+  Duration read_timeout = seconds(5);
+  double speed = 1.0;
+  int threads = 16;
+  Duration answer_timeout = seconds(30);
+};
+
+class LiveService {
+ public:
+  // `data`: the folder of rondo.sqlite (kept across instances to test a restart).
+  LiveService(const std::filesystem::path& data, LiveOptions o = {});
+  ~LiveService();
+
+  int port() const { return port_; }
+  httplib::Client client() const;
+  httplib::Headers auth() const;
+  exec::SystemClock& clock() { return clock_; }
+  const map::TopoMap& map() const { return parts_.map; }
+  service::Server& server() { return *server_; }
+  // Runs `f` on the clock's thread and waits (for reading the executor in a test).
+  void on_clock(const std::function<void()>& f);
+
+  // A standard task at WayPoint2 whose window opens `from_now` after the clock's now.
+  std::string task_body(const std::string& id, Duration from_now = hours(1), Duration width = hours(2),
+                        Duration duration = minutes(2)) const;
+
+ private:
+  app::DeploymentParts parts_;
+  store::Store store_;
+  exec::SystemClock clock_;
+  std::unique_ptr<sim::SimRobot> robot_;
+  std::unique_ptr<exec::Executor> executor_;
+  std::unique_ptr<service::Server> server_;
+  std::optional<std::string> token_;
+  int port_ = 0;
+  std::thread clock_thread_, http_thread_;
+};
+
+// Parses a response body, failing the test (and returning null) when it is not JSON.
+Json body_of(const httplib::Result& r);
+
+// Waits until `done` holds, for up to `deadline` (generous: the machine may be slow).
+bool eventually(const std::function<bool()>& done, Duration deadline = seconds(30));
+
+}  // namespace rondo::test
