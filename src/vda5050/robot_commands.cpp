@@ -188,6 +188,9 @@ void Vda5050Robot::Impl::handle(const ProgressEvent& event) {
       x.message = "passed between two state messages: not timed";
     }
     if (a.outcome == EdgeOutcome::kFailed) x.message = "the vehicle dropped the order with this edge ahead";
+    if (a.outcome == EdgeOutcome::kCancelled) {
+      x.message = fmt::format("the vehicle reported cancelOrder {} FINISHED", cancel_id.value_or("?"));
+    }
     return finish_edge(x);
   }
   if (const auto* a = std::get_if<ActionChanged>(&event)) {
@@ -213,7 +216,7 @@ void Vda5050Robot::Impl::handle(const ProgressEvent& event) {
                           .start = d->current_since,
                           .duration = clock.now() - d->current_since,
                           .outcome = exec::EdgeOutcome::kCancelled,
-                          .message = c->result_description});
+                          .message = fmt::format("the vehicle reported cancelOrder {} FINISHED", c->action_id)});
     }
     if (std::holds_alternative<ActionJob>(job)) finish_action(exec::ActionOutcome::kCancelled, c->result_description);
     return;
