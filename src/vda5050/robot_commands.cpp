@@ -79,7 +79,7 @@ Status Vda5050Robot::Impl::send_order(const Order& o) {
 }
 
 void Vda5050Robot::Impl::drive(const exec::Route& route) {
-  if (!std::holds_alternative<std::monostate>(job)) throw std::logic_error("Vda5050Robot::drive while busy");
+  if (!std::holds_alternative<std::monostate>(job) || ending > 0) throw std::logic_error("Vda5050Robot::drive while busy");
   if (route.edges.empty() || route.committed < 1 || route.committed > route.edges.size() ||
       map.from_index(route.edges.front()) != location) {
     throw std::logic_error("Vda5050Robot::drive: the route does not leave the robot's node");
@@ -96,7 +96,7 @@ void Vda5050Robot::Impl::drive(const exec::Route& route) {
 }
 
 void Vda5050Robot::Impl::run_action(const rondo::Action& action, Duration) {
-  if (!std::holds_alternative<std::monostate>(job)) throw std::logic_error("Vda5050Robot::run_action while busy");
+  if (!std::holds_alternative<std::monostate>(job) || ending > 0) throw std::logic_error("Vda5050Robot::run_action while busy");
   job = ActionJob{.name = action.name, .action_id = "", .sent = clock.now(), .started = std::nullopt};
   if (reported_fault) return end_job(reported_fault->message);
   Result<Order> o = order_from(location, {.route = {location}, .base_edges = 0, .map_id = config.map_id,
@@ -121,8 +121,9 @@ void Vda5050Robot::Impl::finish_edge(const exec::EdgeAttempt& attempt) {
   auto& d = std::get<DriveJob>(job);
   ++d.next;
   d.current_since = clock.now();
-  if (d.next >= d.committed.size() || attempt.outcome != exec::EdgeOutcome::kSucceeded) job = std::monostate{};
-  deliver([attempt](exec::RobotListener& l) { l.on_edge_finished(attempt); });
+  const bool last = d.next >= d.committed.size() || attempt.outcome != exec::EdgeOutcome::kSucceeded;
+  if (last) job = std::monostate{};
+  deliver([attempt](exec::RobotListener& l) { l.on_edge_finished(attempt); }, last);
 }
 
 void Vda5050Robot::Impl::finish_action(exec::ActionOutcome outcome, const std::string& message) {
@@ -131,7 +132,7 @@ void Vda5050Robot::Impl::finish_action(exec::ActionOutcome outcome, const std::s
   const Time start = a.started.value_or(a.sent);
   exec::ActionResult r{
       .name = a.name, .start = start, .duration = clock.now() - start, .outcome = outcome, .message = message};
-  deliver([r](exec::RobotListener& l) { l.on_action_finished(r); });
+  deliver([r](exec::RobotListener& l) { l.on_action_finished(r); }, true);
 }
 
 // A fault (or a command that could not be sent) ends what runs as a robot fault.

@@ -44,7 +44,8 @@ struct Vda5050Robot::Impl {
   void schedule_check();
   static Time wall_now();
   Status publish(Topic topic, const Json& message);
-  void deliver(std::function<void(exec::RobotListener&)> call);
+  // Posts a listener call to the clock; `ends_job`: the last callback of a command.
+  void deliver(std::function<void(exec::RobotListener&)> call, bool ends_job = false);
   void ignore(const std::string& why);
   void on_connected();
   void on_connection_lost(const std::string& cause);
@@ -98,6 +99,7 @@ struct Vda5050Robot::Impl {
   std::optional<ProgressTracker> progress_before;  // and the tracker, for a rejection
   std::variant<std::monostate, DriveJob, ActionJob> job;
   std::optional<std::string> cancel_id;
+  int ending = 0;  // a command's last callback posted, not delivered yet
 
   std::optional<std::string> vehicle_fault;   // FATAL errors, operating mode
   std::optional<std::string> rejected_fault;  // a rejected drive, until the retry

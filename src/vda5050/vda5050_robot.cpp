@@ -31,7 +31,9 @@ Status Vda5050Robot::activate() { return impl_->activate(); }
 void Vda5050Robot::deactivate() { impl_->stop(); }
 map::NodeIndex Vda5050Robot::location() const { return impl_->location; }
 std::optional<map::Pose> Vda5050Robot::position() const { return impl_->position(); }
-bool Vda5050Robot::busy() const { return !std::holds_alternative<std::monostate>(impl_->job); }
+bool Vda5050Robot::busy() const {
+  return !std::holds_alternative<std::monostate>(impl_->job) || impl_->ending > 0;
+}
 void Vda5050Robot::drive(const exec::Route& route) { impl_->drive(route); }
 void Vda5050Robot::run_action(const rondo::Action& action, Duration expected) { impl_->run_action(action, expected); }
 void Vda5050Robot::cancel() { impl_->cancel(); }
@@ -113,10 +115,13 @@ Status Vda5050Robot::Impl::publish(Topic topic, const Json& message) {
   return Status{};
 }
 
-void Vda5050Robot::Impl::deliver(std::function<void(exec::RobotListener&)> call) {
+void Vda5050Robot::Impl::deliver(std::function<void(exec::RobotListener&)> call, bool ends_job) {
   std::weak_ptr<int> alive = life;
-  clock.post([this, alive, call = std::move(call)] {
-    if (!alive.expired() && listener != nullptr) call(*listener);
+  if (ends_job) ++ending;  // busy() until this callback is delivered
+  clock.post([this, alive, ends_job, call = std::move(call)] {
+    if (alive.expired()) return;
+    if (ends_job) --ending;
+    if (listener != nullptr) call(*listener);
   });
 }
 
