@@ -3,6 +3,8 @@
 #include <SQLiteCpp/SQLiteCpp.h>
 #include <fmt/format.h>
 
+#include <signal.h>
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -161,6 +163,10 @@ void VdaDay::start_vehicle(const std::string& node, double x, double y, double t
 
 void VdaDay::kill_vehicle() {
   if (vehicle_) vehicle_->kill_hard();
+}
+
+void VdaDay::freeze_vehicle(bool frozen) {
+  if (vehicle_ && vehicle_->pid() > 0) ::kill(vehicle_->pid(), frozen ? SIGSTOP : SIGCONT);
 }
 
 void VdaDay::run(const DayOptions& o) {

@@ -113,6 +113,8 @@ class VdaDay {
   // The vehicle: started at the dock by start(); killed and started again by the fault tests.
   void start_vehicle(const std::string& node, double x, double y, double theta);
   void kill_vehicle();
+  // SIGSTOP / SIGCONT: the vehicle falls silent with its connection open (no last will).
+  void freeze_vehicle(bool frozen);
   Broker& broker() { return *broker_; }
   Spy& spy() { return *spy_; }
   const Spy& spy() const { return *spy_; }

@@ -120,6 +120,23 @@ TEST(Vda5050Day, AKilledVehicleIsARobotFaultAndARestartedOneGoesOnFromWhereItIs)
   expect_schemas_kept(*day);
 }
 
+// Frozen (SIGSTOP), the vehicle keeps its connection and sends nothing: no last will comes, and
+// the silence past offline_after is the fault; thawed, it goes on and so does the day.
+TEST(Vda5050Day, ASilentVehicleIsOfflineAfterOfflineAfterAndBackWhenItSpeaks) {
+  START_DAY(day);
+  day->run({.tasks = {{.id = "t1", .node = "WayPoint4"}}, .run_for = "2m"});
+  ASSERT_TRUE(day->wait_for_event("departed", kDeadline)) << day->event_text();
+  day->freeze_vehicle(true);
+  ASSERT_TRUE(day->wait_for_event("fault", kDeadline, "no state for")) << day->event_text();
+  day->freeze_vehicle(false);
+  ASSERT_TRUE(wait_until([&] { return day->events_named("ready").size() >= 2; }, kDeadline)) << day->event_text();
+  ASSERT_TRUE(day->wait_run_done(kDeadline));
+  ASSERT_EQ(day->run_error(), "");
+  for (const TraversalRow& t : day->traversals()) EXPECT_TRUE(t.success) << t.edge_id;
+  EXPECT_TRUE(task_ended(*day, "t1", "succeeded")) << day->event_text();
+  expect_schemas_kept(*day);
+}
+
 TEST(Vda5050Day, ABrokerRestartIsAFaultAndRondoReconnectsAndGoesOn) {
   START_DAY(day);
   day->run({.tasks = {{.id = "t1", .node = "WayPoint4"}, {.id = "t2", .node = "WayPoint6"}}, .run_for = "4m"});
