@@ -165,7 +165,7 @@ TEST(RunCommand, TheRobotSectionIsCheckedAndAVdaVehicleNeedsRealtime) {
   bad_serial.replace(bad_serial.find("agv-7"), 5, "agv/7");
   const auto serial = run(bad_serial, {"--realtime"});
   EXPECT_EQ(serial.exit_code, 2);
-  EXPECT_THAT(serial.err, HasSubstr("deployment.yaml:10"));
+  EXPECT_THAT(serial.err, HasSubstr("deployment.yaml:14"));  // the field's own line
   EXPECT_THAT(serial.err, HasSubstr("serial_number"));
 
   const auto sim = run("robot: {kind: sim, broker: x}\n");
