@@ -20,6 +20,8 @@ struct RunArgs {
   std::optional<std::int64_t> seed;
   std::string out;
   bool realtime = false;
+  double speed = 1.0;
+  std::string run_for;
   bool json = false;
 };
 
@@ -44,9 +46,23 @@ void run_run(const RunArgs& args, CommandContext& ctx) {
     if (*args.seed < 0) return (void)fail(ctx, Error::invalid("--seed: must not be negative"));
     deployment->seed = static_cast<std::uint64_t>(*args.seed);
   }
+  if (!(args.speed > 0 && args.speed <= 1e6))
+    return (void)fail(ctx, Error::invalid(fmt::format("--speed: {} is not above 0 (and at most 1e6)", args.speed)));
+  if (deployment->vda5050 && !args.realtime)
+    return (void)fail(ctx, Error::invalid(fmt::format("{}: robot: a vda5050 vehicle moves in real time; run with --realtime",
+                                                      file.string())));
+  std::optional<Duration> run_for;
+  if (!args.run_for.empty()) {
+    auto f = parse_duration(args.run_for);
+    if (!f || *f <= Duration{0})
+      return (void)fail(ctx, Error::invalid(fmt::format("--for: '{}' is not a duration above 0 (e.g. 20m)", args.run_for)));
+    run_for = *f;
+  }
   RunRequest request{.deployment = std::move(*deployment),
                      .out = std::filesystem::path(args.out.empty() ? fresh_run_folder() : args.out),
                      .realtime = args.realtime,
+                     .speed = args.speed,
+                     .run_for = run_for,
                      .progress = ::isatty(STDERR_FILENO) == 1 && &ctx.err == &std::cerr};
   if (!args.json)
     ctx.err << fmt::format("rondo run: {} for {} days, seed {}, into {}\n", file.string(), request.deployment.days,
@@ -100,6 +116,8 @@ void add_run_commands(CLI::App& root, CommandContext& ctx) {
   run->add_option("--out", args->out,
                   "The run folder (default: a fresh runs/<time> folder); a folder holding this run resumes it");
   run->add_flag("--realtime", args->realtime, "Run on the system clock instead of simulated time");
+  run->add_option("--speed", args->speed, "With --realtime: the clock runs this many times faster (default 1)");
+  run->add_option("--for", args->run_for, "Stop after this long on rondo's clock (e.g. 20m), before the days end");
   run->add_flag("--json", args->json, "Print report.json instead of a summary");
   run->callback([args, &ctx] { run_run(*args, ctx); });
 }

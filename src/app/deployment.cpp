@@ -79,10 +79,24 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
   return Status{};
 }
 
+// robot: {kind: sim} (the default) or a VDA 5050 vehicle (docs/vda5050.md).
+Status decode_robot(const Field& f, Deployment& d) {
+  RONDO_ASSIGN_OR_RETURN(const Field kind, f.required("kind"));
+  RONDO_ASSIGN_OR_RETURN(const std::string k, kind.as_string());
+  if (k == "sim") {
+    RONDO_RETURN_IF_ERROR(f.expect_keys({"kind"}));
+    d.vda5050.reset();
+    return Status{};
+  }
+  if (k != "vda5050") return kind.error(fmt::format("'{}' is not a robot kind (sim or vda5050)", k));
+  RONDO_ASSIGN_OR_RETURN(d.vda5050, vda5050::parse_vda5050_config(f));
+  return Status{};
+}
+
 Result<Deployment> decode(const Field& root, const std::filesystem::path& file) {
   const std::filesystem::path base = file.parent_path();
   RONDO_RETURN_IF_ERROR(root.expect_keys({"rondo_deployment", "name", "map", "time_zone", "dock", "start", "days",
-                                          "seed", "routines", "world", "requests", "executor"}));
+                                          "seed", "routines", "world", "requests", "executor", "robot"}));
   Deployment d;
   d.file = file;
   RONDO_ASSIGN_OR_RETURN(const Field version, root.required("rondo_deployment"));
@@ -117,6 +131,7 @@ Result<Deployment> decode(const Field& root, const std::filesystem::path& file) 
   RONDO_ASSIGN_OR_RETURN(d.world, path_field(world, base));
   if (auto f = root.optional("requests")) { RONDO_ASSIGN_OR_RETURN(d.requests, path_field(*f, base)); }
   if (auto f = root.optional("executor")) RONDO_RETURN_IF_ERROR(decode_executor(*f, d.executor));
+  if (auto f = root.optional("robot")) RONDO_RETURN_IF_ERROR(decode_robot(*f, d));
   return d;
 }
 

@@ -15,6 +15,8 @@
 //   executor: {navigation_overrun: 2.0, navigation_slack: 60s, action_overrun: 1.5,
 //              action_slack: 30s, dock_when_waiting_over: 15m, refit_at: "02:00",
 //              slot_width: 15m, scheduler_polls: 20000}
+//   robot: {kind: vda5050, broker: "mqtt://127.0.0.1:1883", interface_name: uagv,   # optional;
+//           manufacturer: acme, serial_number: agv-7, map_id: g4s}                  # kind: sim
 #pragma once
 
 #include <chrono>
@@ -26,6 +28,7 @@
 #include "rondo/core/result.h"
 #include "rondo/core/timezone.h"
 #include "rondo/exec/executor.h"
+#include "rondo/vda5050/config.h"
 
 namespace rondo::app {
 
@@ -43,6 +46,8 @@ struct Deployment {
   std::filesystem::path world;
   std::optional<std::filesystem::path> requests;
   exec::ExecutorOptions executor{};  // dock is filled in once the map is loaded
+  // The robot: nothing for the simulated one (kind: sim, the default), or a VDA 5050 vehicle.
+  std::optional<vda5050::Vda5050Config> vda5050;
 };
 
 // Reads and checks a deployment file; paths come back resolved against its folder. Errors name

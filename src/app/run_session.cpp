@@ -17,12 +17,12 @@
 #include "rondo/map/map_geometry.h"
 #include "rondo/sim/request_generator.h"
 #include "rondo/sim/rng.h"
-#include "rondo/sim/sim_robot.h"
 #include "rondo/sim/sim_world.h"
 #include "rondo/store/read_back.h"
 #include "rondo/store/robot_state.h"
 #include "rondo/store/store.h"
 #include "rondo/store/traversal_log.h"
+#include "robot_factory.h"
 #include "run_folder.h"
 #include "run_report.h"
 
@@ -132,9 +132,10 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   const Time resume_at = resume.at;
 
   exec::SimClock sim_clock(resume_at);
-  exec::SystemClock system_clock;
+  exec::SystemClock system_clock(request.speed);
   exec::Clock& clock = request.realtime ? static_cast<exec::Clock&>(system_clock) : sim_clock;
-  sim::SimRobot robot(clock, map, s.parts.world, {.start = resume.robot_at, .dock = dock, .seed = resume.robot_seed});
+  RONDO_ASSIGN_OR_RETURN(DeploymentRobot deployed, make_robot(d, s.parts, clock, resume.robot_at, resume.robot_seed));
+  exec::Robot& robot = *deployed.robot;
   exec::ExecutorOptions options = d.executor;
   options.dock = dock;
   options.seed = d.seed;
@@ -180,11 +181,12 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   };
   auto today = d.zone.local_date(start);
   Json day_wall_seconds = Json::array();  // run.json: the cost of each simulated day (null: an earlier attempt's)
+  const Time end_at = request.run_for ? start + *request.run_for : Time::max();
   for (int day = 0; day < d.days; ++day) {
     const auto day_wall_start = std::chrono::steady_clock::now();
     const auto tomorrow = std::chrono::year_month_day{std::chrono::sys_days{today} + std::chrono::days{1}};
     const Time day_from = std::max(start, d.zone.at(today, Duration{0}));
-    const Time day_to = d.zone.at(tomorrow, Duration{0});
+    const Time day_to = std::min(d.zone.at(tomorrow, Duration{0}), end_at);
     const bool done_before = resumed && day_to <= resume_at;  // its picture is already drawn
     if (s.parts.people) {
       for (sim::Request& r : s.parts.people->between(day_from, day_to, people_rng)) {
@@ -210,14 +212,15 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
     }
     if (request.progress) draw_progress(progress_to, day + 1, d.days);
     today = tomorrow;
+    if (day_to >= end_at) break;
   }
   if (request.progress) progress_to << "\n";
-  const Time end = request.realtime ? clock.now() : d.zone.at(today, Duration{0});
+  const Time end = request.realtime || request.run_for ? clock.now() : d.zone.at(today, Duration{0});
 
   RunResult result;
   result.resumed = resumed;
   RONDO_ASSIGN_OR_RETURN(const std::vector<Traversal> log, store::find_traversals(db));
-  RunFigures figures{.from = start, .to = end, .charging = robot.charging_time()};
+  RunFigures figures{.from = start, .to = end, .charging = deployed.charging_time()};
   navigation_from_log(map, log, start, end, figures);
   result.report = run_report(executor, figures);
   // The simulated truth beside what was learned of it.

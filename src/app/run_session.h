@@ -26,6 +26,8 @@ struct RunRequest {
   Deployment deployment;
   std::filesystem::path out;
   bool realtime = false;  // the system clock instead of simulated time
+  double speed = 1.0;     // with realtime: the system clock this many times faster (SystemClock)
+  std::optional<Duration> run_for;  // stop this long after the start (rondo's clock), before the days end
   bool progress = false;  // draw a progress bar on `progress_to`
 };
 

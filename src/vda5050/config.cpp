@@ -12,6 +12,21 @@ Result<std::string> required_text(const Field& f, std::string_view key) {
   return s;
 }
 
+// One of the names that make the topics: non-empty and usable as one MQTT topic level, with the
+// error at its own line.
+Result<std::string> topic_level(const Field& robot, std::string_view key) {
+  RONDO_ASSIGN_OR_RETURN(std::string s, required_text(robot, key));
+  Topics t{.interface_name = "i", .manufacturer = "m", .serial_number = "s"};
+  (key == "interface_name" ? t.interface_name : key == "manufacturer" ? t.manufacturer : t.serial_number) = s;
+  if (auto ok = validate(t); !ok) {
+    const std::string& m = ok.error().message;  // "serial_number: ..."
+    const auto colon = m.find(": ");
+    RONDO_ASSIGN_OR_RETURN(Field v, robot.required(key));
+    return v.error(colon == std::string::npos ? m : m.substr(colon + 2));
+  }
+  return s;
+}
+
 }  // namespace
 
 Result<Vda5050Config> parse_vda5050_config(const Field& robot) {
@@ -22,10 +37,9 @@ Result<Vda5050Config> parse_vda5050_config(const Field& robot) {
   Vda5050Config c;
   RONDO_ASSIGN_OR_RETURN(c.broker, required_text(robot, "broker"));
   if (auto uri = paho_server_uri(c.broker); !uri) return robot.error_at("broker", uri.error().message);
-  RONDO_ASSIGN_OR_RETURN(c.topics.interface_name, required_text(robot, "interface_name"));
-  RONDO_ASSIGN_OR_RETURN(c.topics.manufacturer, required_text(robot, "manufacturer"));
-  RONDO_ASSIGN_OR_RETURN(c.topics.serial_number, required_text(robot, "serial_number"));
-  if (auto ok = validate(c.topics); !ok) return robot.error(ok.error().message);
+  RONDO_ASSIGN_OR_RETURN(c.topics.interface_name, topic_level(robot, "interface_name"));
+  RONDO_ASSIGN_OR_RETURN(c.topics.manufacturer, topic_level(robot, "manufacturer"));
+  RONDO_ASSIGN_OR_RETURN(c.topics.serial_number, topic_level(robot, "serial_number"));
   RONDO_ASSIGN_OR_RETURN(c.map_id, required_text(robot, "map_id"));
   if (auto f = robot.optional("offline_after")) {
     RONDO_ASSIGN_OR_RETURN(c.offline_after, f->as_duration());

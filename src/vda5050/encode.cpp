@@ -17,7 +17,7 @@ Json encode_actions(const std::vector<Action>& actions) {
   return a;
 }
 
-Json encode_node(const OrderNode& node) {
+Json encode_node(const OrderNode& node, const Compatibility& compat) {
   Json j = Json::object();
   j["nodeId"] = node.node_id;
   j["sequenceId"] = node.sequence_id;
@@ -28,7 +28,11 @@ Json encode_node(const OrderNode& node) {
     pos["x"] = p.x;
     pos["y"] = p.y;
     if (p.theta) pos["theta"] = *p.theta;
-    if (p.allowed_deviation_xy > 0) pos["allowedDeviationXY"] = p.allowed_deviation_xy;
+    if (p.allowed_deviation_xy > 0) {
+      pos["allowedDeviationXY"] = p.allowed_deviation_xy;
+      // vda-5050-lib 1.4.0 reads the schema file's spelling (compat.h).
+      if (compat.vda5050_lib_1_4) pos["allowedDeviationXy"] = p.allowed_deviation_xy;
+    }
     if (p.allowed_deviation_theta > 0) pos["allowedDeviationTheta"] = p.allowed_deviation_theta;
     pos["mapId"] = p.map_id;
     j["nodePosition"] = std::move(pos);
@@ -79,12 +83,12 @@ Json encode_action(const Action& action) {
   return j;
 }
 
-Json encode_order(const Header& header, const Order& order) {
+Json encode_order(const Header& header, const Order& order, const Compatibility& compat) {
   Json j = encode_header(header);
   j["orderId"] = order.order_id;
   j["orderUpdateId"] = order.order_update_id;
   Json nodes = Json::array();
-  for (const OrderNode& n : order.nodes) nodes.push_back(encode_node(n));
+  for (const OrderNode& n : order.nodes) nodes.push_back(encode_node(n, compat));
   Json edges = Json::array();
   for (const OrderEdge& e : order.edges) edges.push_back(encode_edge(e));
   j["nodes"] = std::move(nodes);

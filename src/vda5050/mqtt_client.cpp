@@ -1,11 +1,14 @@
 #include "rondo/vda5050/mqtt_client.h"
 
 #include <condition_variable>
+#include <cstdlib>
 #include <map>
 #include <mutex>
 #include <thread>
 
 #include <mqtt/async_client.h>
+
+#include "tcp_nodelay.h"
 
 namespace rondo::vda5050 {
 
@@ -31,6 +34,8 @@ struct MqttClient::Impl {
   Post post;
   mqtt::async_client client;
   mqtt::connect_options connect_options;
+  std::string host;  // of the broker, for set_tcp_nodelay_to
+  int port = 0;
 
   mutable std::mutex mutex;
   std::condition_variable wake;
@@ -83,6 +88,10 @@ Result<std::unique_ptr<MqttClient>> MqttClient::create(MqttOptions options, Mqtt
   } catch (const mqtt::exception& e) {
     return Error::invalid(std::string("broker: ") + e.what());
   }
+  // "tcp://host:port", checked above.
+  const auto colon = uri.rfind(':');
+  impl->host = uri.substr(6, colon - 6);
+  impl->port = std::atoi(uri.c_str() + colon + 1);
   auto builder = mqtt::connect_options_builder()
                      .clean_session(true)
                      .keep_alive_interval(std::chrono::duration_cast<std::chrono::seconds>(impl->options.keep_alive))
@@ -99,6 +108,7 @@ Result<std::unique_ptr<MqttClient>> MqttClient::create(MqttOptions options, Mqtt
   // Every connect, the first and each automatic reconnect: the session is clean, so subscribe
   // again before telling the owner.
   self->client.set_connected_handler([self](const std::string&) {
+    (void)set_tcp_nodelay_to(self->host, self->port);
     self->subscribe_all();
     if (self->handlers.connected) self->post([self] { self->handlers.connected(); });
   });

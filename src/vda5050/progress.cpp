@@ -188,16 +188,17 @@ void ProgressTracker::track_faults(const State& s, Time t, std::vector<ProgressE
 }
 
 void ProgressTracker::track_rejections(const State& s, std::vector<ProgressEvent>& out) {
-  std::set<std::pair<std::string, std::string>> now;
+  // Counted, not just present: a vehicle that rejects the same order twice lists the same error
+  // twice, and the second rejection is news too.
+  std::map<std::pair<std::string, std::string>, int> now;
   for (const VehicleError& e : s.errors) {
     if (e.error_type != "validationError" && e.error_type != "orderError" && e.error_type != "orderUpdateError" &&
         e.error_type != "noRouteError") {
       continue;
     }
-    now.insert({e.error_type, e.error_description});
-    if (rejections_.count({e.error_type, e.error_description}) == 0) {
-      out.emplace_back(Rejected{e.error_type, e.error_description});
-    }
+    const int n = ++now[{e.error_type, e.error_description}];
+    auto seen = rejections_.find({e.error_type, e.error_description});
+    if (seen == rejections_.end() || seen->second < n) out.emplace_back(Rejected{e.error_type, e.error_description});
   }
   rejections_ = std::move(now);
 }

@@ -123,5 +123,56 @@ TEST(RunCommand, ABadDeploymentIsExitCode2NamingFileAndLine) {
   std::filesystem::remove_all(dir.parent_path());
 }
 
+// The robot section (docs/vda5050.md): kind sim (the default) or vda5050, checked with file, line
+// and field like the rest; a vda5050 vehicle moves in real time, so the run needs --realtime.
+TEST(RunCommand, TheRobotSectionIsCheckedAndAVdaVehicleNeedsRealtime) {
+  const auto dir = fresh_dir("robot");
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path ex = std::filesystem::absolute("examples/g4s");
+  const std::string head = "rondo_deployment: 1\nname: x\nmap: " + (ex / "map.yaml").string() +
+                           "\ntime_zone: UTC\ndock: ChargingPoint\nstart: 2026-11-23\ndays: 1\nworld: " +
+                           (ex / "world.yaml").string() + "\n";
+  const auto run = [&](const std::string& robot, std::vector<std::string> extra = {}) {
+    std::ofstream(dir / "deployment.yaml", std::ios::trunc) << head << robot;
+    std::vector<std::string> args{"run", (dir / "deployment.yaml").string(), "--out", (dir / "run").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return test::run_cli(args);
+  };
+  const std::string vehicle = "robot:\n  kind: vda5050\n  broker: \"mqtt://127.0.0.1:1\"\n  interface_name: uagv\n"
+                              "  manufacturer: acme\n  serial_number: agv-7\n  map_id: g4s_y2\n";
+  const auto no_realtime = run(vehicle);
+  EXPECT_EQ(no_realtime.exit_code, 2);
+  EXPECT_THAT(no_realtime.err, HasSubstr("--realtime"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "run"));
+
+  const auto kind = run("robot: {kind: forklift}\n", {"--realtime"});
+  EXPECT_EQ(kind.exit_code, 2);
+  EXPECT_THAT(kind.err, HasSubstr("deployment.yaml:9"));
+  EXPECT_THAT(kind.err, HasSubstr("forklift"));
+
+  std::string no_map = vehicle;
+  no_map.erase(no_map.find("  map_id"));
+  const auto map_id = run(no_map + "  offline_after: 30s\n", {"--realtime"});
+  EXPECT_EQ(map_id.exit_code, 2);
+  EXPECT_THAT(map_id.err, HasSubstr("deployment.yaml:"));
+  EXPECT_THAT(map_id.err, HasSubstr("map_id"));
+
+  const auto broker = run(vehicle + "  compatibility: vda5050-lib-1.4\n", {"--realtime", "--speed", "0"});
+  EXPECT_EQ(broker.exit_code, 2);
+  EXPECT_THAT(broker.err, HasSubstr("--speed"));
+
+  std::string bad_serial = vehicle;
+  bad_serial.replace(bad_serial.find("agv-7"), 5, "agv/7");
+  const auto serial = run(bad_serial, {"--realtime"});
+  EXPECT_EQ(serial.exit_code, 2);
+  EXPECT_THAT(serial.err, HasSubstr("deployment.yaml:14"));  // the field's own line
+  EXPECT_THAT(serial.err, HasSubstr("serial_number"));
+
+  const auto sim = run("robot: {kind: sim, broker: x}\n");
+  EXPECT_EQ(sim.exit_code, 2);
+  EXPECT_THAT(sim.err, HasSubstr("broker"));
+  std::filesystem::remove_all(dir.parent_path());
+}
+
 }  // namespace
 }  // namespace rondo

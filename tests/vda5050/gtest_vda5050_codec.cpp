@@ -89,6 +89,32 @@ TEST(Vda5050Encode, OrderCarriesEveryField) {
   EXPECT_EQ(j["edges"][0]["released"], false);
 }
 
+TEST(Vda5050Encode, TheSchemaFileSpellingOfTheDeviationOnlyWithTheCompatibilityOption) {
+  Order o{.order_id = "o1", .order_update_id = 0, .nodes = {}, .edges = {}};
+  o.nodes.push_back({.node_id = "A",
+                     .sequence_id = 0,
+                     .released = true,
+                     .position = NodePosition{.x = 1,
+                                              .y = 2,
+                                              .theta = std::nullopt,
+                                              .allowed_deviation_xy = 1.5,
+                                              .allowed_deviation_theta = 0,
+                                              .map_id = "m"},
+                     .actions = {}});
+  Header h{.header_id = 0,
+           .timestamp = at("2026-12-01T10:00:00Z"),
+           .version = "2.0.0",
+           .manufacturer = "acme",
+           .serial_number = "agv-7"};
+  const Json standard = encode_order(h, o)["nodes"][0]["nodePosition"];
+  EXPECT_EQ(standard["allowedDeviationXY"], 1.5);
+  EXPECT_FALSE(standard.contains("allowedDeviationXy"));
+  EXPECT_FALSE(standard.contains("theta"));
+  const Json compat = encode_order(h, o, Compatibility{.vda5050_lib_1_4 = true})["nodes"][0]["nodePosition"];
+  EXPECT_EQ(compat["allowedDeviationXY"], 1.5);
+  EXPECT_EQ(compat["allowedDeviationXy"], 1.5);
+}
+
 TEST(Vda5050Encode, InstantActionsOldKeyOnlyWithTheCompatibilityOption) {
   Header h{.header_id = 0,
            .timestamp = at("2026-12-01T10:00:00Z"),

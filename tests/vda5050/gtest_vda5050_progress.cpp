@@ -256,5 +256,24 @@ TEST(Vda5050Progress, RejectionsBatteryAndActions) {
   EXPECT_EQ(only<BatteryChanged>(p.observe(s, at(3))).size(), 1u);
 }
 
+// A vehicle that rejects the same order twice lists the same error twice (vda-5050-lib appends
+// each rejection): the second one is news too.
+TEST(Vda5050Progress, TheSameRejectionAgainIsReportedAgain) {
+  ProgressTracker p;
+  Order o = line_order(1);
+  p.order_sent(o, at(0));
+  State s = vehicle(o, "A", 0, true);
+  const VehicleError e{"orderError", ErrorLevel::kWarning, "order action is not executable", {}};
+  s.errors = {e};
+  EXPECT_EQ(only<Rejected>(p.observe(s, at(1))).size(), 1u);
+  EXPECT_TRUE(only<Rejected>(p.observe(s, at(2))).empty());
+  s.errors = {e, e};
+  EXPECT_EQ(only<Rejected>(p.observe(s, at(3))).size(), 1u);
+  s.errors = {};
+  EXPECT_TRUE(only<Rejected>(p.observe(s, at(4))).empty());
+  s.errors = {e};
+  EXPECT_EQ(only<Rejected>(p.observe(s, at(5))).size(), 1u);  // gone and back
+}
+
 }  // namespace
 }  // namespace rondo::vda5050

@@ -119,6 +119,7 @@ std::unique_ptr<Broker> Broker::start(std::string& why) {
        << "listener " << b->port_ << " 127.0.0.1\n"
        << "allow_anonymous true\n"
        << "persistence false\n"
+       << "set_tcp_nodelay true\n"
        << "log_dest stdout\n";
   conf.close();
   if (!b->launch()) {

@@ -6,6 +6,8 @@
 // (docs/vda5050.md lists them):
 //   - it reads instant actions only under the pre-2.0 key `instantActions`: the encoder then
 //     writes the array under both `actions` (the standard key) and `instantActions`;
+//   - it reads a node's allowed deviation only as `allowedDeviationXy` (the 2.0.0 schema file's
+//     spelling; the specification says allowedDeviationXY): the encoder then writes both;
 //   - its factsheet is only a header: the decoder then accepts a header-only factsheet
 //     (Factsheet::header_only) instead of ignoring it as malformed;
 //   - it does not republish ONLINE on `connection` after an automatic reconnect: a fresh state

@@ -17,7 +17,8 @@ namespace rondo::vda5050 {
 
 Json encode_header(const Header& header);
 Json encode_action(const Action& action);
-Json encode_order(const Header& header, const Order& order);
+// With compat.vda5050_lib_1_4 a node's allowedDeviationXY is also written as `allowedDeviationXy`.
+Json encode_order(const Header& header, const Order& order, const Compatibility& compat = {});
 // With compat.vda5050_lib_1_4 the actions are also written under the old key `instantActions`.
 Json encode_instant_actions(const Header& header, const InstantActions& message, const Compatibility& compat = {});
 

@@ -88,8 +88,8 @@ struct BatteryChanged {
   bool charging = false;
   bool operator==(const BatteryChanged&) const = default;
 };
-// A validationError, orderError, orderUpdateError or noRouteError newly in the state (the
-// vehicle refused an order or update), in the vehicle's words.
+// A validationError, orderError, orderUpdateError or noRouteError newly in the state, or listed
+// once more than before (the vehicle refused an order or update), in the vehicle's words.
 struct Rejected {
   std::string error_type;
   std::string description;
@@ -146,7 +146,7 @@ class ProgressTracker {
   std::map<std::string, ActionStatus> actions_;
   std::optional<std::string> fault_;
   Time fault_cleared_at_{};
-  std::set<std::pair<std::string, std::string>> rejections_;
+  std::map<std::pair<std::string, std::string>, int> rejections_;  // how often each is listed
   std::optional<BatteryChanged> battery_;
 };
 
