@@ -258,13 +258,7 @@ double EpisodeEdgeModel::expected_seconds_from(Time t, const EpisodeStats& live,
 
 double EpisodeEdgeModel::probability(Time t, const EpisodeStats& live, bool use_state) const {
   if (!use_state || !live.has_last) return offline_probability(t, live);
-  const double q = first_attempt_probability(t, live);
-  const auto& o = priors_->options;
-  const auto s = idx(EpisodeStats::state_of(live.last_success, t - live.last_end));
-  const double pooled =
-      (priors_->state_successes[s] + o.pooled_state_prior * q) / (priors_->state_attempts[s] + o.pooled_state_prior);
-  return std::clamp((live.state_successes[s] + o.state_prior * pooled) / (live.state_attempts[s] + o.state_prior), 0.0,
-                    1.0);
+  return probability_from(t, live, first_attempt_probability(t, live));
 }
 
 double EpisodeEdgeModel::expected_seconds(Time t, const EpisodeStats& live, bool use_state) const {
