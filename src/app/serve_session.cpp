@@ -10,11 +10,11 @@
 #include <thread>
 
 #include "deployment_parts.h"
+#include "robot_factory.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
 #include "rondo/service/server.h"
 #include "rondo/sim/request_generator.h"
-#include "rondo/sim/sim_robot.h"
 #include "rondo/store/robot_state.h"
 #include "rondo/store/store.h"
 #include "rondo/store/task_table.h"
@@ -77,7 +77,9 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
     if (last)
       if (const auto n = parts.map.find_node(last->node)) start_at = *n;
   }
-  sim::SimRobot robot(clock, parts.map, parts.world, {.start = start_at, .dock = parts.dock, .seed = d.seed});
+  // The deployment's robot: the simulated one, or a VDA 5050 vehicle (docs/vda5050.md).
+  RONDO_ASSIGN_OR_RETURN(DeploymentRobot deployed, make_robot(d, parts, clock, start_at, d.seed));
+  exec::Robot& robot = *deployed.robot;
   exec::ExecutorOptions options = d.executor;
   options.dock = parts.dock;
   options.seed = d.seed;
