@@ -1,5 +1,5 @@
 // What an online update of one edge costs the executor's caches (issue 15, point 6): the
-// scheduler's travel matrix (exec::TravelCache over plan::TravelOracle) for `targets` places and
+// scheduler's travel matrix (exec::TravelCache over plan::TravelPlanner) for `targets` places and
 // the 96 quarter-hour slots of a day is filled, then, again and again, one edge is updated (as
 // LearnedEdgeModels::observe does after an attempt) and the whole matrix read again. Two views of
 // the same models: one that names the changed edge (changed_since: entries it does not touch are
@@ -22,7 +22,7 @@
 #include "plan/patchable_models.h"
 #include "plan/random_map.h"
 #include "rondo/exec/map_travel.h"
-#include "rondo/plan/travel_oracle.h"
+#include "rondo/plan/travel_planner.h"
 
 namespace {
 
@@ -64,7 +64,7 @@ Measured run(const map::TopoMap& m, bool name_edges, bool on_route, int updates)
       m.edge_count(), [daily](map::EdgeIndex e, Time t) { return daily.outcome(e, t); });
   std::shared_ptr<const plan::EdgeModelView> view =
       name_edges ? std::shared_ptr<const plan::EdgeModelView>(models) : std::make_shared<Opaque>(models);
-  plan::TravelOracle planner(m, view, {.slot_width = minutes(15), .max_cached_policies = 4096});
+  plan::TravelPlanner planner(m, view, {.slot_width = minutes(15), .max_cached_policies = 4096});
   exec::TravelCache cache(m, view, planner, minutes(15));
   std::mt19937_64 rng(7);
   std::vector<map::NodeIndex> places;

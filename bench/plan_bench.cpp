@@ -24,7 +24,7 @@
 #include "plan/random_map.h"
 #include "rondo/core/traversal.h"
 #include "rondo/plan/exact_solver.h"
-#include "rondo/plan/travel_oracle.h"
+#include "rondo/plan/travel_planner.h"
 #include "rondo/plan/value_iteration.h"
 
 namespace {

@@ -1,6 +1,6 @@
 // The default scheduler against the paper's MIP on CBC, in the same run (issue 5), on the real G4S
 // map (../shared/data/maps/g4s_y2.tmap) with travel = its distance prior (all-pairs expected
-// seconds from plan::TravelOracle over plan::DistancePrior, i.e. shortest nominal travel times):
+// seconds from plan::TravelPlanner over plan::DistancePrior, i.e. shortest nominal travel times):
 // 1. 30 random robot-like days of 15 tasks (tests/schedule/robot_day.h: durations of 1-5 min,
 //    releases within an hour, windows 20 min - 3 h wide, so they overlap): CBC (full and
 //    interval-algebra model) with 10 s each, the default scheduler run to its proof; objective and
@@ -37,7 +37,7 @@ using rondo::bench::steady_seconds;
 using namespace rondo;
 using namespace rondo::schedule;
 
-using bench::MapTravel;
+using bench::MapMatrix;
 
 struct Run {
   Schedule schedule;
@@ -71,7 +71,7 @@ std::string objective(const Run& r) {
                      r.checked ? "" : "!");
 }
 
-testing::RobotDayOptions day(const MapTravel& m, std::size_t tasks, std::uint64_t seed) {
+testing::RobotDayOptions day(const MapMatrix& m, std::size_t tasks, std::uint64_t seed) {
   testing::RobotDayOptions o;
   o.tasks = tasks;
   o.seed = seed;
@@ -84,7 +84,7 @@ testing::RobotDayOptions day(const MapTravel& m, std::size_t tasks, std::uint64_
   return o;
 }
 
-void print_map(const MapTravel& m) {
+void print_map(const MapMatrix& m) {
   double lo = 1e18, hi = 0, sum = 0;
   std::size_t count = 0;
   for (LocationIndex a = 0; a < m.names.size(); ++a)
@@ -97,7 +97,7 @@ void print_map(const MapTravel& m) {
                            m.names.size(), m.names[m.dock], lo, hi, sum / static_cast<double>(count));
 }
 
-void compare_small_days(const MapTravel& m, int instances, double cbc_budget, int cbc_runs) {
+void compare_small_days(const MapMatrix& m, int instances, double cbc_budget, int cbc_runs) {
   std::cout << "# 15-task days: CBC (" << cbc_budget
             << " s, median of " << cbc_runs
             << " runs) vs the default scheduler (run to its proof, median of 3 runs); * = proved optimal\n";
@@ -133,7 +133,7 @@ void compare_small_days(const MapTravel& m, int instances, double cbc_budget, in
       no_worse, instances, fast, instances, ratios.front(), ratios[ratios.size() / 2], cbc_found);
 }
 
-void compare_scale(const MapTravel& m, bool quick) {
+void compare_scale(const MapMatrix& m, bool quick) {
   const double budget = quick ? 3.0 : 10.0;
   std::cout << "# scale: objective (s) and seconds; 10 s budget each (default also with 2 s); `first` = the\n"
                "# default scheduler's first schedule (the first restricted dynamic program alone), median of 3\n";

@@ -18,7 +18,7 @@
 #include "rondo/plan/exact_solver.h"
 #include "rondo/plan/learned_edge_models.h"
 #include "rondo/plan/mdp.h"
-#include "rondo/plan/travel_oracle.h"
+#include "rondo/plan/travel_planner.h"
 #include "time_parsing_cli.h"
 
 namespace rondo::app {
@@ -76,7 +76,7 @@ Status run_plan(CommandContext& ctx, const PlanOptions& o) {
   }
   auto models = std::make_shared<plan::LearnedEdgeModels>(
       m, learned, plan::DistancePriorOptions{.success_probability = o.prior_probability});
-  plan::TravelOracle oracle(m, models);
+  plan::TravelPlanner oracle(m, models);
   const Time at = depart.value_or(Time{});
   const plan::Policy& policy = oracle.policy(to, at);
   const std::vector<plan::PolicyStep> route = policy.route(from);

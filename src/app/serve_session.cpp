@@ -63,7 +63,7 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   std::filesystem::create_directories(request.data, ec);
   if (ec) return Error::io(fmt::format("{}: cannot create the data folder: {}", request.data.string(), ec.message()));
   RONDO_ASSIGN_OR_RETURN(store::Store db, store::Store::open(request.data / "rondo.sqlite", {.sync_commits = true}));
-  RONDO_ASSIGN_OR_RETURN(std::vector<store::TaskRecord> stored, store::list_tasks(db));
+  RONDO_ASSIGN_OR_RETURN(std::vector<store::TaskRow> stored, store::list_tasks(db));
   RONDO_RETURN_IF_ERROR(store::set_meta(db, "serve.deployment", d.name));
   RONDO_RETURN_IF_ERROR(
       store::set_meta(db, "serve.deployment_file", std::filesystem::absolute(d.file).lexically_normal().string()));

@@ -19,7 +19,7 @@ namespace {
 
 constexpr const char* kInterruptedReason = "interrupted: the executive restarted while it ran";
 
-Result<Task> decode_stored(const store::TaskRecord& row, const TimeZone& zone) {
+Result<Task> decode_stored(const store::TaskRow& row, const TimeZone& zone) {
   RONDO_ASSIGN_OR_RETURN(
       Document doc, Document::parse(row.task.dump(), DocumentFormat::kJson, fmt::format("stored task {}", row.id)));
   return decode_task(doc.root(), &zone);
@@ -32,7 +32,7 @@ Outcome stored_outcome(const std::optional<store::Event>& e) {
 
 // The task as the book knew it when it was stored.
 Result<TaskRecord> record_of(const store::StoredTask& stored, const TimeZone& zone) {
-  const store::TaskRecord& row = stored.row;
+  const store::TaskRow& row = stored.row;
   auto task = decode_stored(row, zone);
   if (!task) return Error::storage(fmt::format("stored task {}: {}", row.id, task.error().message));
   if (task->id != row.id)

@@ -23,7 +23,7 @@ Duration to_duration(double seconds) {
 }  // namespace
 
 TravelCache::TravelCache(const map::TopoMap& map, std::shared_ptr<const plan::EdgeModelView> models,
-                         plan::TravelOracle& planner, Duration slot_width)
+                         plan::TravelPlanner& planner, Duration slot_width)
     : map_(&map), models_(std::move(models)), planner_(&planner), slot_width_(slot_width) {}
 
 bool TravelCache::refresh(Entry& entry, Time slot_start) const {
@@ -142,14 +142,14 @@ Duration TravelCache::lower_bound(map::NodeIndex from, map::NodeIndex to) const 
   return Duration{static_cast<std::int64_t>(std::floor(s * 1000.0))};
 }
 
-MapTravel::MapTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes)
+SchedulerTravel::SchedulerTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes)
     : cache_(&cache), nodes_(std::move(nodes)) {}
 
-Duration MapTravel::travel(schedule::LocationIndex from, schedule::LocationIndex to, Time depart) const {
+Duration SchedulerTravel::travel(schedule::LocationIndex from, schedule::LocationIndex to, Time depart) const {
   return cache_->travel(nodes_[from], nodes_[to], depart);
 }
 
-Duration MapTravel::lower_bound(schedule::LocationIndex from, schedule::LocationIndex to) const {
+Duration SchedulerTravel::lower_bound(schedule::LocationIndex from, schedule::LocationIndex to) const {
   return cache_->lower_bound(nodes_[from], nodes_[to]);
 }
 

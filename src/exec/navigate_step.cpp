@@ -1,7 +1,7 @@
 #include <fmt/format.h>
 
 #include "rondo/exec/map_travel.h"
-#include "rondo/plan/travel_oracle.h"
+#include "rondo/plan/travel_planner.h"
 #include "steps.h"
 #include "text.h"
 

@@ -59,7 +59,7 @@ Result<schedule::TryScheduleResult> schedule_pending(const ScheduleInputs& in, c
   for (map::NodeIndex n : nodes) problem.location_names.push_back(in.map.node(n).name);
   problem.robot.location = 0;
   problem.robot.time = free;
-  problem.travel = std::make_shared<MapTravel>(in.travel, nodes);
+  problem.travel = std::make_shared<SchedulerTravel>(in.travel, nodes);
 
   RONDO_RETURN_IF_ERROR(schedule::validate(problem));
   schedule::TryScheduleRequest request{.problem = std::move(problem), .new_tasks = {}, .zone = in.zone};

@@ -21,7 +21,7 @@ Status TaskBook::add(std::vector<Task> tasks, std::string_view source) {
   // or in memory, so the caller can send it again.
   const Time now = clock_.now();
   const std::string reason = fmt::format("added by {}", source);
-  std::vector<store::TaskRecord> rows;
+  std::vector<store::TaskRow> rows;
   rows.reserve(tasks.size());
   for (const Task& t : tasks) {
     rows.push_back({.id = t.id,

@@ -12,8 +12,8 @@ namespace rondo::store {
 namespace {
 
 // Rowid order is the order the tasks were accepted in, also within one batch.
-Result<std::vector<TaskRecord>> tasks_in_insertion_order(const Store& store) {
-  RONDO_ASSIGN_OR_RETURN(std::vector<TaskRecord> all, list_tasks(store));
+Result<std::vector<TaskRow>> tasks_in_insertion_order(const Store& store) {
+  RONDO_ASSIGN_OR_RETURN(std::vector<TaskRow> all, list_tasks(store));
   RONDO_ASSIGN_OR_RETURN(std::vector<std::string> order,
                          guarded(store, "reading the task order", [&]() -> Result<std::vector<std::string>> {
                            SQLite::Statement q(connection(store), "SELECT id FROM tasks ORDER BY rowid");
@@ -21,12 +21,12 @@ Result<std::vector<TaskRecord>> tasks_in_insertion_order(const Store& store) {
                            while (q.executeStep()) ids.push_back(q.getColumn(0).getString());
                            return ids;
                          }));
-  std::map<std::string, TaskRecord> by_id;
-  for (TaskRecord& r : all) {
+  std::map<std::string, TaskRow> by_id;
+  for (TaskRow& r : all) {
     std::string id = r.id;
     by_id.emplace(std::move(id), std::move(r));
   }
-  std::vector<TaskRecord> out;
+  std::vector<TaskRow> out;
   out.reserve(order.size());
   for (const std::string& id : order) {
     auto it = by_id.find(id);
@@ -48,7 +48,7 @@ std::optional<Time> StoredRun::latest() const {
 
 Result<StoredRun> read_back(const Store& store, std::string_view robot) {
   StoredRun run;
-  RONDO_ASSIGN_OR_RETURN(std::vector<TaskRecord> rows, tasks_in_insertion_order(store));
+  RONDO_ASSIGN_OR_RETURN(std::vector<TaskRow> rows, tasks_in_insertion_order(store));
   RONDO_ASSIGN_OR_RETURN(run.events, read_events(store));
   RONDO_ASSIGN_OR_RETURN(run.log_end, log_end(store));
   RONDO_ASSIGN_OR_RETURN(run.robot, load_robot_state(store, robot));
@@ -62,7 +62,7 @@ Result<StoredRun> read_back(const Store& store, std::string_view robot) {
 
   std::map<std::string, std::size_t> index;
   run.tasks.reserve(rows.size());
-  for (TaskRecord& r : rows) {
+  for (TaskRow& r : rows) {
     index.emplace(r.id, run.tasks.size());
     run.tasks.push_back(StoredTask{
         .row = std::move(r), .last_transition = std::nullopt, .dropped_for_now = std::nullopt, .added_events = 0});

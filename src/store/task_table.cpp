@@ -14,8 +14,8 @@ namespace {
 constexpr const char* kSelectTask =
     "SELECT id, state, task_json, created_ms, updated_ms, source, progress_json FROM tasks";
 
-Result<TaskRecord> task_from_row(const Store& store, const SQLite::Statement& row) {
-  TaskRecord r;
+Result<TaskRow> task_from_row(const Store& store, const SQLite::Statement& row) {
+  TaskRow r;
   r.id = row.getColumn(0).getString();
   r.state = row.getColumn(1).getString();
   const std::string text = row.getColumn(2).getString();
@@ -34,8 +34,8 @@ Result<TaskRecord> task_from_row(const Store& store, const SQLite::Statement& ro
   return r;
 }
 
-Result<std::vector<TaskRecord>> read_tasks(const Store& store, SQLite::Statement& query) {
-  std::vector<TaskRecord> out;
+Result<std::vector<TaskRow>> read_tasks(const Store& store, SQLite::Statement& query) {
+  std::vector<TaskRow> out;
   while (query.executeStep()) {
     auto r = task_from_row(store, query);
     if (!r) return r.error();
@@ -46,13 +46,13 @@ Result<std::vector<TaskRecord>> read_tasks(const Store& store, SQLite::Statement
 
 }  // namespace
 
-Status add_task(Store& store, const TaskRecord& task, std::string_view reason, std::string_view code) {
-  return add_tasks(store, std::span<const TaskRecord>(&task, 1), reason, code);
+Status add_task(Store& store, const TaskRow& task, std::string_view reason, std::string_view code) {
+  return add_tasks(store, std::span<const TaskRow>(&task, 1), reason, code);
 }
 
-Status add_tasks(Store& store, std::span<const TaskRecord> tasks, std::string_view reason, std::string_view code) {
+Status add_tasks(Store& store, std::span<const TaskRow> tasks, std::string_view reason, std::string_view code) {
   if (tasks.empty()) return {};
-  for (const TaskRecord& t : tasks) {
+  for (const TaskRow& t : tasks) {
     if (t.id.empty()) return Error::invalid(store.file().string() + ": a task needs a non-empty id");
   }
   const std::string what =
@@ -63,7 +63,7 @@ Status add_tasks(Store& store, std::span<const TaskRecord> tasks, std::string_vi
     SQLite::Statement insert(db,
                              "INSERT INTO tasks (id, state, task_json, created_ms, updated_ms, source, progress_json) "
                              "VALUES (?, ?, ?, ?, ?, ?, ?) ON CONFLICT (id) DO NOTHING");
-    for (const TaskRecord& task : tasks) {
+    for (const TaskRow& task : tasks) {
       insert.reset();
       insert.bind(1, task.id);
       insert.bind(2, task.state);
@@ -132,8 +132,8 @@ Status set_task_definition(Store& store, std::string_view id, const Json& task) 
   });
 }
 
-Result<TaskRecord> get_task(const Store& store, std::string_view id) {
-  return guarded(store, fmt::format("reading task '{}'", id), [&]() -> Result<TaskRecord> {
+Result<TaskRow> get_task(const Store& store, std::string_view id) {
+  return guarded(store, fmt::format("reading task '{}'", id), [&]() -> Result<TaskRow> {
     SQLite::Statement query(connection(store), std::string(kSelectTask) + " WHERE id = ?");
     query.bind(1, std::string(id));
     if (!query.executeStep()) return Error::not_found(fmt::format("{}: no task '{}'", store.file().string(), id));
@@ -141,15 +141,15 @@ Result<TaskRecord> get_task(const Store& store, std::string_view id) {
   });
 }
 
-Result<std::vector<TaskRecord>> list_tasks(const Store& store) {
-  return guarded(store, "listing tasks", [&]() -> Result<std::vector<TaskRecord>> {
+Result<std::vector<TaskRow>> list_tasks(const Store& store) {
+  return guarded(store, "listing tasks", [&]() -> Result<std::vector<TaskRow>> {
     SQLite::Statement query(connection(store), std::string(kSelectTask) + " ORDER BY created_ms, id");
     return read_tasks(store, query);
   });
 }
 
-Result<std::vector<TaskRecord>> list_tasks_in_state(const Store& store, std::string_view state) {
-  return guarded(store, fmt::format("listing tasks in state '{}'", state), [&]() -> Result<std::vector<TaskRecord>> {
+Result<std::vector<TaskRow>> list_tasks_in_state(const Store& store, std::string_view state) {
+  return guarded(store, fmt::format("listing tasks in state '{}'", state), [&]() -> Result<std::vector<TaskRow>> {
     SQLite::Statement query(connection(store), std::string(kSelectTask) + " WHERE state = ? ORDER BY created_ms, id");
     query.bind(1, std::string(state));
     return read_tasks(store, query);

@@ -59,7 +59,7 @@ int sum_of(const Json& by_reason) {
 std::set<std::string> stored_ids(const std::filesystem::path& out) {
   auto store = store::Store::open(out / "rondo.sqlite", {.mode = store::OpenMode::kReadOnly}).value();
   std::set<std::string> ids;
-  const std::vector<store::TaskRecord> tasks = store::list_tasks(store).value();
+  const std::vector<store::TaskRow> tasks = store::list_tasks(store).value();
   for (const auto& t : tasks) ids.insert(t.id);
   return ids;
 }

@@ -285,7 +285,7 @@ TEST(ExecutorRestore, AStoredTaskOnANodeThatIsGoneEndsNoLongerValid) {
     Task gone = task("Gone", "Office", start, start + hours(2), minutes(5));
     gone.start_node = "Attic";  // renamed away in the edited deployment
     const Task fine = task("Fine", "Office", start, start + hours(2), minutes(5));
-    const store::TaskRecord rows[] = {
+    const store::TaskRow rows[] = {
         {.id = "Gone", .task = encode(gone), .state = "queued", .created = start, .updated = start},
         {.id = "Fine", .task = encode(fine), .state = "queued", .created = start, .updated = start}};
     ASSERT_TRUE(store::add_tasks(store, rows, "accepted", "added").ok());

@@ -1,4 +1,4 @@
-// Properties of the scheduler's travel over the planner (exec::MapTravel): FIFO, the lower bound,
+// Properties of the scheduler's travel over the planner (exec::SchedulerTravel): FIFO, the lower bound,
 // agreement with the planner at slot starts, and cache invalidation when the models change.
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -9,7 +9,7 @@
 #include "plan/patchable_models.h"
 #include "rondo/exec/map_travel.h"
 #include "rondo/plan/edge_model_view.h"
-#include "rondo/plan/travel_oracle.h"
+#include "rondo/plan/travel_planner.h"
 #include "scenario.h"
 
 namespace rondo::exec::testing {
@@ -27,15 +27,15 @@ std::shared_ptr<plan::FunctionEdgeModels> rhythmic_models(std::vector<double> ph
   });
 }
 
-RC_GTEST_PROP(MapTravel, IsFifoAndAboveItsLowerBound, ()) {
+RC_GTEST_PROP(SchedulerTravel, IsFifoAndAboveItsLowerBound, ()) {
   const map::TopoMap map = scenario_map();
   const auto phase = *rc::gen::container<std::vector<double>>(map.edge_count(), rc::gen::inRange(0, 24));
   const double amplitude = *rc::gen::inRange(0, 40) / 10.0;
   const double p = *rc::gen::inRange(30, 101) / 100.0;
   auto models = rhythmic_models(phase, amplitude, p);
-  plan::TravelOracle planner(map, models, {.slot_width = minutes(15)});
+  plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
   TravelCache cache(map, models, planner, minutes(15));
-  MapTravel travel(cache, {0, 1, 2, 3, 4});
+  SchedulerTravel travel(cache, {0, 1, 2, 3, 4});
   const auto a = *rc::gen::inRange<std::size_t>(0, 5);
   const auto b = *rc::gen::inRange<std::size_t>(0, 5);
   const Time t1 = kMonday + seconds(*rc::gen::inRange(0, 7 * 86400));
@@ -47,13 +47,13 @@ RC_GTEST_PROP(MapTravel, IsFifoAndAboveItsLowerBound, ()) {
   RC_ASSERT(d1 >= Duration{0});
 }
 
-TEST(MapTravel, EqualsThePlannerAtSlotStartsAndInterpolatesBetween) {
+TEST(SchedulerTravel, EqualsThePlannerAtSlotStartsAndInterpolatesBetween) {
   const map::TopoMap map = scenario_map();
   auto models = rhythmic_models({0, 3, 6, 9, 12, 15, 18, 21}, 1.5, 0.8);
-  plan::TravelOracle planner(map, models, {.slot_width = minutes(15)});
+  plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
   TravelCache cache(map, models, planner, minutes(15));
   const map::NodeIndex dock = *map.find_node("Dock"), office = *map.find_node("Office");
-  MapTravel travel(cache, {dock, office});
+  SchedulerTravel travel(cache, {dock, office});
   const Time s0 = kMonday + hours(9), s1 = s0 + minutes(15);
   const double e0 = planner.expected_seconds(dock, office, s0), e1 = planner.expected_seconds(dock, office, s1);
   EXPECT_NEAR(to_seconds(travel.travel(0, 1, s0)), e0, 0.001);
@@ -62,13 +62,13 @@ TEST(MapTravel, EqualsThePlannerAtSlotStartsAndInterpolatesBetween) {
   EXPECT_EQ(travel.travel(0, 0, s0), Duration{0});
 }
 
-TEST(MapTravel, NewModelsEmptyTheCache) {
+TEST(SchedulerTravel, NewModelsEmptyTheCache) {
   const map::TopoMap map = scenario_map();
   auto models = std::make_shared<plan::FunctionEdgeModels>(
       [](map::EdgeIndex, Time) { return plan::EdgeOutcome{1.0, 10.0}; });
-  plan::TravelOracle planner(map, models, {.slot_width = minutes(15)});
+  plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
   TravelCache cache(map, models, planner, minutes(15));
-  MapTravel travel(cache, {*map.find_node("Dock"), *map.find_node("Office")});
+  SchedulerTravel travel(cache, {*map.find_node("Dock"), *map.find_node("Office")});
   EXPECT_EQ(travel.travel(0, 1, kMonday), seconds(20));
   EXPECT_EQ(travel.lower_bound(0, 1), seconds(20));
   models->set([](map::EdgeIndex, Time) { return plan::EdgeOutcome{0.5, 10.0}; });
@@ -78,13 +78,13 @@ TEST(MapTravel, NewModelsEmptyTheCache) {
 
 // After any sequence of one-edge updates (and snapshot swaps), every cached travel time and lower
 // bound equals what a fresh cache over a fresh planner gives: the entries kept were untouched.
-RC_GTEST_PROP(MapTravel, CachedAnswersEqualAFreshCacheAfterOneEdgeUpdates, ()) {
+RC_GTEST_PROP(SchedulerTravel, CachedAnswersEqualAFreshCacheAfterOneEdgeUpdates, ()) {
   const map::TopoMap map = scenario_map();
   const auto phase = *rc::gen::container<std::vector<double>>(map.edge_count(), rc::gen::inRange(0, 24));
   auto base = rhythmic_models(phase, 1.5, 0.8);
   auto models = std::make_shared<plan::testing::PatchableEdgeModels>(
       map.edge_count(), [base](map::EdgeIndex e, Time t) { return base->outcome(e, t); });
-  plan::TravelOracle planner(map, models, {.slot_width = minutes(15)});
+  plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
   TravelCache cache(map, models, planner, minutes(15));
   const int steps = *rc::gen::inRange(1, 40);
   for (int k = 0; k < steps; ++k) {
@@ -98,7 +98,7 @@ RC_GTEST_PROP(MapTravel, CachedAnswersEqualAFreshCacheAfterOneEdgeUpdates, ()) {
       const auto a = *rc::gen::inRange<std::size_t>(0, map.node_count());
       const auto b = *rc::gen::inRange<std::size_t>(0, map.node_count());
       const Time t = kMonday + hours(9) + seconds(*rc::gen::inRange(0, 3 * 3600));
-      plan::TravelOracle fresh_planner(map, models, {.slot_width = minutes(15)});
+      plan::TravelPlanner fresh_planner(map, models, {.slot_width = minutes(15)});
       TravelCache fresh(map, models, fresh_planner, minutes(15));
       RC_ASSERT(cache.travel(a, b, t) == fresh.travel(a, b, t));
       RC_ASSERT(cache.lower_bound(a, b) == fresh.lower_bound(a, b));
@@ -106,12 +106,12 @@ RC_GTEST_PROP(MapTravel, CachedAnswersEqualAFreshCacheAfterOneEdgeUpdates, ()) {
   }
 }
 
-TEST(MapTravel, AnUpdateOfAnEdgeOffTheWayKeepsTheEntry) {
+TEST(SchedulerTravel, AnUpdateOfAnEdgeOffTheWayKeepsTheEntry) {
   const map::TopoMap map = scenario_map();
   auto models = std::make_shared<plan::testing::PatchableEdgeModels>(map.edge_count(), [](map::EdgeIndex, Time) {
     return plan::EdgeOutcome{1.0, 10.0};
   });
-  plan::TravelOracle planner(map, models, {.slot_width = minutes(15)});
+  plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
   TravelCache cache(map, models, planner, minutes(15));
   const map::NodeIndex dock = *map.find_node("Dock"), office = *map.find_node("Office");
   const Duration before = cache.travel(dock, office, kMonday);
@@ -122,14 +122,14 @@ TEST(MapTravel, AnUpdateOfAnEdgeOffTheWayKeepsTheEntry) {
   EXPECT_GT(cache.kept_count(), 0u);
 }
 
-TEST(MapTravel, AnUnreachableNodeIsKUnreachable) {
+TEST(SchedulerTravel, AnUnreachableNodeIsKUnreachable) {
   const map::TopoMap map = scenario_map();
   auto models = std::make_shared<plan::FunctionEdgeModels>([&](map::EdgeIndex e, Time) {
     return plan::EdgeOutcome{map.edge(e).to == "Lab" ? 0.0 : 1.0, 10.0};
   });
-  plan::TravelOracle planner(map, models, {.slot_width = minutes(15)});
+  plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
   TravelCache cache(map, models, planner, minutes(15));
-  MapTravel travel(cache, {*map.find_node("Dock"), *map.find_node("Lab")});
+  SchedulerTravel travel(cache, {*map.find_node("Dock"), *map.find_node("Lab")});
   EXPECT_EQ(travel.travel(0, 1, kMonday), kUnreachable);
   EXPECT_EQ(travel.lower_bound(0, 1), kUnreachable);
 }

@@ -1,5 +1,5 @@
 // LearnedEdgeModels: map edges matched to a learn::EdgeModels snapshot by id, the distance prior
-// for edges it does not know, and set() moving version() on so that TravelOracle drops its caches.
+// for edges it does not know, and set() moving version() on so that TravelPlanner drops its caches.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -9,7 +9,7 @@
 #include "rondo/plan/distance_prior.h"
 #include "rondo/plan/exact_solver.h"
 #include "rondo/plan/learned_edge_models.h"
-#include "rondo/plan/travel_oracle.h"
+#include "rondo/plan/travel_planner.h"
 #include "small_maps.h"
 
 namespace rondo::plan {
@@ -86,7 +86,7 @@ TEST(LearnedEdgeModels, SetSwapsTheSnapshotAndTheOracleDropsItsCaches) {
   const auto specs = edge_specs(m);
   auto fast = fit(specs, attempts("A_C", 40, 3.0, 0));
   auto view = std::make_shared<LearnedEdgeModels>(m, fast);
-  TravelOracle oracle(m, view);
+  TravelPlanner oracle(m, view);
   const Time t = kStart + hours(50);
   const double before = oracle.expected_seconds(0, 2, t);
   EXPECT_NEAR(before, 3.0, 0.5);  // straight A -> C, learned to take 3 s
@@ -128,7 +128,7 @@ TEST(LearnedEdgeModels, OnlineAFailureRaisesTheTravelTimeAtOnceAndIsForgotten) {
   auto fitted = fit(specs, daily_closures());
   auto live =
       std::make_shared<LearnedEdgeModels>(m, fitted, DistancePriorOptions{}, LearnedEdgeModels::Reading::kOnline);
-  TravelOracle oracle(m, live);
+  TravelPlanner oracle(m, live);
   const map::EdgeIndex a_b = *m.find_edge("A_B");
   const Time t = kStart + hours(24 * 28 + 15);  // day 29, 15:00: open
   EXPECT_TRUE(live->observe(a_b, {t - minutes(10), t - minutes(10) + seconds(20), 20.0, true}));

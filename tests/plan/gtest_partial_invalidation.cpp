@@ -1,4 +1,4 @@
-// An online update of one edge leaves TravelOracle's cached M_t and policies that the edge does not
+// An online update of one edge leaves TravelPlanner's cached M_t and policies that the edge does not
 // touch: a property on random buildings (every cached answer after any sequence of one-edge updates
 // and snapshot swaps equals a fresh oracle's), a case that shows an untouched policy kept and a
 // touched one solved again, and Policy::survives_edge_change against a fresh solve.
@@ -12,7 +12,7 @@
 #include "patchable_models.h"
 #include "random_map.h"
 #include "rondo/plan/exact_solver.h"
-#include "rondo/plan/travel_oracle.h"
+#include "rondo/plan/travel_planner.h"
 #include "small_maps.h"
 
 namespace rondo::plan {
@@ -33,7 +33,7 @@ RC_GTEST_PROP(PartialInvalidation, CachedAnswersEqualAFreshOracleAfterUpdates, (
   const FunctionEdgeModels daily = testing::daily_models(m);
   auto models = std::make_shared<PatchableEdgeModels>(
       m.edge_count(), [daily](map::EdgeIndex e, Time t) { return daily.outcome(e, t); });
-  TravelOracle cached(m, models, {.slot_width = minutes(15)});
+  TravelPlanner cached(m, models, {.slot_width = minutes(15)});
   const int steps = *rc::gen::inRange(1, 40);
   for (int k = 0; k < steps; ++k) {
     const int what = *rc::gen::inRange(0, 10);
@@ -49,7 +49,7 @@ RC_GTEST_PROP(PartialInvalidation, CachedAnswersEqualAFreshOracleAfterUpdates, (
       const NodeIndex a = *rc::gen::inRange<std::size_t>(0, m.node_count());
       const NodeIndex b = *rc::gen::inRange<std::size_t>(0, m.node_count());
       const Time t = kMorning + minutes(15 * *rc::gen::inRange(0, 4)) + seconds(*rc::gen::inRange(0, 900));
-      TravelOracle fresh(m, models, {.slot_width = minutes(15)});
+      TravelPlanner fresh(m, models, {.slot_width = minutes(15)});
       RC_ASSERT(same(cached.expected_seconds(a, b, t), fresh.expected_seconds(a, b, t)));
       if (what == 9) {
         RC_ASSERT(
@@ -65,7 +65,7 @@ TEST(PartialInvalidation, AnUpdateKeepsThePoliciesItDoesNotTouch) {
   auto models = std::make_shared<PatchableEdgeModels>(m.edge_count(), [](map::EdgeIndex, Time) {
     return EdgeOutcome{1.0, 10.0};
   });
-  TravelOracle oracle(m, models);
+  TravelPlanner oracle(m, models);
   EXPECT_DOUBLE_EQ(oracle.expected_seconds(0, 2, kMorning), 20.0);  // policy to C
   EXPECT_DOUBLE_EQ(oracle.expected_seconds(0, 3, kMorning), 10.0);  // policy to D: takes A>D
   models->change(*m.find_edge("A_D"), 1.0, 3.0);                    // slower: the policy to C does not take it

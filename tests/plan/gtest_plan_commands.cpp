@@ -15,7 +15,7 @@
 #include "rondo/learn/edge_models.h"
 #include "rondo/map/map_loader.h"
 #include "rondo/plan/learned_edge_models.h"
-#include "rondo/plan/travel_oracle.h"
+#include "rondo/plan/travel_planner.h"
 
 namespace rondo::plan {
 namespace {
@@ -104,7 +104,7 @@ TEST_F(PlanWithModels, PlansWithTheLearnedModels) {
   EXPECT_EQ(j["route"].back(), "Kitchen");
   // The same answer as the library: LearnedEdgeModels over the (reloaded) models, exact solver.
   auto reloaded = learn::EdgeModels::load(file_).value();
-  TravelOracle oracle(*map_, std::make_shared<LearnedEdgeModels>(*map_, reloaded));
+  TravelPlanner oracle(*map_, std::make_shared<LearnedEdgeModels>(*map_, reloaded));
   const auto from = *map_->find_node("ChargingPoint");
   const auto to = *map_->find_node("Kitchen");
   const double expected = oracle.expected_seconds(from, to, parse_time(at).value());

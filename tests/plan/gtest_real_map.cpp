@@ -9,7 +9,7 @@
 #include "rondo/map/map_loader.h"
 #include "rondo/plan/distance_prior.h"
 #include "rondo/plan/exact_solver.h"
-#include "rondo/plan/travel_oracle.h"
+#include "rondo/plan/travel_planner.h"
 #include "rondo/plan/value_iteration.h"
 
 namespace rondo::plan {

@@ -1,4 +1,4 @@
-// TravelOracle: E(a, b, t) matches the exact solver on M_t at the slot start, is cached per
+// TravelPlanner: E(a, b, t) matches the exact solver on M_t at the slot start, is cached per
 // (slot, target), and is dropped when the models' version moves on; the time-dependent variant
 // reads each edge when the robot reaches it, waits when waiting pays, and is FIFO (a property on
 // random maps with daily-rhythm models).
@@ -10,7 +10,7 @@
 #include "random_map.h"
 #include "rondo/plan/distance_prior.h"
 #include "rondo/plan/exact_solver.h"
-#include "rondo/plan/travel_oracle.h"
+#include "rondo/plan/travel_planner.h"
 #include "small_maps.h"
 
 namespace rondo::plan {
@@ -20,10 +20,10 @@ using testing::small_map;
 
 const Time kMorning = Time{} + hours(24 * 16000 + 8);  // 2013-10-23T08:00:00Z
 
-TEST(TravelOracle, MatchesTheExactSolverAtTheSlotStart) {
+TEST(TravelPlanner, MatchesTheExactSolverAtTheSlotStart) {
   const map::TopoMap m = testing::building_map({.rows = 6, .columns = 7});
   auto models = std::make_shared<FunctionEdgeModels>(testing::daily_models(m));
-  TravelOracle oracle(m, models, {.slot_width = minutes(30)});
+  TravelPlanner oracle(m, models, {.slot_width = minutes(30)});
   const Time depart = kMorning + minutes(47);
   EXPECT_EQ(oracle.slot_start(depart), kMorning + minutes(30));
   const Mdp mdp = Mdp::build(m, *models, kMorning + minutes(30));
@@ -34,10 +34,10 @@ TEST(TravelOracle, MatchesTheExactSolverAtTheSlotStart) {
   EXPECT_THROW(oracle.expected_seconds(0, 999, depart), std::out_of_range);
 }
 
-TEST(TravelOracle, CachesPerSlotAndTarget) {
+TEST(TravelPlanner, CachesPerSlotAndTarget) {
   const map::TopoMap m = testing::building_map({.rows = 4, .columns = 4});
   auto models = std::make_shared<FunctionEdgeModels>(testing::daily_models(m));
-  TravelOracle oracle(m, models, {.slot_width = minutes(15)});
+  TravelPlanner oracle(m, models, {.slot_width = minutes(15)});
   oracle.expected_seconds(0, 5, kMorning);
   oracle.expected_seconds(1, 5, kMorning + minutes(14));  // same slot, same target
   EXPECT_EQ(oracle.cached_policy_count(), 1u);
@@ -47,20 +47,20 @@ TEST(TravelOracle, CachesPerSlotAndTarget) {
   EXPECT_EQ(oracle.cached_slot_count(), 2u);
 }
 
-TEST(TravelOracle, ModelChangesInvalidateTheCache) {
+TEST(TravelPlanner, ModelChangesInvalidateTheCache) {
   const map::TopoMap m = small_map({"A", "B"}, {"A>B"});
   auto models = std::make_shared<FunctionEdgeModels>([](map::EdgeIndex, Time) { return EdgeOutcome{1.0, 10.0}; });
-  TravelOracle oracle(m, models);
+  TravelPlanner oracle(m, models);
   EXPECT_DOUBLE_EQ(oracle.expected_seconds(0, 1, kMorning), 10.0);
   models->set([](map::EdgeIndex, Time) { return EdgeOutcome{0.5, 10.0}; });
   EXPECT_DOUBLE_EQ(oracle.expected_seconds(0, 1, kMorning), 20.0);
   EXPECT_EQ(oracle.cached_policy_count(), 1u);
 }
 
-TEST(TravelOracle, CacheLimitsHold) {
+TEST(TravelPlanner, CacheLimitsHold) {
   const map::TopoMap m = testing::building_map({.rows = 3, .columns = 3});
   auto models = std::make_shared<FunctionEdgeModels>(testing::daily_models(m));
-  TravelOracle oracle(m, models, {.max_cached_policies = 4, .max_cached_slots = 2});
+  TravelPlanner oracle(m, models, {.max_cached_policies = 4, .max_cached_slots = 2});
   for (int k = 0; k < 20; ++k) oracle.expected_seconds(0, 8, kMorning + minutes(15 * k));
   EXPECT_LE(oracle.cached_policy_count(), 4u);
   EXPECT_LE(oracle.cached_slot_count(), 2u);
@@ -69,7 +69,7 @@ TEST(TravelOracle, CacheLimitsHold) {
 TEST(TimeDependent, EqualsTheStaticAnswerWhenModelsIgnoreTime) {
   const map::TopoMap m = testing::building_map({.rows = 5, .columns = 5});
   auto prior = std::make_shared<DistancePrior>(m, DistancePriorOptions{.success_probability = 0.8});
-  TravelOracle oracle(m, prior);
+  TravelPlanner oracle(m, prior);
   for (NodeIndex a : {0u, 7u, 13u}) {
     const TimedRoute r = oracle.time_dependent_route(a, 24, kMorning);
     ASSERT_TRUE(r.reachable);
@@ -88,7 +88,7 @@ TEST(TimeDependent, ReadsEachEdgeWhenTheRobotReachesIt) {
     if (e == 0) return EdgeOutcome{1.0, 600.0};
     return EdgeOutcome{1.0, t < kMorning + minutes(10) ? 60.0 : 300.0};
   });
-  TravelOracle oracle(m, models, {.slot_width = minutes(5)});
+  TravelPlanner oracle(m, models, {.slot_width = minutes(5)});
   EXPECT_DOUBLE_EQ(oracle.expected_seconds(0, 2, kMorning), 660.0);
   const TimedRoute r = oracle.time_dependent_route(0, 2, kMorning);
   EXPECT_DOUBLE_EQ(r.arrival_seconds, 900.0);
@@ -103,7 +103,7 @@ TEST(TimeDependent, WaitsForAClosedDoorWhenThatIsFastest) {
     if (e == 0) return EdgeOutcome{t < kMorning + minutes(15) ? 0.0 : 1.0, 20.0};
     return EdgeOutcome{1.0, 1800.0};
   });
-  TravelOracle oracle(m, models, {.slot_width = minutes(15)});
+  TravelPlanner oracle(m, models, {.slot_width = minutes(15)});
   EXPECT_DOUBLE_EQ(oracle.expected_seconds(0, 1, kMorning), 3600.0);  // static: the detour
   const TimedRoute r = oracle.time_dependent_route(0, 1, kMorning + minutes(5));
   ASSERT_EQ(r.steps.size(), 1u);
@@ -114,7 +114,7 @@ TEST(TimeDependent, WaitsForAClosedDoorWhenThatIsFastest) {
 TEST(TimeDependent, UnreachableIsInfinite) {
   const map::TopoMap m = small_map({"A", "B", "C"}, {"A>B"});
   auto prior = std::make_shared<DistancePrior>(m);
-  TravelOracle oracle(m, prior);
+  TravelPlanner oracle(m, prior);
   EXPECT_FALSE(oracle.time_dependent_route(0, 2, kMorning).reachable);
   EXPECT_EQ(oracle.time_dependent_expected_seconds(1, 0, kMorning), kInfinity);
   EXPECT_EQ(oracle.time_dependent_expected_seconds(2, 2, kMorning), 0.0);
@@ -125,7 +125,7 @@ RC_GTEST_PROP(TimeDependentProperties, LeavingLaterNeverArrivesEarlier, ()) {
   const map::TopoMap m = testing::building_map({.rows = 5, .columns = 6, .seed = seed, .door_fraction = 0.4});
   // Strong rhythms and 10-minute slots make the raw edge costs jump at every slot boundary.
   auto models = std::make_shared<FunctionEdgeModels>(testing::daily_models(m, 60.0));
-  TravelOracle oracle(m, models, {.slot_width = minutes(10)});
+  TravelPlanner oracle(m, models, {.slot_width = minutes(10)});
   const NodeIndex a = *rc::gen::inRange<std::size_t>(0, m.node_count());
   const NodeIndex b = *rc::gen::inRange<std::size_t>(0, m.node_count());
   const Time t1 = kMorning + seconds(*rc::gen::inRange<std::int64_t>(0, 86400));

@@ -1,6 +1,6 @@
 // An EdgeModelView whose edges change one at a time and which says which (changed_since), as the
 // online LearnedEdgeModels does: for the properties of the caches that keep what an update does
-// not touch (plan::TravelOracle, exec::TravelCache).
+// not touch (plan::TravelPlanner, exec::TravelCache).
 //
 //   PatchableEdgeModels models(map.edge_count(), [](map::EdgeIndex e, Time t) { ... });
 //   models.change(3, 0.5, 2.0);   // edge 3: p x 0.5, τ x 2 from now on; changed_since names it

@@ -168,7 +168,7 @@ TEST(ApiTasks, AnIdempotencyKeyReturnsTheFirstAnswerEvenAfterARestart) {
   auto reader = store::Store::open(data / "rondo.sqlite", {.mode = store::OpenMode::kReadOnly});
   auto all = store::list_tasks(*reader);
   ASSERT_TRUE(all.ok());
-  EXPECT_EQ(std::count_if(all->begin(), all->end(), [](const store::TaskRecord& t) { return t.id == "once"; }), 1);
+  EXPECT_EQ(std::count_if(all->begin(), all->end(), [](const store::TaskRow& t) { return t.id == "once"; }), 1);
 }
 
 // A submission the executive's thread cannot take in time is withdrawn: 503, and never carried

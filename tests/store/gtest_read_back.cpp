@@ -15,7 +15,7 @@ Time at(int s) {
   return Time{seconds(s)};
 }
 
-TaskRecord row(const std::string& id, int created_s) {
+TaskRow row(const std::string& id, int created_s) {
   return {.id = id,
           .task = Json{{"id", id}},
           .state = "queued",
@@ -46,7 +46,7 @@ TEST(ReadBack, EachTaskComesWithTheChangeThatPutItInItsStateAndItsDropForNow) {
   {
     auto db = Store::open(tmp.path()).value();
     // One batch whose ids are not in alphabetical order: the read-back keeps the order accepted.
-    const std::vector<TaskRecord> batch{row("zeta", 10), row("alpha", 10), row("mid", 10), row("gone", 10)};
+    const std::vector<TaskRow> batch{row("zeta", 10), row("alpha", 10), row("mid", 10), row("gone", 10)};
     ASSERT_TRUE(add_tasks(db, batch, "added by test", "added"));
     // zeta: ran, was preempted back to the queue, then dropped for now.
     ASSERT_TRUE(set_task_state(db, "zeta", "navigating", at(20), "to Office", "departed"));

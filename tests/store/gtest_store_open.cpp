@@ -210,7 +210,7 @@ TEST(StoreOpen, ALockedStoreIsAStorageErrorAfterTheBusyTimeout) {
   ASSERT_TRUE(db.ok());
   SQLite::Database other(tmp.path(), SQLite::OPEN_READWRITE);
   other.exec("BEGIN IMMEDIATE");  // holds the write lock
-  TaskRecord task{"t1", Json::object(), "queued", Time{seconds(1)}, Time{seconds(1)}};
+  TaskRow task{"t1", Json::object(), "queued", Time{seconds(1)}, Time{seconds(1)}};
   Status added = add_task(*db, task);
   ASSERT_FALSE(added.ok());
   EXPECT_EQ(added.error().code, ErrorCode::kStorage);

@@ -16,7 +16,7 @@ Time at(int s) {
   return Time{seconds(s)};
 }
 
-TaskRecord sample(std::string id, int created_s = 100) {
+TaskRow sample(std::string id, int created_s = 100) {
   Json task = Json::parse(R"({
     "id": "ID", "name": "check the fire extinguisher", "kind": "standard",
     "window": {"release": "2014-09-02T08:00:00Z", "deadline": "2014-09-02T11:45:00Z"},
@@ -25,7 +25,7 @@ TaskRecord sample(std::string id, int created_s = 100) {
     "note": "caf\u00e9 \u2013 2nd floor"
   })");
   task["id"] = id;
-  return TaskRecord{std::move(id), std::move(task), "queued", at(created_s), at(created_s)};
+  return TaskRow{std::move(id), std::move(task), "queued", at(created_s), at(created_s)};
 }
 
 class TaskTable : public ::testing::Test {
@@ -42,7 +42,7 @@ class TaskTable : public ::testing::Test {
 };
 
 TEST_F(TaskTable, RoundTripsEveryField) {
-  const TaskRecord r = sample("t1");
+  const TaskRow r = sample("t1");
   ASSERT_TRUE(add_task(db(), r).ok());
   auto back = get_task(db(), "t1");
   ASSERT_TRUE(back.ok()) << back.error().message;
@@ -72,7 +72,7 @@ TEST_F(TaskTable, AddingWritesTheAcceptanceEvent) {
 
 TEST_F(TaskTable, RefusesADuplicateIdAndKeepsTheFirst) {
   ASSERT_TRUE(add_task(db(), sample("t1")).ok());
-  TaskRecord second = sample("t1", 200);
+  TaskRow second = sample("t1", 200);
   second.state = "dropped";
   Status s = add_task(db(), second);
   ASSERT_FALSE(s.ok());
@@ -83,7 +83,7 @@ TEST_F(TaskTable, RefusesADuplicateIdAndKeepsTheFirst) {
 }
 
 TEST_F(TaskTable, StoresABatchWhole) {
-  const std::vector<TaskRecord> batch{sample("a", 10), sample("b", 10), sample("c", 10)};
+  const std::vector<TaskRow> batch{sample("a", 10), sample("b", 10), sample("c", 10)};
   ASSERT_TRUE(add_tasks(db(), batch, "routine").ok());
   auto all = list_tasks(db());
   ASSERT_TRUE(all.ok());
@@ -97,7 +97,7 @@ TEST_F(TaskTable, StoresABatchWhole) {
 
 TEST_F(TaskTable, StoresNoneOfABatchWithAStoredId) {
   ASSERT_TRUE(add_task(db(), sample("b")).ok());
-  const std::vector<TaskRecord> batch{sample("a", 200), sample("b", 200), sample("c", 200)};
+  const std::vector<TaskRow> batch{sample("a", 200), sample("b", 200), sample("c", 200)};
   Status s = add_tasks(db(), batch);
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.error().code, ErrorCode::kInvalidInput);
@@ -115,7 +115,7 @@ TEST_F(TaskTable, AnEmptyBatchStoresNothing) {
 }
 
 TEST_F(TaskTable, StoresNoneOfABatchThatRepeatsAnId) {
-  Status s = add_tasks(db(), std::vector<TaskRecord>{sample("a"), sample("a", 300)});
+  Status s = add_tasks(db(), std::vector<TaskRow>{sample("a"), sample("a", 300)});
   ASSERT_FALSE(s.ok());
   EXPECT_TRUE(list_tasks(db())->empty());
 }

@@ -58,7 +58,7 @@
 #include "rondo/exec/task_book.h"
 #include "rondo/map/topo_map.h"
 #include "rondo/plan/learned_edge_models.h"
-#include "rondo/plan/travel_oracle.h"
+#include "rondo/plan/travel_planner.h"
 #include "rondo/schedule/scheduler.h"
 #include "rondo/store/store.h"
 
@@ -226,12 +226,12 @@ class Executor final : public RobotListener {
   TimeZone zone_;
   ExecutorOptions options_;
   std::shared_ptr<plan::LearnedEdgeModels> models_;
-  std::unique_ptr<plan::TravelOracle> planner_;
+  std::unique_ptr<plan::TravelPlanner> planner_;
   std::unique_ptr<TravelCache> travel_;
   // The snapshot read offline, only for NavigationRecord::offline_expected (the same models when
   // the online model is off).
   std::shared_ptr<plan::LearnedEdgeModels> offline_models_;
-  std::unique_ptr<plan::TravelOracle> offline_planner_;
+  std::unique_ptr<plan::TravelPlanner> offline_planner_;
   std::unique_ptr<TravelCache> offline_travel_;
   std::unique_ptr<schedule::Scheduler> scheduler_;
   std::mt19937_64 rng_;

@@ -1,9 +1,9 @@
 // The scheduler's travel oracle over the planner: expected travel time between map nodes at a
-// departure time, as the policy of the time-indexed MDP gives it (plan::TravelOracle), read at the
+// departure time, as the policy of the time-indexed MDP gives it (plan::TravelPlanner), read at the
 // start of each time slot and interpolated linearly in between.
 //
 //   TravelCache cache(planner);                 // one per executor: survives many problems
-//   auto travel = std::make_shared<MapTravel>(cache, std::vector<map::NodeIndex>{here, a, b});
+//   auto travel = std::make_shared<SchedulerTravel>(cache, std::vector<map::NodeIndex>{here, a, b});
 //   problem.travel = travel;                    // location i of the problem is node nodes[i]
 //
 // Interpolating between slot starts makes travel a continuous function of the departure time.
@@ -21,7 +21,7 @@
 #include "rondo/core/time.h"
 #include "rondo/map/topo_map.h"
 #include "rondo/plan/policy.h"
-#include "rondo/plan/travel_oracle.h"
+#include "rondo/plan/travel_planner.h"
 #include "rondo/schedule/travel_oracle.h"
 
 namespace rondo::exec {
@@ -41,7 +41,7 @@ inline constexpr Duration kUnreachable = hours(24 * 365);
 class TravelCache {
  public:
   // `planner` must read `models`; the map and the planner must outlive the cache.
-  TravelCache(const map::TopoMap& map, std::shared_ptr<const plan::EdgeModelView> models, plan::TravelOracle& planner,
+  TravelCache(const map::TopoMap& map, std::shared_ptr<const plan::EdgeModelView> models, plan::TravelPlanner& planner,
               Duration slot_width);
   // E(from, to) at the start of the slot that contains `depart`, as a Duration (kUnreachable).
   Duration at_slot(map::NodeIndex from, map::NodeIndex to, Time slot_start) const;
@@ -53,7 +53,7 @@ class TravelCache {
   // (travel() decides feasibility) but a solver may prune too eagerly.
   Duration lower_bound(map::NodeIndex from, map::NodeIndex to) const;
   Time slot_start(Time t) const { return planner_->slot_start(t); }
-  plan::TravelOracle& planner() const { return *planner_; }
+  plan::TravelPlanner& planner() const { return *planner_; }
   // Cached (slot, target) entries, and how many were solved again / kept after a model change.
   std::size_t cached_count() const { return policies_.size(); }
   std::size_t resolved_count() const { return resolved_; }
@@ -72,7 +72,7 @@ class TravelCache {
 
   const map::TopoMap* map_;
   std::shared_ptr<const plan::EdgeModelView> models_;
-  plan::TravelOracle* planner_;
+  plan::TravelPlanner* planner_;
   Duration slot_width_;
   mutable std::map<std::pair<Time, map::NodeIndex>, Entry> policies_;
   mutable std::size_t resolved_ = 0, kept_ = 0;
@@ -81,9 +81,9 @@ class TravelCache {
   mutable std::map<map::NodeIndex, std::vector<double>> lower_from_;  // per source: seconds to all
 };
 
-class MapTravel final : public schedule::TravelOracle {
+class SchedulerTravel final : public schedule::TravelOracle {
  public:
-  MapTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes);
+  SchedulerTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes);
   std::size_t location_count() const override { return nodes_.size(); }
   Duration travel(schedule::LocationIndex from, schedule::LocationIndex to, Time depart) const override;
   Duration lower_bound(schedule::LocationIndex from, schedule::LocationIndex to) const override;

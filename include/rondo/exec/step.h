@@ -23,7 +23,7 @@
 #include "rondo/map/topo_map.h"
 
 namespace rondo::plan {
-class TravelOracle;
+class TravelPlanner;
 }
 
 namespace rondo::exec {
@@ -65,7 +65,7 @@ struct StepContext {
   TaskBook& book;
   const TravelCache& travel;
   const TravelCache& offline_travel;  // the nightly snapshot alone (NavigationRecord::offline_expected)
-  plan::TravelOracle& planner;
+  plan::TravelPlanner& planner;
   const ExecutorOptions& options;
   const TimeZone& zone;
   ExecutorStats& stats;

@@ -1,6 +1,6 @@
 // The learned navigation models of a whole map: for every edge, the probability that crossing it
 // succeeds p_e(t), its expected traversal time E[τ_e(t)] and the quantiles of τ_e(t), fitted from
-// the traversal log. What plan::TravelOracle asks.
+// the traversal log. What plan::TravelPlanner asks.
 //
 //   std::vector<EdgeSpec> edges = {{"Aisle1_Aisle2", 14.0}, {"Aisle2_Aisle1", 14.0}};  // id, prior s
 //   auto models = EdgeModels::fit(edges, traversals);          // shared_ptr<const EdgeModels>

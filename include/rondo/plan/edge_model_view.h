@@ -35,7 +35,7 @@ struct EdgeOutcome {
 //
 // Contract for implementations: outcome() is deterministic and free of side effects for a given
 // version(); version() changes (any new value) whenever the answers may have changed, e.g. after
-// the models were refitted. Caches such as TravelOracle compare versions to know when to drop
+// the models were refitted. Caches such as TravelPlanner compare versions to know when to drop
 // what they hold. Edge indices are those of the map the planner was given.
 //
 // An online update changes a few edges only. A view that can tell which says so through

@@ -4,7 +4,7 @@
 //   std::vector<learn::EdgeSpec> specs = edge_specs(map);          // id + distance prior seconds
 //   auto fitted = learn::EdgeModels::fit(specs, traversals).value();
 //   auto models = std::make_shared<LearnedEdgeModels>(map, fitted);
-//   TravelOracle oracle(map, models);                               // reads models->outcome()
+//   TravelPlanner oracle(map, models);                               // reads models->outcome()
 //   models->set(refitted);                                          // version() moves on: the
 //                                                                   // oracle drops its caches
 //   LearnedEdgeModels live(map, fitted, {}, Reading::kOnline);      // the executor's: online

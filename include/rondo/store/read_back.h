@@ -28,7 +28,7 @@ inline constexpr std::string_view kDroppedForNowEvent = "dropped for now";
 inline constexpr std::string_view kReOfferedEvent = "re-offered";
 
 struct StoredTask {
-  TaskRecord row;
+  TaskRow row;
   // The latest event of the task named after its current state: the change that put it there
   // (its code and reason are the task's outcome). Empty only for a store written without events.
   std::optional<Event> last_transition;

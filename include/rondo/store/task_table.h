@@ -4,10 +4,10 @@
 // progress (how far a restartable task got: the actions done, what is on board) is a JSON value
 // that the executor owns.
 //
-//   TaskRecord r{.id = "t1", .task = task_json, .state = "queued", .created = now, .updated = now};
+//   TaskRow r{.id = "t1", .task = task_json, .state = "queued", .created = now, .updated = now};
 //   if (Status s = add_task(db, r); !s) return s.error();   // durable once this returns
 //   Status s = set_task_state(db, "t1", "navigating", later, "scheduled start");
-//   Result<TaskRecord> back = get_task(db, "t1");           // state "navigating", updated later
+//   Result<TaskRow> back = get_task(db, "t1");           // state "navigating", updated later
 #pragma once
 
 #include <span>
@@ -22,7 +22,7 @@
 
 namespace rondo::store {
 
-struct TaskRecord {
+struct TaskRow {
   std::string id;     // unique in the store
   Json task;          // the task as its JSON codec writes it
   std::string state;  // the life-cycle state, e.g. "queued", "navigating", "succeeded"
@@ -31,18 +31,18 @@ struct TaskRecord {
   std::string source{};            // who added it: "routine", "request", "api", ...
   Json progress = Json(nullptr);   // the executor's record of what is done; null before anything is
 
-  bool operator==(const TaskRecord&) const = default;
+  bool operator==(const TaskRow&) const = default;
 };
 
 // Accepts a new task: stores `task` and appends the event (task.created, task.id, task.state,
 // `reason`) in one transaction, committed (synchronous=FULL: on disk) before this returns, so a
 // crash right after never loses it. Errors: kInvalidInput (the id is already stored, or it is
 // empty), kStorage.
-Status add_task(Store& store, const TaskRecord& task, std::string_view reason = "accepted", std::string_view code = "");
+Status add_task(Store& store, const TaskRow& task, std::string_view reason = "accepted", std::string_view code = "");
 
 // Accepts several tasks at once, all or nothing: one transaction, one sync. If any id is empty,
 // already stored or repeated in `tasks`, nothing is stored. Errors as add_task's.
-Status add_tasks(Store& store, std::span<const TaskRecord> tasks, std::string_view reason = "accepted",
+Status add_tasks(Store& store, std::span<const TaskRow> tasks, std::string_view reason = "accepted",
                  std::string_view code = "");
 
 // Moves task `id` to `state` at time `at` and appends the event (at, id, state, code, reason), in
@@ -58,11 +58,11 @@ Status set_task_progress(Store& store, std::string_view id, const Json& progress
 Status set_task_definition(Store& store, std::string_view id, const Json& task);
 
 // Errors: kNotFound (no such task), kStorage (including stored JSON that no longer parses).
-Result<TaskRecord> get_task(const Store& store, std::string_view id);
+Result<TaskRow> get_task(const Store& store, std::string_view id);
 
 // Every stored task, in the order they were accepted (created time, then id).
-Result<std::vector<TaskRecord>> list_tasks(const Store& store);
+Result<std::vector<TaskRow>> list_tasks(const Store& store);
 // The tasks whose current state is `state`, in the order they were accepted.
-Result<std::vector<TaskRecord>> list_tasks_in_state(const Store& store, std::string_view state);
+Result<std::vector<TaskRow>> list_tasks_in_state(const Store& store, std::string_view state);
 
 }  // namespace rondo::store

@@ -1,4 +1,4 @@
-#include "rondo/plan/travel_oracle.h"
+#include "rondo/plan/travel_planner.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,35 +15,35 @@ namespace {
 
 void check_node(const map::TopoMap& map, NodeIndex node) {
   if (node >= map.node_count()) {
-    throw std::out_of_range("TravelOracle: node index " + std::to_string(node) + " is not in the map");
+    throw std::out_of_range("TravelPlanner: node index " + std::to_string(node) + " is not in the map");
   }
 }
 
 }  // namespace
 
-TravelOracle::TravelOracle(const map::TopoMap& map, std::shared_ptr<const EdgeModelView> models,
-                           const TravelOracleOptions& options)
+TravelPlanner::TravelPlanner(const map::TopoMap& map, std::shared_ptr<const EdgeModelView> models,
+                           const TravelPlannerOptions& options)
     : map_(&map),
       models_(std::move(models)),
       options_(options),
       dead_ends_(std::make_shared<const DeadEnds>(DeadEnds::find(map))) {
-  if (!models_) throw std::invalid_argument("TravelOracle: no edge models");
-  if (options_.slot_width <= Duration::zero()) throw std::invalid_argument("TravelOracle: slot width must be > 0");
+  if (!models_) throw std::invalid_argument("TravelPlanner: no edge models");
+  if (options_.slot_width <= Duration::zero()) throw std::invalid_argument("TravelPlanner: slot width must be > 0");
   options_.max_cached_policies = std::max<std::size_t>(options_.max_cached_policies, 1);
   options_.max_cached_slots = std::max<std::size_t>(options_.max_cached_slots, 1);
 }
 
-std::int64_t TravelOracle::slot_of(Time t) const {
+std::int64_t TravelPlanner::slot_of(Time t) const {
   const std::int64_t ms = t.time_since_epoch().count();
   const std::int64_t w = options_.slot_width.count();
   return ms >= 0 ? ms / w : -((-ms + w - 1) / w);  // floor division
 }
 
-Time TravelOracle::slot_start(Time t) const {
+Time TravelPlanner::slot_start(Time t) const {
   return Time{options_.slot_width * slot_of(t)};
 }
 
-bool TravelOracle::refresh(CachedMdp& entry) {
+bool TravelPlanner::refresh(CachedMdp& entry) {
   const std::uint64_t now = models_->version();
   if (entry.version == now) return true;
   const std::optional<std::vector<EdgeIndex>> changed = models_->changed_since(entry.version);
@@ -66,7 +66,7 @@ bool TravelOracle::refresh(CachedMdp& entry) {
   return true;
 }
 
-const std::shared_ptr<const Mdp>& TravelOracle::slot_entry(std::int64_t slot) {
+const std::shared_ptr<const Mdp>& TravelPlanner::slot_entry(std::int64_t slot) {
   auto it = slots_.find(slot);
   if (it != slots_.end() && refresh(it->second)) return it->second.mdp;
   if (it == slots_.end()) {
@@ -78,11 +78,11 @@ const std::shared_ptr<const Mdp>& TravelOracle::slot_entry(std::int64_t slot) {
   return it->second.mdp;
 }
 
-std::shared_ptr<const Mdp> TravelOracle::mdp_at(Time depart) {
+std::shared_ptr<const Mdp> TravelPlanner::mdp_at(Time depart) {
   return slot_entry(slot_of(depart));
 }
 
-bool TravelOracle::refresh(CachedPolicy& entry, std::int64_t slot) {
+bool TravelPlanner::refresh(CachedPolicy& entry, std::int64_t slot) {
   const std::uint64_t now = models_->version();
   if (entry.version == now) return true;
   const std::optional<std::vector<EdgeIndex>> changed = models_->changed_since(entry.version);
@@ -99,7 +99,7 @@ bool TravelOracle::refresh(CachedPolicy& entry, std::int64_t slot) {
   return true;
 }
 
-const Policy& TravelOracle::policy(NodeIndex target, Time depart) {
+const Policy& TravelPlanner::policy(NodeIndex target, Time depart) {
   check_node(*map_, target);
   const std::int64_t slot = slot_of(depart);
   const auto key = std::make_pair(slot, target);
@@ -118,14 +118,14 @@ const Policy& TravelOracle::policy(NodeIndex target, Time depart) {
   return policies_.emplace(key, CachedPolicy{std::move(solution.policy), models_->version()}).first->second.policy;
 }
 
-double TravelOracle::expected_seconds(NodeIndex from, NodeIndex to, Time depart) {
+double TravelPlanner::expected_seconds(NodeIndex from, NodeIndex to, Time depart) {
   check_node(*map_, from);
   check_node(*map_, to);
   if (from == to) return 0.0;
   return policy(to, depart).expected_seconds(from);
 }
 
-double TravelOracle::edge_arrival(EdgeIndex edge, Time depart, double t, double* start_out) {
+double TravelPlanner::edge_arrival(EdgeIndex edge, Time depart, double t, double* start_out) {
   // Times are seconds after `depart`; slot j spans [s_j, s_{j+1}) with s_j = j w − depart.
   const std::int64_t depart_ms = depart.time_since_epoch().count();
   const std::int64_t w = options_.slot_width.count();
@@ -154,7 +154,7 @@ double TravelOracle::edge_arrival(EdgeIndex edge, Time depart, double t, double*
   return best;
 }
 
-TimedRoute TravelOracle::time_dependent_route(NodeIndex from, NodeIndex to, Time depart) {
+TimedRoute TravelPlanner::time_dependent_route(NodeIndex from, NodeIndex to, Time depart) {
   check_node(*map_, from);
   check_node(*map_, to);
   TimedRoute route;

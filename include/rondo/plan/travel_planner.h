@@ -7,7 +7,7 @@
 //   arrives earlier, because the robot may wait at a node for a better slot.
 //
 //   auto models = std::make_shared<DistancePrior>(map);
-//   TravelOracle oracle(map, models, {.slot_width = minutes(15)});
+//   TravelPlanner oracle(map, models, {.slot_width = minutes(15)});
 //   double e = oracle.expected_seconds(a, b, depart_at);          // +inf when b is unreachable
 //   const Policy& p = oracle.policy(b, depart_at);
 //   TimedRoute r = oracle.time_dependent_route(a, b, depart_at);  // r.arrival_seconds
@@ -37,7 +37,7 @@
 
 namespace rondo::plan {
 
-struct TravelOracleOptions {
+struct TravelPlannerOptions {
   Duration slot_width = minutes(15);      // > 0; slots are aligned to 00:00 UTC (Unix time 0)
   std::size_t max_cached_policies = 512;  // the policy cache is emptied when it would grow past this
   std::size_t max_cached_slots = 1024;    // likewise for the per-slot MDPs
@@ -62,11 +62,11 @@ struct TimedRoute {
   std::vector<TimedStep> steps;
 };
 
-class TravelOracle {
+class TravelPlanner {
  public:
   // Precondition: models is not null, options.slot_width > 0 (std::invalid_argument otherwise).
-  TravelOracle(const map::TopoMap& map, std::shared_ptr<const EdgeModelView> models,
-               const TravelOracleOptions& options = {});
+  TravelPlanner(const map::TopoMap& map, std::shared_ptr<const EdgeModelView> models,
+               const TravelPlannerOptions& options = {});
 
   // Static per departure: E(from, to) in M_t with t the start of depart's slot. 0 when from == to.
   // Preconditions for every query: from, to < the map's node_count() (std::out_of_range otherwise).
@@ -113,7 +113,7 @@ class TravelOracle {
 
   const map::TopoMap* map_;
   std::shared_ptr<const EdgeModelView> models_;
-  TravelOracleOptions options_;
+  TravelPlannerOptions options_;
   std::shared_ptr<const DeadEnds> dead_ends_;  // the map's, shared by every slot's M_t
   std::map<std::int64_t, CachedMdp> slots_;
   std::map<std::pair<std::int64_t, NodeIndex>, CachedPolicy> policies_;
