@@ -51,8 +51,9 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
       dispatcher_(std::make_unique<Dispatcher>(map_, *travel_, book_, options_, zone_)),
       deliveries_(std::make_unique<Deliveries>()),
       loading_(std::make_unique<LoadingTimes>()),
-      steps_{clock_,   robot_, map_,   book_,        *travel_, *offline_travel_, *planner_,
-             options_, zone_,  stats_, navigations_, in_fault_} {
+      // With the online model off the executor plans with the snapshot itself: no second cache.
+      steps_{clock_,    robot_, map_,   book_,        *travel_, options_.online_model ? *offline_travel_ : *travel_,
+             *planner_, options_, zone_, stats_, navigations_, in_fault_} {
   robot_.set_listener(this);
 }
 

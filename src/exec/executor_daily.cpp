@@ -69,7 +69,7 @@ void Executor::refit() {
     return;
   }
   models_->set(*fitted);
-  offline_models_->set(*fitted);
+  if (options_.online_model) offline_models_->set(*fitted);
   ++stats_.refits;
 }
 

@@ -116,15 +116,15 @@ Status Executor::restore() {
 // The loading times learnt so far, from the store's observations ("load time" at a place, with
 // the task that took it): the declared prior of each comes from that task.
 Status Executor::restore_loading_times() {
-  RONDO_ASSIGN_OR_RETURN(const std::vector<store::Observation> seen, store::find_observations(store_));
-  for (const store::Observation& o : seen) {
-    const std::string suffix = " time";
-    if (o.what.size() <= suffix.size() || !o.what.ends_with(suffix) || !o.text) continue;
-    const std::string action = o.what.substr(0, o.what.size() - suffix.size());
-    if (!loading_->learns(action) || !book_.contains(*o.text)) continue;
-    const TaskRecord& r = book_.at(*o.text);
-    const Duration declared = r.task.duration / static_cast<std::int64_t>(r.action_count());
-    loading_->observe(action, o.where, declared, from_seconds(o.value), true, o.when);
+  for (const std::string& action : loading_->actions()) {
+    RONDO_ASSIGN_OR_RETURN(const std::vector<store::Observation> seen,
+                           store::find_observations(store_, {.what = action + " time"}));
+    for (const store::Observation& o : seen) {
+      if (!o.text || !book_.contains(*o.text)) continue;
+      const TaskRecord& r = book_.at(*o.text);
+      const Duration declared = r.task.duration / static_cast<std::int64_t>(r.action_count());
+      loading_->observe(action, o.where, declared, from_seconds(o.value), true, o.when);
+    }
   }
   return Status{};
 }

@@ -26,6 +26,7 @@ class LoadingTimes {
 
   explicit LoadingTimes(std::vector<std::string> actions = {"load", "unload"}) : actions_(std::move(actions)) {}
   bool learns(const std::string& action) const;
+  const std::vector<std::string>& actions() const { return actions_; }
   // One run of `action` at `place` that took `took`; `declared` is what the task said it would
   // take (the prior, the first time this action is seen at this place).
   void observe(const std::string& action, const std::string& place, Duration declared, Duration took, bool success,

@@ -33,7 +33,6 @@ class Monitor {
   void cancel();
   void suspend();
   void resume();
-  bool armed() const { return timer_ != 0 || left_.has_value(); }
 
  private:
   void set(Duration after);

@@ -16,7 +16,6 @@ class WaitStep final : public Step {
  public:
   WaitStep(StepContext& ctx, StepHooks hooks, TaskId task, Time until);
   ~WaitStep() override;
-  const char* name() const override { return "wait"; }
   void start() override;
   void halt() override;
   // Stops waiting without reporting an end: the caller decides what happens to the task.
@@ -57,7 +56,6 @@ class NavigateStep final : public RobotStep {
  public:
   enum class Purpose { kToStart, kToEnd, kDock };
   NavigateStep(StepContext& ctx, StepHooks hooks, Purpose purpose, std::optional<TaskId> task, map::NodeIndex target);
-  const char* name() const override { return "navigate"; }
   void start() override;
   void on_edge_finished(const EdgeAttempt& attempt) override;
 
@@ -85,7 +83,6 @@ class NavigateStep final : public RobotStep {
 class ActStep final : public RobotStep {
  public:
   ActStep(StepContext& ctx, StepHooks hooks, TaskId task, const NavigateStep& arrival);
-  const char* name() const override { return "act"; }
   void start() override;
   void on_action_finished(const ActionResult& result) override;
 

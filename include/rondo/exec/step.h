@@ -82,7 +82,6 @@ class Step {
   Step(const Step&) = delete;
   Step& operator=(const Step&) = delete;
 
-  virtual const char* name() const = 0;  // "wait", "navigate", "act", ...
   // Begins the step. It may end at once (hooks.ended called from inside start()).
   virtual void start() = 0;
   // Stops it: the step ends kHalted once the robot has answered, or at once when the robot is not
