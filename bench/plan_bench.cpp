@@ -122,7 +122,7 @@ void solver_rows(const map::TopoMap& m, const EdgeModelView& models, const std::
   std::vector<NodeIndex> targets;
   for (int i = 0; i < 40 * repetitions; ++i) targets.push_back(any(rng));
   // The plain reverse Dijkstra over every node, then the default (core search, dead ends filled).
-  const ExactSolver plain({.use_dead_ends = false});  // reuses its scratch space, as TravelOracle does
+  const ExactSolver plain({.use_dead_ends = false});  // reuses its scratch space, as TravelPlanner does
   std::vector<double> full;
   for (NodeIndex t : targets)
     full.push_back(seconds_of([&] { g_sink = g_sink + plain.solve(mdp, t)->policy.expected_seconds(0); }));
@@ -194,7 +194,7 @@ int main(int argc, char** argv) {
   std::vector<double> matrix;
   for (int r = 0; r < repetitions; ++r) {
     matrix.push_back(seconds_of([&] {
-      TravelOracle oracle(m, models, {.slot_width = minutes(15)});
+      TravelPlanner oracle(m, models, {.slot_width = minutes(15)});
       double sum = 0;
       for (int slot = 0; slot < 96; ++slot) {
         const Time t = day + minutes(15 * slot);
@@ -208,7 +208,7 @@ int main(int argc, char** argv) {
 
   // Cached lookups: the same matrix again on a warm oracle (one slot).
   {
-    TravelOracle oracle(m, models, {.slot_width = minutes(15)});
+    TravelPlanner oracle(m, models, {.slot_width = minutes(15)});
     for (NodeIndex b : places) oracle.policy(b, noon);
     std::vector<double> warm;
     for (int r = 0; r < 20 * repetitions; ++r) {
@@ -224,7 +224,7 @@ int main(int argc, char** argv) {
 
   // Time-dependent queries (each edge read when reached), warm slot cache after the first.
   {
-    TravelOracle oracle(m, models, {.slot_width = minutes(15)});
+    TravelPlanner oracle(m, models, {.slot_width = minutes(15)});
     std::vector<double> td;
     for (int r = 0; r < 20 * repetitions; ++r) {
       const NodeIndex a = any(rng);

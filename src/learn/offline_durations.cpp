@@ -137,7 +137,7 @@ std::vector<QuantileTable> mixed_day_tables(const ShiftedBins& bins, const Quant
   }
   std::vector<QuantileTable> out(static_cast<std::size_t>(kDaySlots), edge);
   std::map<std::vector<std::size_t>, std::size_t> done;  // a slot's bins -> the first slot with them
-  std::vector<QuantileTable> tables;
+  std::vector<const QuantileTable*> tables;
   std::vector<double> weights;
   for (std::size_t slot = 0; slot < out.size(); ++slot) {
     const auto& of_slot = bins.of_slot[slot];
@@ -152,12 +152,12 @@ std::vector<QuantileTable> mixed_day_tables(const ShiftedBins& bins, const Quant
     for (std::size_t b : of_slot) {
       edge_weight += 1 - own_weight[b];
       if (own_weight[b] <= 0) continue;
-      tables.push_back(own[b]);
+      tables.push_back(&own[b]);
       weights.push_back(own_weight[b]);
     }
-    tables.push_back(edge);
+    tables.push_back(&edge);
     weights.push_back(edge_weight);
-    out[slot] = QuantileTable::mixture(tables, weights);
+    out[slot] = QuantileTable::mixture(std::span<const QuantileTable* const>(tables), weights);
   }
   return out;
 }

@@ -122,25 +122,34 @@ struct KnotEvent {
 // table's 0.02 mass when that knot is the first, the last, or equal to the one before (an atom).
 // A level is read where F reaches it: inside a segment by linear interpolation, at a jump there.
 QuantileTable QuantileTable::mixture(std::span<const QuantileTable> tables, std::span<const double> weights) {
+  std::vector<const QuantileTable*> pointers;
+  pointers.reserve(tables.size());
+  for (const QuantileTable& t : tables) pointers.push_back(&t);
+  return mixture(std::span<const QuantileTable* const>(pointers), weights);
+}
+
+QuantileTable QuantileTable::mixture(std::span<const QuantileTable* const> tables, std::span<const double> weights) {
   QuantileTable out;
   const std::size_t n = std::min(tables.size(), weights.size());
   double total = 0;
   for (std::size_t i = 0; i < n; ++i) total += weights[i] > 0 && std::isfinite(weights[i]) ? weights[i] : 0.0;
   if (!(total > 0)) return out;
   // Every table's knots are a sorted run; merging the runs pairwise (stable: ties keep table, then
-  // knot order) sorts the events in O(K log n) for K knots.
-  std::vector<KnotEvent> events, buffer;
-  std::vector<std::size_t> runs{0};  // run boundaries in `events`
-  events.reserve(n * kKnots);
+  // knot order) sorts the events in O(K log n) for K knots. The buffers are kept per thread: a
+  // refit mixes thousands of tables.
+  thread_local std::vector<KnotEvent> events, buffer;
+  thread_local std::vector<std::size_t> runs, merged;
+  events.clear();
+  runs.assign(1, 0);  // run boundaries in `events`
   for (std::size_t i = 0; i < n; ++i) {
     if (!(weights[i] > 0) || !std::isfinite(weights[i])) continue;
-    for (std::size_t k = 0; k < tables[i].values_.size(); ++k) events.push_back({tables[i].values_[k], i, k});
+    for (std::size_t k = 0; k < tables[i]->values_.size(); ++k) events.push_back({tables[i]->values_[k], i, k});
     runs.push_back(events.size());
   }
   buffer.resize(events.size());
   auto by_value = [](const KnotEvent& a, const KnotEvent& b) { return a.value < b.value; };
   while (runs.size() > 2) {
-    std::vector<std::size_t> merged{0};
+    merged.assign(1, 0);
     for (std::size_t r = 0; r + 1 < runs.size(); r += 2) {
       const auto first = events.begin() + static_cast<std::ptrdiff_t>(runs[r]);
       const auto middle = events.begin() + static_cast<std::ptrdiff_t>(runs[r + 1]);
@@ -149,7 +158,7 @@ QuantileTable QuantileTable::mixture(std::span<const QuantileTable> tables, std:
       merged.push_back(static_cast<std::size_t>(end - events.begin()));
     }
     events.swap(buffer);
-    runs = std::move(merged);
+    runs.swap(merged);
   }
   constexpr double kStep = 0.02;  // probability between consecutive knots (and in each tail)
   constexpr double kTolerance = 1e-12;
@@ -168,7 +177,7 @@ QuantileTable QuantileTable::mixture(std::span<const QuantileTable> tables, std:
     }
     cdf += rise;
     x = e.value;
-    const auto& v = tables[e.table].values_;
+    const auto& v = tables[e.table]->values_;
     const double w = weights[e.table] / total;
     if (e.knot > 0 && !atom(v[e.knot - 1], v[e.knot])) slope -= w * kStep / (v[e.knot] - v[e.knot - 1]);
     if (e.knot == 0 || atom(v[e.knot - 1], v[e.knot])) cdf += w * kStep;

@@ -56,6 +56,8 @@ class QuantileTable {
   // smallest and the largest of the inputs' quantiles at the same level. Unlike blend(), mixing 10 s and 100 s
   // gives a table of 10 s and 100 s, not one of 55 s.
   static QuantileTable mixture(std::span<const QuantileTable> tables, std::span<const double> weights);
+  // The same over tables held elsewhere (no copies).
+  static QuantileTable mixture(std::span<const QuantileTable* const> tables, std::span<const double> weights);
   // The same table with every value rounded to `decimals` (0..9) decimal places, still
   // non-decreasing: short JSON numbers.
   QuantileTable rounded(int decimals) const;
