@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <map>
 
 #include "histogram_family.h"
@@ -137,8 +138,11 @@ std::vector<QuantileTable> mixed_day_tables(const ShiftedBins& bins, const Quant
   }
   std::vector<QuantileTable> out(static_cast<std::size_t>(kDaySlots), edge);
   std::map<std::vector<std::size_t>, std::size_t> done;  // a slot's bins -> the first slot with them
-  std::vector<const QuantileTable*> tables;
-  std::vector<double> weights;
+  // Neighbouring slots share all but a few bins: the mixer keeps their knots sorted. A bin's rank
+  // is its histogram's place in the slot's list, the edge's comes last (QuantileTable::mixture's
+  // order of the same tables).
+  QuantileMixer mixer;
+  std::vector<QuantileMixer::Member> members;
   for (std::size_t slot = 0; slot < out.size(); ++slot) {
     const auto& of_slot = bins.of_slot[slot];
     if (of_slot.empty()) continue;
@@ -146,18 +150,16 @@ std::vector<QuantileTable> mixed_day_tables(const ShiftedBins& bins, const Quant
       out[slot] = out[it->second];
       continue;
     }
-    tables.clear();
-    weights.clear();
+    members.clear();
     double edge_weight = 0;
-    for (std::size_t b : of_slot) {
+    for (std::size_t h = 0; h < of_slot.size(); ++h) {
+      const std::size_t b = of_slot[h];
       edge_weight += 1 - own_weight[b];
       if (own_weight[b] <= 0) continue;
-      tables.push_back(&own[b]);
-      weights.push_back(own_weight[b]);
+      members.push_back({.table = &own[b], .weight = own_weight[b], .rank = static_cast<std::uint32_t>(h)});
     }
-    tables.push_back(&edge);
-    weights.push_back(edge_weight);
-    out[slot] = QuantileTable::mixture(std::span<const QuantileTable* const>(tables), weights);
+    members.push_back({.table = &edge, .weight = edge_weight, .rank = static_cast<std::uint32_t>(of_slot.size())});
+    out[slot] = mixer.mix(members);
   }
   return out;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace rondo::learn {
 
@@ -106,21 +107,6 @@ QuantileTable QuantileTable::average(std::span<const QuantileTable> tables) {
   return out;
 }
 
-namespace {
-
-// One knot of one table in the sweep of QuantileTable::mixture.
-struct KnotEvent {
-  double value = 0;
-  std::size_t table = 0;
-  std::size_t knot = 0;
-};
-
-}  // namespace
-
-// Sweeps the knots of all tables in value order, keeping the mixture's CDF F: between knots it
-// rises linearly with the summed slopes of the tables' active segments; at a knot it jumps by the
-// table's 0.02 mass when that knot is the first, the last, or equal to the one before (an atom).
-// A level is read where F reaches it: inside a segment by linear interpolation, at a jump there.
 QuantileTable QuantileTable::mixture(std::span<const QuantileTable> tables, std::span<const double> weights) {
   std::vector<const QuantileTable*> pointers;
   pointers.reserve(tables.size());
@@ -129,21 +115,24 @@ QuantileTable QuantileTable::mixture(std::span<const QuantileTable> tables, std:
 }
 
 QuantileTable QuantileTable::mixture(std::span<const QuantileTable* const> tables, std::span<const double> weights) {
-  QuantileTable out;
   const std::size_t n = std::min(tables.size(), weights.size());
   double total = 0;
   for (std::size_t i = 0; i < n; ++i) total += weights[i] > 0 && std::isfinite(weights[i]) ? weights[i] : 0.0;
-  if (!(total > 0)) return out;
+  if (!(total > 0)) return QuantileTable{};
   // Every table's knots are a sorted run; merging the runs pairwise (stable: ties keep table, then
   // knot order) sorts the events in O(K log n) for K knots. The buffers are kept per thread: a
   // refit mixes thousands of tables.
   thread_local std::vector<KnotEvent> events, buffer;
   thread_local std::vector<std::size_t> runs, merged;
+  thread_local std::vector<double> share;
   events.clear();
+  share.assign(n, 0.0);
   runs.assign(1, 0);  // run boundaries in `events`
   for (std::size_t i = 0; i < n; ++i) {
     if (!(weights[i] > 0) || !std::isfinite(weights[i])) continue;
-    for (std::size_t k = 0; k < tables[i]->values_.size(); ++k) events.push_back({tables[i]->values_[k], i, k});
+    share[i] = weights[i] / total;
+    for (std::size_t k = 0; k < tables[i]->values_.size(); ++k)
+      events.push_back({tables[i]->values_[k], static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k)});
     runs.push_back(events.size());
   }
   buffer.resize(events.size());
@@ -160,6 +149,17 @@ QuantileTable QuantileTable::mixture(std::span<const QuantileTable* const> table
     events.swap(buffer);
     runs.swap(merged);
   }
+  return sweep(events, tables, share);
+}
+
+// Sweeps the knots of all tables in value order, keeping the mixture's CDF F: between knots it
+// rises linearly with the summed slopes of the tables' active segments; at a knot it jumps by the
+// table's 0.02 mass when that knot is the first, the last, or equal to the one before (an atom).
+// A level is read where F reaches it: inside a segment by linear interpolation, at a jump there.
+QuantileTable QuantileTable::sweep(std::span<const KnotEvent> events, std::span<const QuantileTable* const> tables,
+                                   std::span<const double> share) {
+  QuantileTable out;
+  if (events.empty()) return out;
   constexpr double kStep = 0.02;  // probability between consecutive knots (and in each tail)
   constexpr double kTolerance = 1e-12;
   // Knots closer than this (relative) are one atom: a segment of width ~1e-15 (rounding in
@@ -178,7 +178,7 @@ QuantileTable QuantileTable::mixture(std::span<const QuantileTable* const> table
     cdf += rise;
     x = e.value;
     const auto& v = tables[e.table]->values_;
-    const double w = weights[e.table] / total;
+    const double w = share[e.table];
     if (e.knot > 0 && !atom(v[e.knot - 1], v[e.knot])) slope -= w * kStep / (v[e.knot] - v[e.knot - 1]);
     if (e.knot == 0 || atom(v[e.knot - 1], v[e.knot])) cdf += w * kStep;
     if (e.knot == last) cdf += w * kStep;
@@ -189,6 +189,58 @@ QuantileTable QuantileTable::mixture(std::span<const QuantileTable* const> table
   for (std::size_t k = 0; k < out.values_.size(); ++k) out.values_[k] = std::max(0.0, out.values_[k]);
   for (std::size_t k = 1; k < out.values_.size(); ++k) out.values_[k] = std::max(out.values_[k], out.values_[k - 1]);
   return out;
+}
+
+QuantileTable QuantileMixer::mix(std::span<const Member> members) {
+  // The members of this call by rank; the ranks whose table is the same as last time keep their
+  // sorted knots, the others' knots leave and the new members' knots are merged in.
+  std::uint32_t ranks = 0;  // one past the highest rank
+  double total = 0;
+  for (const Member& m : members) {
+    if (m.rank + 1 <= ranks || !m.table) {  // ranks not increasing: the plain mixture, in the order given
+      std::vector<const QuantileTable*> tables;
+      std::vector<double> weights;
+      for (const Member& x : members)
+        if (x.table) {
+          tables.push_back(x.table);
+          weights.push_back(x.weight);
+        }
+      return QuantileTable::mixture(std::span<const QuantileTable* const>(tables), weights);
+    }
+    ranks = m.rank + 1;
+    if (m.weight > 0 && std::isfinite(m.weight)) total += m.weight;
+  }
+  std::vector<const QuantileTable*> now(std::max<std::size_t>(ranks, table_of_rank_.size()), nullptr);
+  for (const Member& m : members)
+    if (m.weight > 0 && std::isfinite(m.weight)) now[m.rank] = m.table;
+  table_of_rank_.resize(now.size(), nullptr);
+  const auto by_order = [](const KnotEvent& a, const KnotEvent& b) {
+    if (a.value != b.value) return a.value < b.value;
+    if (a.table != b.table) return a.table < b.table;
+    return a.knot < b.knot;
+  };
+  fresh_.clear();
+  for (std::uint32_t r = 0; r < now.size(); ++r) {
+    if (!now[r] || now[r] == table_of_rank_[r]) continue;
+    for (std::size_t k = 0; k < now[r]->values_.size(); ++k)
+      fresh_.push_back({now[r]->values_[k], r, static_cast<std::uint32_t>(k)});
+  }
+  std::sort(fresh_.begin(), fresh_.end(), by_order);
+  buffer_.clear();
+  auto f = fresh_.begin();
+  for (const KnotEvent& e : events_) {
+    if (now[e.table] != table_of_rank_[e.table]) continue;  // its member left or changed
+    for (; f != fresh_.end() && by_order(*f, e); ++f) buffer_.push_back(*f);
+    buffer_.push_back(e);
+  }
+  buffer_.insert(buffer_.end(), f, fresh_.end());
+  events_.swap(buffer_);
+  table_of_rank_ = std::move(now);
+  if (!(total > 0)) return QuantileTable{};
+  share_.assign(table_of_rank_.size(), 0.0);
+  for (const Member& m : members)
+    if (m.weight > 0 && std::isfinite(m.weight)) share_[m.rank] = m.weight / total;
+  return QuantileTable::sweep(events_, table_of_rank_, share_);
 }
 
 QuantileTable QuantileTable::rounded(int decimals) const {

@@ -270,6 +270,38 @@ RC_GTEST_PROP(LearnProperties, MixturesMatchTheReference, ()) {
   for (std::size_t k = 0; k < same.size(); ++k) RC_ASSERT(std::abs(same[k] - tables[0].values()[k]) <= 1e-9);
 }
 
+// The mixer over a sequence of member sets, each changing some members of the one before (as the
+// slots of a day do), gives exactly QuantileTable::mixture of the same members in rank order.
+RC_GTEST_PROP(LearnProperties, TheMixerEqualsMixtureBitForBit, ()) {
+  const auto pool_size = *rc::gen::inRange<std::size_t>(1, 8);
+  std::vector<QuantileTable> pool;
+  for (std::size_t i = 0; i < pool_size; ++i) {
+    const auto values = *rc::gen::nonEmpty(rc::gen::container<std::vector<int>>(rc::gen::inRange(0, 20)));
+    std::vector<double> v;
+    for (int x : values) v.push_back(5.0 * x);  // few distinct values: ties and atoms are common
+    pool.push_back(QuantileTable::from_samples(v));
+  }
+  const auto ranks = *rc::gen::inRange<std::uint32_t>(1, 6);
+  const auto calls = *rc::gen::inRange(1, 12);
+  QuantileMixer mixer;
+  for (int c = 0; c < calls; ++c) {
+    std::vector<QuantileMixer::Member> members;
+    std::vector<const QuantileTable*> tables;
+    std::vector<double> weights;
+    for (std::uint32_t r = 0; r < ranks; ++r) {
+      if (!*rc::gen::inRange(0, 4)) continue;  // a quarter of the ranks are empty
+      const auto& t = pool[*rc::gen::inRange<std::size_t>(0, pool_size)];
+      const double w = *rc::gen::inRange(0, 50) / 10.0;  // zero weights are left out by both
+      members.push_back({.table = &t, .weight = w, .rank = r});
+      tables.push_back(&t);
+      weights.push_back(w);
+    }
+    const auto fast = mixer.mix(members).values();
+    const auto plain = QuantileTable::mixture(std::span<const QuantileTable* const>(tables), weights).values();
+    RC_ASSERT(fast == plain);
+  }
+}
+
 TEST(QuantileTable, AMixtureKeepsBothModesWhereABlendAveragesThem) {
   const std::vector<QuantileTable> modes = {QuantileTable::from_samples({10.0}), QuantileTable::from_samples({100.0})};
   const auto mixed = QuantileTable::mixture(modes, std::vector<double>{0.7, 0.3});

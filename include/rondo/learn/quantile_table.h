@@ -8,6 +8,7 @@
 //   auto mixed = QuantileTable::mixture(std::vector{w, q}, std::vector{0.8, 0.2});  // of the distributions
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -71,7 +72,45 @@ class QuantileTable {
   static Result<QuantileTable> from_json(const Json& j);
 
  private:
+  friend class QuantileMixer;
+  // One knot of one table in the sweep of a mixture.
+  struct KnotEvent {
+    double value = 0;
+    std::uint32_t table = 0;
+    std::uint32_t knot = 0;
+  };
+  // The mixture's CDF swept over `events` (in value, table, knot order): table t is tables[t],
+  // with normalised weight share[t].
+  static QuantileTable sweep(std::span<const KnotEvent> events, std::span<const QuantileTable* const> tables,
+                             std::span<const double> share);
+
   std::vector<double> values_;  // non-decreasing, size kKnots
+};
+
+// Mixtures of tables from one family where each mixture changes only a few members of the one
+// before: the time slots of a day, which share most of their bins. mix() gives exactly what
+// QuantileTable::mixture gives for the same members in rank order, but keeps the members' knots
+// sorted between calls, so that a call merges the knots of the members that changed instead of
+// sorting all of them again.
+//
+//   QuantileMixer mixer;
+//   for (slot ...) out[slot] = mixer.mix(members_of(slot));   // {table, weight, rank} each
+class QuantileMixer {
+ public:
+  struct Member {
+    const QuantileTable* table = nullptr;  // must outlive the mixer's use of it
+    double weight = 0;                     // > 0 and finite; others are left out
+    std::uint32_t rank = 0;                // the member's place in the order (ties of values)
+  };
+  // Members in strictly increasing rank (others: an empty table). A rank holding another table
+  // than in the last call is a new member.
+  QuantileTable mix(std::span<const Member> members);
+
+ private:
+  using KnotEvent = QuantileTable::KnotEvent;
+  std::vector<KnotEvent> events_, fresh_, buffer_;
+  std::vector<const QuantileTable*> table_of_rank_;  // the members of the last call, by rank
+  std::vector<double> share_;
 };
 
 }  // namespace rondo::learn
