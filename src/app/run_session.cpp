@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <ctime>
 #include <fstream>
 #include <functional>
 #include <ostream>
@@ -28,6 +29,13 @@
 
 namespace rondo::app {
 namespace {
+
+// This process's CPU time, in seconds.
+double process_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
+}
 
 Status write_file(const std::filesystem::path& file, const std::string& text) {
   return write_file_atomically(file, text);
@@ -180,10 +188,13 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
       sim_clock.run_until(t);
   };
   auto today = d.zone.local_date(start);
-  Json day_wall_seconds = Json::array();  // run.json: the cost of each simulated day (null: an earlier attempt's)
+  // run.json: the cost of each simulated day, in wall and in CPU seconds (the CPU time does not
+  // move with the machine's other load); null for a day that an earlier attempt ran.
+  Json day_wall_seconds = Json::array(), day_cpu_seconds = Json::array();
   const Time end_at = request.run_for ? start + *request.run_for : Time::max();
   for (int day = 0; day < d.days; ++day) {
     const auto day_wall_start = std::chrono::steady_clock::now();
+    const double day_cpu_start = process_cpu_seconds();
     const auto tomorrow = std::chrono::year_month_day{std::chrono::sys_days{today} + std::chrono::days{1}};
     const Time day_from = std::max(start, d.zone.at(today, Duration{0}));
     const Time day_to = std::min(d.zone.at(tomorrow, Duration{0}), end_at);
@@ -198,10 +209,12 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
     }
     if (done_before) {
       day_wall_seconds.push_back(nullptr);  // run by an earlier attempt
+      day_cpu_seconds.push_back(nullptr);
     } else {
       run_until(day_to);
       day_wall_seconds.push_back(
           std::chrono::duration<double>(std::chrono::steady_clock::now() - day_wall_start).count());
+      day_cpu_seconds.push_back(process_cpu_seconds() - day_cpu_start);
       const std::string date = date_text(today);
       DayPicture picture =
           day_picture(executor, fmt::format("{} — {} (day {})", d.name, date, day + 1), day_from, day_to, d.zone);
@@ -236,8 +249,10 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   RONDO_RETURN_IF_ERROR(write_file(request.out / "report.json", result.report.dump(2) + "\n"));
   Json run{{"wall_seconds", result.wall_seconds},
+           {"cpu_seconds", process_cpu_seconds()},
            {"simulated_days", d.days},
            {"day_wall_seconds", day_wall_seconds},
+           {"day_cpu_seconds", day_cpu_seconds},
            {"realtime", request.realtime},
            {"resumed", resumed},
            {"store_write_errors", executor.write_errors()}};

@@ -168,6 +168,8 @@ TEST(RunCommand, TheRefitWindowAndTheOnlineModelAreExecutorKeys) {
     EXPECT_EQ(report["live_estimates"]["used"], report["live_estimates"]["offline_snapshot"]);
     const Json run = Json::parse(slurp(dir / "run" / "run.json"));
     EXPECT_EQ(run["day_wall_seconds"].size(), 3u);
+    EXPECT_EQ(run["day_cpu_seconds"].size(), 3u);
+    EXPECT_GT(run["cpu_seconds"].get<double>(), 0.0);
     EXPECT_EQ(report["model_refits"].get<int>(), 2);
     std::filesystem::remove_all(dir);
   }
