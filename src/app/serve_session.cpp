@@ -83,6 +83,8 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   exec::ExecutorOptions options = d.executor;
   options.dock = parts.dock;
   options.seed = d.seed;
+  // Requests are answered after their commit, not after the reschedule (docs/executor.md).
+  options.background_scheduling = true;
   exec::Executor executor(clock, robot, parts.map, db, d.zone, options);
   executor.add_routines(parts.plan.routines);
   // A data folder that holds a run is restored (kill -9 and start again loses nothing); stored

@@ -51,6 +51,7 @@ Status Executor::update_task(const TaskId& id, std::optional<TimeWindow> window,
   // Offered again as a new task, so that a change it no longer fits drops it (for now) with a
   // reason instead of breaking the plan of the others.
   std::erase(dispatcher_->planned, id);
+  background_book_changed();  // an answer in flight still has the old window or priority
   const std::vector<TaskId>& later = dispatcher_->deferred;
   const bool deferred = std::find(later.begin(), later.end(), id) != later.end();
   if (started_)

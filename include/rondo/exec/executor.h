@@ -60,10 +60,13 @@
 #include "rondo/plan/learned_edge_models.h"
 #include "rondo/plan/travel_planner.h"
 #include "rondo/schedule/scheduler.h"
+#include "rondo/schedule/try_schedule.h"
 #include "rondo/store/store.h"
 
 namespace rondo::exec {
 
+struct ScheduleAnswer;
+struct ScheduleCall;
 class Deliveries;
 class LoadingTimes;
 class Dispatcher;
@@ -204,6 +207,21 @@ class Executor final : public RobotListener {
   std::pair<map::NodeIndex, Time> free_at() const;  // where and when the robot is next free
   // The deferred tasks that can still meet their windows (the others end dropped, for good).
   std::vector<TaskId> reoffer_deferred();
+  // reschedule() in two halves: the problem from the book (nothing when there is nothing to
+  // solve), and the scheduler's answer carried out.
+  std::optional<ScheduleCall> prepare_schedule(std::vector<TaskId>& new_ids, const std::string& why);
+  void finish_schedule(const std::vector<TaskId>& ids, std::vector<TaskId> new_ids,
+                       const schedule::TryScheduleResult& result, const std::string& why);
+
+  // background scheduling (executor_background.cpp; options_.background_scheduling)
+  struct Background;
+  struct BackgroundDeleter {
+    void operator()(Background* b) const;
+  };
+  void reschedule_in_background(std::vector<TaskId> new_ids, const std::string& why);
+  void launch_background();
+  void background_answered(ScheduleAnswer answer);
+  void background_book_changed();  // a change that an answer in flight does not cover
 
   // deliveries (executor_deliveries.cpp)
   // Drops whose pickup ended without the object fail too, and an object on board with no drop
@@ -255,6 +273,7 @@ class Executor final : public RobotListener {
   std::optional<RobotFault> fault_;
   std::optional<Time> fault_since_;
   bool started_ = false;
+  std::unique_ptr<Background, BackgroundDeleter> background_;  // last: its worker goes first
 };
 
 }  // namespace rondo::exec
