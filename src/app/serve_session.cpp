@@ -58,6 +58,10 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   } else if (!service::is_loopback_host(request.host)) {
     return Error::invalid(fmt::format("--listen {}: a host other than loopback needs --token-file", request.host));
   }
+  // Blocked before any thread starts (the robot's, the scheduler's worker, HTTP): they inherit
+  // it, so only the sigwait thread below takes them.
+  const sigset_t signals = stop_signals();
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
   RONDO_ASSIGN_OR_RETURN(DeploymentParts parts, load_parts(d));
   std::error_code ec;
   std::filesystem::create_directories(request.data, ec);
@@ -111,8 +115,6 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
                      request.speed, request.data.string(), token ? "writes need the token" : "writes open on loopback")
       << std::flush;
 
-  const sigset_t signals = stop_signals();
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);  // before any thread starts: they inherit it
   std::atomic<bool> http_done{false};
   std::thread http([&server, &http_done] {
     server.run();

@@ -8,9 +8,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <regex>
 #include <thread>
+#include <vector>
 
 #include "live_service.h"
 #include "rondo/store/task_table.h"
@@ -120,6 +122,45 @@ TEST(ServeCommand, ServesAndStopsCleanlyOnSigterm) {
   auto db = store::Store::open(dir / "data" / "rondo.sqlite", {.mode = store::OpenMode::kReadOnly});
   ASSERT_TRUE(db.ok()) << db.error().message;
   EXPECT_TRUE(store::get_task(*db, "late-1").ok());
+}
+
+// SIGINT while submissions come in: the server exits 0, and every submission answered 201 before
+// it went is in the store (answered after its commit).
+TEST(ServeCommand, SigintWhileSubmittingLosesNoAnsweredTask) {
+  const auto dir = fresh_dir("rondo-service-test", "sigint");
+  Child c =
+      spawn({RONDO_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", (dir / "data").string(), "--speed", "10"});
+  const std::string port_text = c.wait_for(std::regex(R"(on http://127\.0\.0\.1:(\d+)/)"));
+  ASSERT_FALSE(port_text.empty()) << c.seen;
+  std::vector<std::string> answered;
+  std::atomic<int> sent{0};
+  std::thread client([&] {
+    httplib::Client cli("127.0.0.1", std::stoi(port_text));
+    cli.set_read_timeout(std::chrono::seconds(60));
+    const Time release = std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now()) + hours(1);
+    for (int i = 0; i < 1000; ++i) {
+      const std::string id = fmt::format("burst-{}", i);
+      const std::string task = fmt::format(
+          R"({{"tasks": [{{"id": "{}", "window": {{"release": "{}", "deadline": "{}"}}, "duration": 60,
+              "start_node": "WayPoint{}"}}]}})",
+          id, format_time(release), format_time(release + hours(8)), 1 + i % 6);
+      auto r = cli.Post("/api/v1/tasks", task, "application/json");
+      if (!r) break;  // the server has gone
+      if (r->status == 201) answered.push_back(id);
+      ++sent;
+    }
+  });
+  ASSERT_TRUE(eventually([&] { return sent.load() >= 5; }));
+  ASSERT_EQ(::kill(c.pid, SIGINT), 0);
+  EXPECT_EQ(c.wait_exit(), 0) << c.seen;
+  client.join();
+  c.wait_for(std::regex("(stopped)"), std::chrono::seconds(5));
+  EXPECT_NE(c.seen.find("SIGINT: stopping"), std::string::npos) << c.seen;
+  ::close(c.err);
+  auto db = store::Store::open(dir / "data" / "rondo.sqlite", {.mode = store::OpenMode::kReadOnly});
+  ASSERT_TRUE(db.ok()) << db.error().message;
+  ASSERT_GE(answered.size(), 5u);
+  for (const std::string& id : answered) EXPECT_TRUE(store::get_task(*db, id).ok()) << id;
 }
 
 }  // namespace
