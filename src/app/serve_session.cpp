@@ -14,6 +14,7 @@
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
 #include "rondo/service/server.h"
+#include "rondo/service/stored_routines.h"
 #include "rondo/sim/request_generator.h"
 #include "rondo/store/robot_state.h"
 #include "rondo/store/store.h"
@@ -90,7 +91,13 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   // Requests are answered after their commit, not after the reschedule (docs/executor.md).
   options.background_scheduling = true;
   exec::Executor executor(clock, robot, parts.map, db, d.zone, options);
-  executor.add_routines(parts.plan.routines);
+  // The deployment's routines with the changes made through the API (kept in the store).
+  std::vector<std::string> skipped;
+  RONDO_ASSIGN_OR_RETURN(std::vector<Routine> routines,
+                         service::routines_to_run(db, parts.plan.routines, parts.map, d.zone, &skipped));
+  for (const std::string& s : skipped)
+    log << fmt::format("rondo serve: a routine added through the API is not run: {}\n", s);
+  executor.add_routines(std::move(routines));
   // A data folder that holds a run is restored (kill -9 and start again loses nothing); stored
   // tasks that the deployment, edited meanwhile, can no longer run end with that reason. The
   // deployment's one-off tasks are added to a fresh store only.

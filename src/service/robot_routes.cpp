@@ -7,6 +7,7 @@
 #include "api.h"
 #include "rondo/core/task_codec.h"
 #include "rondo/map/map_yaml.h"
+#include "rondo/service/stored_routines.h"
 #include "rondo/plan/learned_edge_models.h"
 
 namespace rondo::service {
@@ -190,7 +191,13 @@ Reply add_routines(Api& api, const httplib::Request& req) {
     Json added = Json::array();
     for (Routine& r : list) {
       Json encoded = encode(r);
+      const Routine kept = r;
       if (Status ok = api.ctx.executor.add_routine_now(std::move(r)); !ok) return error_reply(ok.error());
+      // Stored before the answer, so that it comes back after a restart; not run when it cannot be.
+      if (Status ok = remember_added_routine(api.ctx.store, kept); !ok) {
+        (void)api.ctx.executor.remove_routine(kept.name);
+        return error_reply(ok.error());
+      }
       added.push_back(std::move(encoded));
     }
     Reply reply;
@@ -203,6 +210,11 @@ Reply add_routines(Api& api, const httplib::Request& req) {
 Reply remove_routine(Api& api, const httplib::Request& req) {
   const std::string name = req.matches[1];
   return api.on_clock([&api, name] {
+    const auto& list = api.ctx.executor.routines();
+    if (std::none_of(list.begin(), list.end(), [&name](const Routine& r) { return r.name == name; }))
+      return error_reply(Error::not_found(fmt::format("no routine '{}'", name)));
+    // Stored first: a deployment routine removed here stays removed after a restart.
+    if (Status ok = remember_removed_routine(api.ctx.store, name); !ok) return error_reply(ok.error());
     if (Status ok = api.ctx.executor.remove_routine(name); !ok) return error_reply(ok.error());
     Reply reply;
     reply.body = Json{{"removed", name}};

@@ -11,6 +11,7 @@
 #include <atomic>
 #include <chrono>
 #include <regex>
+#include <set>
 #include <thread>
 #include <vector>
 
@@ -122,6 +123,44 @@ TEST(ServeCommand, ServesAndStopsCleanlyOnSigterm) {
   auto db = store::Store::open(dir / "data" / "rondo.sqlite", {.mode = store::OpenMode::kReadOnly});
   ASSERT_TRUE(db.ok()) << db.error().message;
   EXPECT_TRUE(store::get_task(*db, "late-1").ok());
+}
+
+// Routines added and removed through the API are in the store: after a restart the added one is
+// run again and the deployment's routine that was removed stays removed.
+TEST(ServeCommand, RoutinesChangedThroughTheApiSurviveARestart) {
+  const auto dir = fresh_dir("rondo-service-test", "serve-routines");
+  const auto names = [](httplib::Client& cli) {
+    std::set<std::string> out;
+    const Json list = body_of(cli.Get("/api/v1/routines"));
+    for (const Json& r : list.at("routines")) out.insert(r.at("name").get<std::string>());
+    return out;
+  };
+  for (int life = 0; life < 2; ++life) {
+    Child c = spawn(
+        {RONDO_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", (dir / "data").string(), "--speed", "10"});
+    const std::string port_text = c.wait_for(std::regex(R"(on http://127\.0\.0\.1:(\d+)/)"));
+    ASSERT_FALSE(port_text.empty()) << c.seen;
+    httplib::Client cli("127.0.0.1", std::stoi(port_text));
+    cli.set_read_timeout(std::chrono::seconds(60));
+    if (life == 0) {
+      ASSERT_TRUE(names(cli).contains("fire-door-east"));  // the G4S deployment's
+      const std::string routine = R"({"routines": [{"name": "night-round", "task": {"activity": "patrol",
+          "duration": 120, "start_node": "WayPoint2"}, "window": {"from": "00:00", "to": "24:00"}}]})";
+      auto added = cli.Post("/api/v1/routines", routine, "application/json");
+      ASSERT_TRUE(added);
+      ASSERT_EQ(added->status, 201) << added->body;
+      auto removed = cli.Delete("/api/v1/routines/fire-door-east");
+      ASSERT_TRUE(removed);
+      ASSERT_EQ(removed->status, 200) << removed->body;
+    }
+    const std::set<std::string> now = names(cli);
+    EXPECT_TRUE(now.contains("night-round")) << life;
+    EXPECT_FALSE(now.contains("fire-door-east")) << life;
+    EXPECT_TRUE(now.contains("fire-door-lab")) << life;
+    ASSERT_EQ(::kill(c.pid, SIGTERM), 0);
+    EXPECT_EQ(c.wait_exit(), 0) << c.seen;
+    ::close(c.err);
+  }
 }
 
 // SIGINT while submissions come in: the server exits 0, and every submission answered 201 before
