@@ -164,6 +164,14 @@ class Executor final : public RobotListener {
   Status add_routine_now(Routine routine);
   // Forgets a routine: no more instances from the next day on (today's stay). kNotFound if unknown.
   Status remove_routine(const std::string& name);
+  // Out of service (true) or back (false), with a robot event `out of service` / `back in service`.
+  // Out of service: nothing new starts and the robot goes to the dock when free; the running task
+  // finishes, or with `halt` is stopped now and goes back to the queue keeping its progress (code
+  // `interrupted`; one that cannot be interrupted now finishes, with a `not halted` event); a task
+  // waited for goes back at once. Back in service reschedules. Doing what is already so does nothing. Not stored: the
+  // caller keeps the state (rondo serve: the store's meta).
+  void set_out_of_service(bool out, bool halt, const std::string& reason);
+  bool out_of_service() const { return out_of_service_; }
 
  private:
   // bookkeeping (executor.cpp)
@@ -273,6 +281,7 @@ class Executor final : public RobotListener {
   std::optional<RobotFault> fault_;
   std::optional<Time> fault_since_;
   bool started_ = false;
+  bool out_of_service_ = false;  // set_out_of_service(): next() starts nothing
   std::unique_ptr<Background, BackgroundDeleter> background_;  // last: its worker goes first
 };
 

@@ -21,6 +21,10 @@
 
 namespace rondo::service {
 
+// The store's meta key of dispatch out of service ("1") or not ("0" or absent): written by
+// POST /api/v1/pause and /resume, read at start.
+inline constexpr const char* kOutOfServiceKey = "serve.out_of_service";
+
 // Each is one committed write. kStorage when the store cannot write.
 Status remember_added_routine(store::Store& store, const Routine& routine);
 Status remember_removed_routine(store::Store& store, const std::string& name);
