@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "live_service.h"
+#include "rondo/store/events.h"
 #include "rondo/store/task_table.h"
 #include "test_files.h"
 
@@ -161,6 +162,49 @@ TEST(ServeCommand, RoutinesChangedThroughTheApiSurviveARestart) {
     EXPECT_EQ(c.wait_exit(), 0) << c.seen;
     ::close(c.err);
   }
+}
+
+// Out of service through the API: stored, so a restart is still out of service; resume ends it.
+TEST(ServeCommand, OutOfServiceSurvivesARestartUntilResumed) {
+  const auto dir = fresh_dir("rondo-service-test", "serve-pause");
+  for (int life = 0; life < 2; ++life) {
+    Child c = spawn(
+        {RONDO_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", (dir / "data").string(), "--speed", "10"});
+    const std::string port_text = c.wait_for(std::regex(R"(on http://127\.0\.0\.1:(\d+)/)"));
+    ASSERT_FALSE(port_text.empty()) << c.seen;
+    httplib::Client cli("127.0.0.1", std::stoi(port_text));
+    cli.set_read_timeout(std::chrono::seconds(60));
+    if (life == 0) {
+      EXPECT_EQ(body_of(cli.Get("/api/v1/robot"))["out_of_service"], false);
+      EXPECT_EQ(cli.Post("/api/v1/pause", R"({"halt": "yes"})", "application/json")->status, 422);
+      EXPECT_EQ(cli.Post("/api/v1/pause", "{", "application/json")->status, 400);
+      auto paused = cli.Post("/api/v1/pause", R"({"halt": true, "reason": "lift repair"})", "application/json");
+      ASSERT_TRUE(paused);
+      ASSERT_EQ(paused->status, 200) << paused->body;
+      EXPECT_EQ(body_of(paused)["out_of_service"], true);
+    }
+    EXPECT_EQ(body_of(cli.Get("/api/v1/robot"))["out_of_service"], true) << life;
+    if (life == 1) {
+      auto resumed = cli.Post("/api/v1/resume", "", "application/json");
+      ASSERT_TRUE(resumed);
+      EXPECT_EQ(body_of(resumed)["out_of_service"], false);
+      EXPECT_EQ(body_of(cli.Get("/api/v1/robot"))["out_of_service"], false);
+    }
+    ASSERT_EQ(::kill(c.pid, SIGTERM), 0);
+    EXPECT_EQ(c.wait_exit(), 0) << c.seen;
+    ::close(c.err);
+  }
+  auto db = store::Store::open(dir / "data" / "rondo.sqlite", {.mode = store::OpenMode::kReadOnly});
+  ASSERT_TRUE(db.ok()) << db.error().message;
+  auto events = store::read_events(*db);
+  ASSERT_TRUE(events.ok());
+  int out = 0, back = 0;
+  for (const store::Event& e : *events) {
+    out += e.event == "out of service";
+    back += e.event == "back in service";
+  }
+  EXPECT_EQ(out, 2);  // asked, and again at the restart
+  EXPECT_EQ(back, 1);
 }
 
 // SIGINT while submissions come in: the server exits 0, and every submission answered 201 before
