@@ -106,7 +106,8 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   else if (!parts.plan.tasks.empty())
     RONDO_RETURN_IF_ERROR(executor.add_tasks(parts.plan.tasks, "deployment"));
   // Out of service when it stopped (POST /api/v1/pause), out of service again.
-  RONDO_ASSIGN_OR_RETURN(const std::optional<std::string> out_of_service, store::get_meta(db, service::kOutOfServiceKey));
+  RONDO_ASSIGN_OR_RETURN(const std::optional<std::string> out_of_service,
+                         store::get_meta(db, service::kOutOfServiceKey));
   if (out_of_service == "1") executor.set_out_of_service(true, false, "as before the restart");
   executor.start();
   sim::Rng people_rng(d.seed * 0x9E3779B97F4A7C15ULL + 17);

@@ -9,7 +9,9 @@ namespace {
 
 using Steady = std::chrono::steady_clock;
 
-double steady_seconds() { return std::chrono::duration<double>(Steady::now().time_since_epoch()).count(); }
+double steady_seconds() {
+  return std::chrono::duration<double>(Steady::now().time_since_epoch()).count();
+}
 
 // Stops a solve when the worker is asked to stop.
 class TokenStop final : public schedule::StopCondition {
@@ -34,7 +36,7 @@ BackgroundScheduler::BackgroundScheduler(Clock& clock, const map::TopoMap& map, 
       on_ready_(std::move(on_ready)),
       models_(std::make_shared<plan::LearnedEdgeModels>(map, nullptr)),
       planner_(std::make_unique<plan::TravelPlanner>(map_, models_,
-                                                    plan::TravelPlannerOptions{.slot_width = options_.slot_width})),
+                                                     plan::TravelPlannerOptions{.slot_width = options_.slot_width})),
       travel_(std::make_unique<TravelCache>(map_, models_, *planner_, options_.slot_width)),
       rng_(options.seed),
       worker_([this](std::stop_token stop) { work(std::move(stop)); }) {}
@@ -90,8 +92,7 @@ ScheduleAnswer BackgroundScheduler::solve(ScheduleJob& job, std::stop_token stop
   *models_ = *job.models;
   schedule::TryScheduleRequest& request = job.problem.request;
   request.problem.travel = std::make_shared<SchedulerTravel>(*travel_, job.problem.nodes);
-  const schedule::DeadlineStop budget(steady_seconds,
-                                      start + std::chrono::duration<double>(options_.budget).count());
+  const schedule::DeadlineStop budget(steady_seconds, start + std::chrono::duration<double>(options_.budget).count());
   const TokenStop cancelled(std::move(stop));
   const schedule::AnyStop either({&budget, &cancelled});
   ScheduleAnswer answer{.generation = job.generation,

@@ -52,11 +52,11 @@ struct ScheduleAnswer {
 class BackgroundScheduler {
  public:
   struct Options {
-    std::int64_t polls = 20'000;  // per solver call, as the synchronous executor
-    Duration budget = seconds(2);  // wall time per solve
+    std::int64_t polls = 20'000;                // per solver call, as the synchronous executor
+    Duration budget = seconds(2);               // wall time per solve
     Duration min_interval = milliseconds(100);  // wall time from one problem to the next
-    Duration slot_width = minutes(15);  // of the worker's planner (ExecutorOptions::slot_width)
-    std::uint64_t seed = 1;  // of the worker's tie-breaking
+    Duration slot_width = minutes(15);          // of the worker's planner (ExecutorOptions::slot_width)
+    std::uint64_t seed = 1;                     // of the worker's tie-breaking
   };
   BackgroundScheduler(Clock& clock, const map::TopoMap& map, schedule::Scheduler& scheduler, Options options,
                       std::function<void(ScheduleAnswer)> on_answer, std::function<void()> on_ready);

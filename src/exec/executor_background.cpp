@@ -25,9 +25,9 @@ struct Executor::Background {
   };
 
   std::unique_ptr<BackgroundScheduler> worker;
-  bool wanted = false;         // a reschedule was asked for since the last problem was built
-  bool launch_posted = false;  // launch_background() is posted
-  bool changed = false;        // a change the problem in flight does not cover
+  bool wanted = false;          // a reschedule was asked for since the last problem was built
+  bool launch_posted = false;   // launch_background() is posted
+  bool changed = false;         // a change the problem in flight does not cover
   std::vector<TaskId> new_ids;  // asked for since the last problem
   std::vector<std::string> whys;
   std::uint64_t generation = 0;  // problems built
@@ -37,7 +37,9 @@ struct Executor::Background {
   ~Background() { *alive = false; }
 };
 
-void Executor::BackgroundDeleter::operator()(Background* b) const { delete b; }
+void Executor::BackgroundDeleter::operator()(Background* b) const {
+  delete b;
+}
 
 namespace {
 

@@ -102,9 +102,9 @@ void Executor::set_out_of_service(bool out, bool halt, const std::string& reason
     }
     return;
   }
-  book_.note_robot("out of service", Outcome::kNone,
-                   fmt::format("dispatch paused{}; {}", why,
-                               halt ? "the running task is halted" : "the running task finishes"));
+  book_.note_robot(
+      "out of service", Outcome::kNone,
+      fmt::format("dispatch paused{}; {}", why, halt ? "the running task is halted" : "the running task finishes"));
   if (run_ && run_->waiting()) {  // not started yet: back to the head of the queue
     const TaskId id = run_->id();
     end_wait();
@@ -116,7 +116,8 @@ void Executor::set_out_of_service(bool out, bool halt, const std::string& reason
     if (interruptible_now())
       preempt_for(Outcome::kInterrupted, "halted: out of service", {});
     else
-      book_.note(run_->id(), "not halted", Outcome::kNone, "out of service, but it cannot be interrupted now: it finishes");
+      book_.note(run_->id(), "not halted", Outcome::kNone,
+                 "out of service, but it cannot be interrupted now: it finishes");
   }
   if (started_) kick();
 }

@@ -7,9 +7,9 @@
 #include "api.h"
 #include "rondo/core/task_codec.h"
 #include "rondo/map/map_yaml.h"
+#include "rondo/plan/learned_edge_models.h"
 #include "rondo/service/stored_routines.h"
 #include "rondo/store/robot_state.h"
-#include "rondo/plan/learned_edge_models.h"
 
 namespace rondo::service {
 namespace {
@@ -243,7 +243,8 @@ Reply set_service(Api& api, const httplib::Request& req, bool out) {
     }
   }
   return api.on_clock([&api, out, halt, reason] {
-    if (Status ok = store::set_meta(api.ctx.store, kOutOfServiceKey, out ? "1" : "0"); !ok) return error_reply(ok.error());
+    if (Status ok = store::set_meta(api.ctx.store, kOutOfServiceKey, out ? "1" : "0"); !ok)
+      return error_reply(ok.error());
     api.ctx.executor.set_out_of_service(out, halt, reason);
     Reply reply;
     reply.body = Json{{"out_of_service", api.ctx.executor.out_of_service()}};

@@ -25,16 +25,15 @@ Result<Json> load(store::Store& store) {
   RONDO_ASSIGN_OR_RETURN(const std::optional<std::string> text, store::get_meta(store, kKey));
   if (!text) return Json{{"added", Json::array()}, {"removed", Json::array()}};
   Json j = Json::parse(*text, nullptr, false);
-  if (j.is_discarded() || !j.is_object() || !j.contains("added") || !j["added"].is_array() ||
-      !j.contains("removed") || !j["removed"].is_array())
+  if (j.is_discarded() || !j.is_object() || !j.contains("added") || !j["added"].is_array() || !j.contains("removed") ||
+      !j["removed"].is_array())
     return Error::invalid(fmt::format("store meta '{}': not {{\"added\": [...], \"removed\": [...]}}", kKey));
   return j;
 }
 
 void erase_added(Json& j, const std::string& name) {
   Json& added = j["added"];
-  for (auto it = added.begin(); it != added.end();)
-    it = name_of(*it) == name ? added.erase(it) : std::next(it);
+  for (auto it = added.begin(); it != added.end();) it = name_of(*it) == name ? added.erase(it) : std::next(it);
 }
 
 }  // namespace
@@ -70,8 +69,8 @@ Result<std::vector<Routine>> routines_to_run(store::Store& store, std::vector<Ro
                                 fmt::format("store meta '{}'", kKey), &places);
     if (!file || file->routines.size() != 1) {
       if (skipped)
-        skipped->push_back(fmt::format("{}: {}", name.empty() ? "?" : name,
-                                       file ? "not one routine" : file.error().message));
+        skipped->push_back(
+            fmt::format("{}: {}", name.empty() ? "?" : name, file ? "not one routine" : file.error().message));
       continue;
     }
     added.push_back(std::move(file->routines.front()));

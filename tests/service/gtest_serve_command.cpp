@@ -137,8 +137,8 @@ TEST(ServeCommand, RoutinesChangedThroughTheApiSurviveARestart) {
     return out;
   };
   for (int life = 0; life < 2; ++life) {
-    Child c = spawn(
-        {RONDO_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", (dir / "data").string(), "--speed", "10"});
+    Child c =
+        spawn({RONDO_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", (dir / "data").string(), "--speed", "10"});
     const std::string port_text = c.wait_for(std::regex(R"(on http://127\.0\.0\.1:(\d+)/)"));
     ASSERT_FALSE(port_text.empty()) << c.seen;
     httplib::Client cli("127.0.0.1", std::stoi(port_text));
@@ -168,8 +168,8 @@ TEST(ServeCommand, RoutinesChangedThroughTheApiSurviveARestart) {
 TEST(ServeCommand, OutOfServiceSurvivesARestartUntilResumed) {
   const auto dir = fresh_dir("rondo-service-test", "serve-pause");
   for (int life = 0; life < 2; ++life) {
-    Child c = spawn(
-        {RONDO_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", (dir / "data").string(), "--speed", "10"});
+    Child c =
+        spawn({RONDO_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", (dir / "data").string(), "--speed", "10"});
     const std::string port_text = c.wait_for(std::regex(R"(on http://127\.0\.0\.1:(\d+)/)"));
     ASSERT_FALSE(port_text.empty()) << c.seen;
     httplib::Client cli("127.0.0.1", std::stoi(port_text));

@@ -281,7 +281,7 @@ class Executor final : public RobotListener {
   std::optional<RobotFault> fault_;
   std::optional<Time> fault_since_;
   bool started_ = false;
-  bool out_of_service_ = false;  // set_out_of_service(): next() starts nothing
+  bool out_of_service_ = false;                                // set_out_of_service(): next() starts nothing
   std::unique_ptr<Background, BackgroundDeleter> background_;  // last: its worker goes first
 };
 
