@@ -14,6 +14,7 @@
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
 #include "rondo/service/server.h"
+#include "rondo/service/stored_routines.h"
 #include "rondo/sim/request_generator.h"
 #include "rondo/store/robot_state.h"
 #include "rondo/store/store.h"
@@ -58,6 +59,10 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   } else if (!service::is_loopback_host(request.host)) {
     return Error::invalid(fmt::format("--listen {}: a host other than loopback needs --token-file", request.host));
   }
+  // Blocked before any thread starts (the robot's, the scheduler's worker, HTTP): they inherit
+  // it, so only the sigwait thread below takes them.
+  const sigset_t signals = stop_signals();
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
   RONDO_ASSIGN_OR_RETURN(DeploymentParts parts, load_parts(d));
   std::error_code ec;
   std::filesystem::create_directories(request.data, ec);
@@ -83,8 +88,16 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   exec::ExecutorOptions options = d.executor;
   options.dock = parts.dock;
   options.seed = d.seed;
+  // Requests are answered after their commit, not after the reschedule (docs/executor.md).
+  options.background_scheduling = true;
   exec::Executor executor(clock, robot, parts.map, db, d.zone, options);
-  executor.add_routines(parts.plan.routines);
+  // The deployment's routines with the changes made through the API (kept in the store).
+  std::vector<std::string> skipped;
+  RONDO_ASSIGN_OR_RETURN(std::vector<Routine> routines,
+                         service::routines_to_run(db, parts.plan.routines, parts.map, d.zone, &skipped));
+  for (const std::string& s : skipped)
+    log << fmt::format("rondo serve: a routine added through the API is not run: {}\n", s);
+  executor.add_routines(std::move(routines));
   // A data folder that holds a run is restored (kill -9 and start again loses nothing); stored
   // tasks that the deployment, edited meanwhile, can no longer run end with that reason. The
   // deployment's one-off tasks are added to a fresh store only.
@@ -92,6 +105,10 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
     RONDO_RETURN_IF_ERROR(executor.restore());
   else if (!parts.plan.tasks.empty())
     RONDO_RETURN_IF_ERROR(executor.add_tasks(parts.plan.tasks, "deployment"));
+  // Out of service when it stopped (POST /api/v1/pause), out of service again.
+  RONDO_ASSIGN_OR_RETURN(const std::optional<std::string> out_of_service,
+                         store::get_meta(db, service::kOutOfServiceKey));
+  if (out_of_service == "1") executor.set_out_of_service(true, false, "as before the restart");
   executor.start();
   sim::Rng people_rng(d.seed * 0x9E3779B97F4A7C15ULL + 17);
   if (parts.people) schedule_people(clock, executor, *parts.people, people_rng, d.zone, clock.now());
@@ -109,8 +126,6 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
                      request.speed, request.data.string(), token ? "writes need the token" : "writes open on loopback")
       << std::flush;
 
-  const sigset_t signals = stop_signals();
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);  // before any thread starts: they inherit it
   std::atomic<bool> http_done{false};
   std::thread http([&server, &http_done] {
     server.run();

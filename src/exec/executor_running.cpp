@@ -32,6 +32,7 @@ void Executor::next() {
   if (run_ || trip_ || robot_.busy() || in_fault_) return;  // a fault: on_ready() comes back here
   if (look_again_ != 0) clock_.cancel(look_again_);
   look_again_ = 0;
+  if (out_of_service_) return go_to_dock();  // set_out_of_service(): nothing new starts
   const Time now = clock_.now();
   const map::NodeIndex here = robot_.location();
   for (;;) {

@@ -52,6 +52,15 @@ std::vector<TaskId> Executor::reoffer_deferred() {
 }
 
 void Executor::reschedule(std::vector<TaskId> new_ids, const std::string& why) {
+  if (options_.background_scheduling) return reschedule_in_background(std::move(new_ids), why);
+  std::optional<ScheduleCall> call = prepare_schedule(new_ids, why);
+  if (!call) return;
+  const schedule::TryScheduleResult result =
+      solve_pending(call->problem.request, *scheduler_, options_.scheduler_polls, nullptr, rng_);
+  finish_schedule(call->pending.ids, std::move(new_ids), result, why);
+}
+
+std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_ids, const std::string& why) {
   const std::vector<TaskId> offered_again = reoffer_deferred();
   for (TaskId& back : settle_jobs()) new_ids.push_back(std::move(back));
   PendingTasks pending;
@@ -67,7 +76,7 @@ void Executor::reschedule(std::vector<TaskId> new_ids, const std::string& why) {
   for (const TaskId& id : offered_again) add(id);
   if (ids.empty()) {
     dispatcher_->planned.clear();
-    return;
+    return std::nullopt;
   }
   refresh_learned_durations(ids);
   const auto [here, free] = free_at();
@@ -80,12 +89,16 @@ void Executor::reschedule(std::vector<TaskId> new_ids, const std::string& why) {
   const ScheduleInputs in{.map = map_, .travel = *travel_, .book = book_, .zone = zone_, .scheduler = *scheduler_,
                           .polls = options_.scheduler_polls, .rng = rng_, .capacity = options_.capacity,
                           .on_board = on_board_when_free()};
-  auto solved = schedule_pending(in, pending, here, free, running);
-  if (!solved) {  // the pending tasks do not make a well-formed problem: keep the plan as it is
-    book_.note_schedule("not rescheduled", Outcome::kNone, fmt::format("{}: {}", why, solved.error().message));
-    return;
+  auto problem = pending_problem(in, pending, here, free, running);
+  if (!problem) {  // the pending tasks do not make a well-formed problem: keep the plan as it is
+    book_.note_schedule("not rescheduled", Outcome::kNone, fmt::format("{}: {}", why, problem.error().message));
+    return std::nullopt;
   }
-  const schedule::TryScheduleResult& result = *solved;
+  return ScheduleCall{.pending = std::move(pending), .problem = std::move(*problem)};
+}
+
+void Executor::finish_schedule(const std::vector<TaskId>& ids, std::vector<TaskId> new_ids,
+                               const schedule::TryScheduleResult& result, const std::string& why) {
   stats_.schedules += result.attempts;
   if (result.outcome == schedule::TryScheduleOutcome::kPreemptRunning) {
     preempt_for(Outcome::kOutranked, "outranked by new tasks: " + result.preempt_reason, std::move(new_ids));

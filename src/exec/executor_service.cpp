@@ -10,6 +10,7 @@
 #include "rondo/core/task_codec.h"
 #include "rondo/exec/executor.h"
 #include "rondo/store/task_table.h"
+#include "task_run.h"
 
 namespace rondo::exec {
 Executor::Activity Executor::activity() const {
@@ -51,6 +52,7 @@ Status Executor::update_task(const TaskId& id, std::optional<TimeWindow> window,
   // Offered again as a new task, so that a change it no longer fits drops it (for now) with a
   // reason instead of breaking the plan of the others.
   std::erase(dispatcher_->planned, id);
+  background_book_changed();  // an answer in flight still has the old window or priority
   const std::vector<TaskId>& later = dispatcher_->deferred;
   const bool deferred = std::find(later.begin(), later.end(), id) != later.end();
   if (started_)
@@ -86,6 +88,38 @@ Status Executor::remove_routine(const std::string& name) {
   if (it == routines_.end()) return Error::not_found(fmt::format("no routine '{}'", name));
   routines_.erase(it);
   return Status{};
+}
+
+void Executor::set_out_of_service(bool out, bool halt, const std::string& reason) {
+  if (out == out_of_service_) return;
+  out_of_service_ = out;
+  const std::string why = reason.empty() ? "" : ": " + reason;
+  if (!out) {
+    book_.note_robot("back in service", Outcome::kNone, "dispatch resumed" + why);
+    if (started_) {
+      reschedule({}, "back in service");
+      kick();
+    }
+    return;
+  }
+  book_.note_robot(
+      "out of service", Outcome::kNone,
+      fmt::format("dispatch paused{}; {}", why, halt ? "the running task is halted" : "the running task finishes"));
+  if (run_ && run_->waiting()) {  // not started yet: back to the head of the queue
+    const TaskId id = run_->id();
+    end_wait();
+    book_.transition(id, TaskState::kQueued, Outcome::kScheduleChanged, "waiting ended: out of service");
+    std::vector<TaskId>& planned = dispatcher_->planned;
+    if (std::find(planned.begin(), planned.end(), id) == planned.end()) planned.insert(planned.begin(), id);
+  } else if (run_ && halt) {
+    // Keeps its id and progress: requeue_preempted() puts it back in the queue.
+    if (interruptible_now())
+      preempt_for(Outcome::kInterrupted, "halted: out of service", {});
+    else
+      book_.note(run_->id(), "not halted", Outcome::kNone,
+                 "out of service, but it cannot be interrupted now: it finishes");
+  }
+  if (started_) kick();
 }
 
 }  // namespace rondo::exec

@@ -20,6 +20,12 @@ Outcome drop_outcome(schedule::DropCause cause) {
 Result<schedule::TryScheduleResult> schedule_pending(const ScheduleInputs& in, const PendingTasks& pending,
                                              map::NodeIndex here, Time free,
                                              std::optional<schedule::RunningTask> running) {
+  RONDO_ASSIGN_OR_RETURN(PendingProblem p, pending_problem(in, pending, here, free, std::move(running)));
+  return solve_pending(p.request, in.scheduler, in.polls, nullptr, in.rng);
+}
+
+Result<PendingProblem> pending_problem(const ScheduleInputs& in, const PendingTasks& pending, map::NodeIndex here,
+                                       Time free, std::optional<schedule::RunningTask> running) {
   schedule::Problem problem;
   std::vector<map::NodeIndex> nodes{here};
   std::map<map::NodeIndex, schedule::LocationIndex> location{{here, 0}};
@@ -62,20 +68,31 @@ Result<schedule::TryScheduleResult> schedule_pending(const ScheduleInputs& in, c
   problem.travel = std::make_shared<SchedulerTravel>(in.travel, nodes);
 
   RONDO_RETURN_IF_ERROR(schedule::validate(problem));
-  schedule::TryScheduleRequest request{.problem = std::move(problem), .new_tasks = {}, .zone = in.zone};
+  PendingProblem out{.request = {.problem = std::move(problem), .new_tasks = {}, .zone = in.zone},
+                     .nodes = std::move(nodes)};
+  schedule::TryScheduleRequest& request = out.request;
   for (std::size_t i = pending.old_count; i < pending.ids.size(); ++i) request.new_tasks.push_back(i);
   for (std::size_t i = pending.first_reoffered; i < pending.ids.size(); ++i) request.cannot_preempt.push_back(i);
   request.running = std::move(running);
-  schedule::PollBudgetStop stop(in.polls);
-  schedule::TryScheduleResult result = schedule::try_schedule(request, in.scheduler, stop, in.rng);
+  return out;
+}
+
+schedule::TryScheduleResult solve_pending(schedule::TryScheduleRequest& request, schedule::Scheduler& scheduler,
+                                          std::int64_t polls, const schedule::StopCondition* also,
+                                          std::mt19937_64& rng) {
+  schedule::PollBudgetStop budget(polls);
+  std::vector<const schedule::StopCondition*> parts{&budget};
+  if (also) parts.push_back(also);
+  schedule::TryScheduleResult result = schedule::try_schedule(request, scheduler, schedule::AnyStop(parts), rng);
   if (result.outcome != schedule::TryScheduleOutcome::kOldTasksInfeasible) return result;
   // What was planned no longer fits (a task overran, an on-demand task came first): every task
   // competes again, and the lowest priorities give way.
   const int attempts = result.attempts;
   request.new_tasks.clear();
-  for (std::size_t i = 0; i < pending.ids.size(); ++i) request.new_tasks.push_back(i);
-  schedule::PollBudgetStop again(in.polls);
-  result = schedule::try_schedule(request, in.scheduler, again, in.rng);
+  for (std::size_t i = 0; i < request.problem.tasks.size(); ++i) request.new_tasks.push_back(i);
+  schedule::PollBudgetStop again(polls);
+  parts[0] = &again;
+  result = schedule::try_schedule(request, scheduler, schedule::AnyStop(parts), rng);
   result.attempts += attempts;
   return result;
 }

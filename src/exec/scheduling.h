@@ -40,6 +40,20 @@ struct ScheduleInputs {
   std::vector<OnBoard> on_board{};        // when the robot is next free
 };
 
+// A scheduling problem built from the book (on the clock's thread), ready to solve anywhere: the
+// request holds values only, and its travel oracle reads `in.travel` over `nodes` (location i is
+// node nodes[i]); a solver on another thread sets its own oracle over the same nodes.
+struct PendingProblem {
+  schedule::TryScheduleRequest request;
+  std::vector<map::NodeIndex> nodes;
+};
+
+// One reschedule between its two halves: which tasks, and their problem.
+struct ScheduleCall {
+  PendingTasks pending;
+  PendingProblem problem;
+};
+
 // Delivery tasks carry their transfer (precedence, load, look-alike rule), `after` the tasks among
 // `pending` (the others have ended or run now), and the robot its capacity and what is on board.
 // Precondition: every id is a standard task of the book with a window and a start node.
@@ -47,6 +61,15 @@ struct ScheduleInputs {
 Result<schedule::TryScheduleResult> schedule_pending(const ScheduleInputs& in, const PendingTasks& pending,
                                              map::NodeIndex here, Time free,
                                              std::optional<schedule::RunningTask> running);
+
+// schedule_pending in two halves: the problem (reads the book) and its solution (reads only the
+// request and the scheduler). `also` (may be null) stops each solver call early besides the poll
+// budget, e.g. a wall-time budget or a stop token.
+Result<PendingProblem> pending_problem(const ScheduleInputs& in, const PendingTasks& pending, map::NodeIndex here,
+                                       Time free, std::optional<schedule::RunningTask> running);
+schedule::TryScheduleResult solve_pending(schedule::TryScheduleRequest& request, schedule::Scheduler& scheduler,
+                                          std::int64_t polls, const schedule::StopCondition* also,
+                                          std::mt19937_64& rng);
 
 // The outcome code of a scheduler's drop.
 Outcome drop_outcome(schedule::DropCause cause);

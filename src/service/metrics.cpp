@@ -82,9 +82,14 @@ Reply metrics_reply(Api& api) {
         "# HELP rondo_robot_fault 1 while the robot reports a fault.\n# TYPE rondo_robot_fault gauge\n"
         "rondo_robot_fault {}\n"
         "# HELP rondo_store_write_errors Store writes that failed.\n# TYPE rondo_store_write_errors gauge\n"
-        "rondo_store_write_errors {}\n",
+        "rondo_store_write_errors {}\n"
+        "# HELP rondo_background_schedules_total Reschedules solved on the worker thread.\n"
+        "# TYPE rondo_background_schedules_total counter\nrondo_background_schedules_total {}\n"
+        "# HELP rondo_background_stale_total Of those, answers not applied: the book had moved on.\n"
+        "# TYPE rondo_background_stale_total counter\nrondo_background_stale_total {}\n",
         st.schedules, st.refits, st.navigation_attempts, robot.battery(), robot.charging() ? 1 : 0,
-        robot.busy() ? 1 : 0, robot.fault() ? 1 : 0, api.ctx.executor.write_errors().size());
+        robot.busy() ? 1 : 0, robot.fault() ? 1 : 0, api.ctx.executor.write_errors().size(), st.background_runs,
+        st.background_stale);
     Reply r;
     r.text = std::move(out);
     r.content_type = "text/plain; version=0.0.4";

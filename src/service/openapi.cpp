@@ -109,6 +109,13 @@ Json document() {
   paths["/api/v1/routines/{name}"]["delete"] =
       op("Remove a routine (today's tasks stay).", responses({{200, "removed"}, {404, "no such routine"}}),
          Json::array({param("name", "path", "string", "the routine's name")}), false, true);
+  paths["/api/v1/pause"]["post"] =
+      op("Out of service ({halt?: bool, reason?}): nothing new starts, the robot docks; the running task "
+         "finishes, or with halt goes back to the queue keeping its progress. Stored: a restart keeps it.",
+         responses({{200, "{out_of_service}"}, {400, "not JSON"}, {422, "a bad field"}}), Json::array(), false, true);
+  paths["/api/v1/resume"]["post"] =
+      op("Back in service ({reason?}): dispatch resumes and the tasks are rescheduled.",
+         responses({{200, "{out_of_service}"}, {400, "not JSON"}, {422, "a bad field"}}), Json::array(), false, true);
   paths["/api/v1/events"]["get"] =
       op("The event log as server-sent events; id is the log's sequence number.",
          responses({{200, "text/event-stream"}, {422, "a bad Last-Event-ID"}}),

@@ -8,6 +8,8 @@
 #include "rondo/core/task_codec.h"
 #include "rondo/map/map_yaml.h"
 #include "rondo/plan/learned_edge_models.h"
+#include "rondo/service/stored_routines.h"
+#include "rondo/store/robot_state.h"
 
 namespace rondo::service {
 namespace {
@@ -33,7 +35,8 @@ Reply robot(Api& api, const httplib::Request&) {
                   {"busy", robot.busy()},
                   {"battery", robot.battery()},
                   {"charging", robot.charging()},
-                  {"dispatch_paused", a.fault.has_value()},
+                  {"dispatch_paused", a.fault.has_value() || api.ctx.executor.out_of_service()},
+                  {"out_of_service", api.ctx.executor.out_of_service()},
                   {"faults", std::move(faults)}};
     return r;
   });
@@ -190,7 +193,13 @@ Reply add_routines(Api& api, const httplib::Request& req) {
     Json added = Json::array();
     for (Routine& r : list) {
       Json encoded = encode(r);
+      const Routine kept = r;
       if (Status ok = api.ctx.executor.add_routine_now(std::move(r)); !ok) return error_reply(ok.error());
+      // Stored before the answer, so that it comes back after a restart; not run when it cannot be.
+      if (Status ok = remember_added_routine(api.ctx.store, kept); !ok) {
+        (void)api.ctx.executor.remove_routine(kept.name);
+        return error_reply(ok.error());
+      }
       added.push_back(std::move(encoded));
     }
     Reply reply;
@@ -203,9 +212,42 @@ Reply add_routines(Api& api, const httplib::Request& req) {
 Reply remove_routine(Api& api, const httplib::Request& req) {
   const std::string name = req.matches[1];
   return api.on_clock([&api, name] {
+    const auto& list = api.ctx.executor.routines();
+    if (std::none_of(list.begin(), list.end(), [&name](const Routine& r) { return r.name == name; }))
+      return error_reply(Error::not_found(fmt::format("no routine '{}'", name)));
+    // Stored first: a deployment routine removed here stays removed after a restart.
+    if (Status ok = remember_removed_routine(api.ctx.store, name); !ok) return error_reply(ok.error());
     if (Status ok = api.ctx.executor.remove_routine(name); !ok) return error_reply(ok.error());
     Reply reply;
     reply.body = Json{{"removed", name}};
+    return reply;
+  });
+}
+
+// POST /api/v1/pause {"halt": bool, "reason": text} and POST /api/v1/resume {"reason": text}:
+// dispatch out of service and back. The state is stored (meta serve.out_of_service) before the
+// answer, so a restart keeps it.
+Reply set_service(Api& api, const httplib::Request& req, bool out) {
+  bool halt = false;
+  std::string reason;
+  if (!req.body.empty()) {
+    Json j = Json::parse(req.body, nullptr, false);
+    if (j.is_discarded() || !j.is_object()) return error_reply(400, "malformed", "the body is not a JSON object");
+    if (const auto it = j.find("halt"); it != j.end()) {
+      if (!out || !it->is_boolean()) return error_reply(422, "invalid", "halt: a boolean, for pause only", "halt");
+      halt = it->get<bool>();
+    }
+    if (const auto it = j.find("reason"); it != j.end()) {
+      if (!it->is_string()) return error_reply(422, "invalid", "reason: a string", "reason");
+      reason = it->get<std::string>();
+    }
+  }
+  return api.on_clock([&api, out, halt, reason] {
+    if (Status ok = store::set_meta(api.ctx.store, kOutOfServiceKey, out ? "1" : "0"); !ok)
+      return error_reply(ok.error());
+    api.ctx.executor.set_out_of_service(out, halt, reason);
+    Reply reply;
+    reply.body = Json{{"out_of_service", api.ctx.executor.out_of_service()}};
     return reply;
   });
 }
@@ -221,6 +263,10 @@ void add_robot_routes(std::vector<Route>& routes) {
   routes.push_back({"GET", "/api/v1/routines", false, routines});
   routes.push_back({"POST", "/api/v1/routines", true, add_routines});
   routes.push_back({"DELETE", "/api/v1/routines/{name}", true, remove_routine});
+  routes.push_back({"POST", "/api/v1/pause", true,
+                    [](Api& api, const httplib::Request& req) { return set_service(api, req, true); }});
+  routes.push_back({"POST", "/api/v1/resume", true,
+                    [](Api& api, const httplib::Request& req) { return set_service(api, req, false); }});
 }
 
 }  // namespace rondo::service

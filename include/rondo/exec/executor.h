@@ -60,10 +60,13 @@
 #include "rondo/plan/learned_edge_models.h"
 #include "rondo/plan/travel_planner.h"
 #include "rondo/schedule/scheduler.h"
+#include "rondo/schedule/try_schedule.h"
 #include "rondo/store/store.h"
 
 namespace rondo::exec {
 
+struct ScheduleAnswer;
+struct ScheduleCall;
 class Deliveries;
 class LoadingTimes;
 class Dispatcher;
@@ -161,6 +164,14 @@ class Executor final : public RobotListener {
   Status add_routine_now(Routine routine);
   // Forgets a routine: no more instances from the next day on (today's stay). kNotFound if unknown.
   Status remove_routine(const std::string& name);
+  // Out of service (true) or back (false), with a robot event `out of service` / `back in service`.
+  // Out of service: nothing new starts and the robot goes to the dock when free; the running task
+  // finishes, or with `halt` is stopped now and goes back to the queue keeping its progress (code
+  // `interrupted`; one that cannot be interrupted now finishes, with a `not halted` event); a task
+  // waited for goes back at once. Back in service reschedules. Doing what is already so does nothing. Not stored: the
+  // caller keeps the state (rondo serve: the store's meta).
+  void set_out_of_service(bool out, bool halt, const std::string& reason);
+  bool out_of_service() const { return out_of_service_; }
 
  private:
   // bookkeeping (executor.cpp)
@@ -204,6 +215,21 @@ class Executor final : public RobotListener {
   std::pair<map::NodeIndex, Time> free_at() const;  // where and when the robot is next free
   // The deferred tasks that can still meet their windows (the others end dropped, for good).
   std::vector<TaskId> reoffer_deferred();
+  // reschedule() in two halves: the problem from the book (nothing when there is nothing to
+  // solve), and the scheduler's answer carried out.
+  std::optional<ScheduleCall> prepare_schedule(std::vector<TaskId>& new_ids, const std::string& why);
+  void finish_schedule(const std::vector<TaskId>& ids, std::vector<TaskId> new_ids,
+                       const schedule::TryScheduleResult& result, const std::string& why);
+
+  // background scheduling (executor_background.cpp; options_.background_scheduling)
+  struct Background;
+  struct BackgroundDeleter {
+    void operator()(Background* b) const;
+  };
+  void reschedule_in_background(std::vector<TaskId> new_ids, const std::string& why);
+  void launch_background();
+  void background_answered(ScheduleAnswer answer);
+  void background_book_changed();  // a change that an answer in flight does not cover
 
   // deliveries (executor_deliveries.cpp)
   // Drops whose pickup ended without the object fail too, and an object on board with no drop
@@ -255,6 +281,8 @@ class Executor final : public RobotListener {
   std::optional<RobotFault> fault_;
   std::optional<Time> fault_since_;
   bool started_ = false;
+  bool out_of_service_ = false;                                // set_out_of_service(): next() starts nothing
+  std::unique_ptr<Background, BackgroundDeleter> background_;  // last: its worker goes first
 };
 
 }  // namespace rondo::exec

@@ -36,6 +36,14 @@ struct ExecutorOptions {
   // name, or empty for the object's pickup place; the return must be done within `return_within`.
   std::string return_to{};
   Duration return_within = hours(4);
+  // Rescheduling on a worker thread (`rondo serve`; docs/executor.md, "Background scheduling"):
+  // the clock's thread hands a snapshot of the problem over and keeps running the old schedule; the
+  // answer is applied when still valid. Requests in between are merged into one reschedule, at most
+  // one per `background_interval` of wall time, each given `background_budget` of wall time on top
+  // of `scheduler_polls`. Off: every change reschedules at once, deterministically (`rondo run`).
+  bool background_scheduling = false;
+  Duration background_interval = milliseconds(100);
+  Duration background_budget = seconds(2);
 };
 
 // Figures of the run so far, for the report.
@@ -48,6 +56,8 @@ struct ExecutorStats {
   Duration busy{0};        // a task in progress: its travel, waiting and actions
   int refits = 0;
   int schedules = 0;       // scheduler calls
+  int background_runs = 0;   // reschedules solved on the worker (background_scheduling)
+  int background_stale = 0;  //   of which the answer came too late: the book had moved on
 };
 
 // One navigation of a task to its start: what the executor expected when it left, and what

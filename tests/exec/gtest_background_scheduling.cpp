@@ -1,0 +1,168 @@
+// ExecutorOptions::background_scheduling on a ScriptedRobot (scripted_robot.h): a burst of
+// requests gives one reschedule, the old schedule runs while the worker solves, and an answer the
+// book has moved past is not applied. The worker's scheduler is a real one behind a gate the test
+// opens, so what is in flight is decided by the test, not by the machine's speed.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <condition_variable>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "rondo/schedule/default_scheduler.h"
+#include "rondo/store/task_table.h"
+#include "scenario.h"
+#include "scripted_executor.h"
+
+namespace rondo::exec::testing {
+namespace {
+
+// DefaultScheduler behind a gate: while closed, every solve waits (on the worker thread) until
+// the test opens it.
+class GatedScheduler final : public schedule::Scheduler {
+ public:
+  std::string_view name() const override { return "gated"; }
+  schedule::Schedule solve(const schedule::Problem& problem, const schedule::StopCondition& stop) override {
+    {
+      std::unique_lock lock(mutex_);
+      ++waiting_;
+      changed_.notify_all();
+      changed_.wait(lock, [this] { return open_; });
+      --waiting_;
+    }
+    return inner_.solve(problem, stop);
+  }
+  void set_open(bool open) {
+    {
+      std::lock_guard lock(mutex_);
+      open_ = open;
+    }
+    changed_.notify_all();
+  }
+  // Waits (60 s at most) until a solve waits at the closed gate.
+  bool wait_for_a_solve() {
+    std::unique_lock lock(mutex_);
+    return changed_.wait_for(lock, std::chrono::seconds(60), [this] { return waiting_ > 0; });
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  bool open_ = true;
+  int waiting_ = 0;
+  schedule::DefaultScheduler inner_;
+};
+
+ExecutorOptions background() {
+  ExecutorOptions o;
+  o.background_scheduling = true;
+  o.background_interval = Duration{0};  // the test decides what is merged
+  return o;
+}
+
+class Background : public ScriptedExecutor {
+ public:
+  explicit Background(GatedScheduler*& gate)
+      : ScriptedExecutor(background(), scenario_map(), ExecutorParts{.scheduler = make_gate(gate)}) {}
+  SimClock& clock() { return clock_; }
+  // Delivers what the worker posts until `done`, for 60 s of wall time at most.
+  bool settle_until(const std::function<bool()>& done) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (std::chrono::steady_clock::now() < deadline) {
+      settle();
+      if (done()) return true;
+      std::this_thread::yield();
+    }
+    return false;
+  }
+  const ExecutorStats& stats() { return executor().stats(); }
+  bool planned(const std::string& id) { return executor().tasks().at(id).planned_start.has_value(); }
+
+ private:
+  static std::unique_ptr<schedule::Scheduler> make_gate(GatedScheduler*& gate) {
+    auto g = std::make_unique<GatedScheduler>();
+    gate = g.get();
+    return g;
+  }
+};
+
+TEST(BackgroundScheduling, ABurstOfSubmissionsGivesOneReschedule) {
+  GatedScheduler* gate = nullptr;
+  Background s(gate);
+  s.executor().start();
+  s.settle();
+  constexpr int kBurst = 8;
+  const char* nodes[] = {"Office", "Lab", "Kitchen", "Hall"};
+  for (int i = 0; i < kBurst; ++i)  // as the HTTP threads post them
+    s.clock().post([&s, &nodes, i] {
+      const Task t = task("T" + std::to_string(i), nodes[i % 4], s.at("08:00"), s.at("18:00"), minutes(5));
+      ASSERT_TRUE(s.executor().add_task(t, "api").ok());
+    });
+  ASSERT_TRUE(s.settle_until([&] { return s.stats().background_runs >= 1; }));
+  s.settle();
+  EXPECT_EQ(s.stats().background_runs, 1);
+  EXPECT_EQ(s.stats().background_stale, 0);
+  int planned_or_running = 0;
+  for (int i = 0; i < kBurst; ++i) {
+    const std::string id = "T" + std::to_string(i);
+    if (s.planned(id) || s.executor().current_task() == id) ++planned_or_running;
+    // One reschedule for all of them: the same merged reason in every "scheduled" event.
+    EXPECT_NE(s.reason_of(id, "scheduled").find("new tasks"), std::string::npos) << id;
+  }
+  EXPECT_EQ(planned_or_running, kBurst);
+  EXPECT_TRUE(s.robot().driving());  // the first of them is on its way
+}
+
+TEST(BackgroundScheduling, TheOldScheduleRunsMeanwhileAndAStaleAnswerIsNotApplied) {
+  GatedScheduler* gate = nullptr;
+  Background s(gate);
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.executor().start();
+  ASSERT_TRUE(s.settle_until([&] { return s.robot().driving(); }));  // A is planned and on its way
+  EXPECT_EQ(s.stats().background_runs, 1);
+
+  gate->set_open(false);
+  // Answered after its commit, not after the reschedule: the worker is stuck at the gate.
+  ASSERT_TRUE(s.executor().add_task(task("B", "Lab", s.at("08:00"), s.at("12:00"), minutes(5)), "api").ok());
+  EXPECT_TRUE(store::get_task(s.store(), "B").ok());
+  s.settle();
+  ASSERT_TRUE(gate->wait_for_a_solve());  // B's problem is in flight
+  EXPECT_FALSE(s.planned("B"));
+  // The old schedule goes on meanwhile: A drives to the Office and acts.
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
+  EXPECT_TRUE(s.robot().acting());
+  EXPECT_EQ(s.state("A"), "acting");
+  // Meanwhile C comes and B is cancelled: the answer in flight plans B, so it is stale.
+  ASSERT_TRUE(s.executor().add_task(task("C", "Kitchen", s.at("08:00"), s.at("12:00"), minutes(5)), "api").ok());
+  ASSERT_TRUE(s.executor().cancel_task("B", "not needed").ok());
+  gate->set_open(true);
+  ASSERT_TRUE(s.settle_until([&] { return s.planned("C"); }));
+  EXPECT_EQ(s.stats().background_runs, 3);  // A; B (stale); C
+  EXPECT_EQ(s.stats().background_stale, 1);
+  EXPECT_EQ(s.state("B"), "cancelled");
+  EXPECT_FALSE(s.planned("B"));
+  EXPECT_EQ(s.code_of("B", "scheduled"), "");  // the stale answer never reached the book
+  EXPECT_EQ(s.state("A"), "acting");           // and the running task was left alone
+}
+
+TEST(BackgroundScheduling, AChangeMeanwhileMakesTheAnswerStale) {
+  GatedScheduler* gate = nullptr;
+  Background s(gate);
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("10:00"), s.at("11:00"), minutes(5)), "test").ok());
+  gate->set_open(false);
+  s.executor().start();
+  s.settle();
+  ASSERT_TRUE(gate->wait_for_a_solve());
+  // A's window moves while its first problem is solved: that answer (10:00) must not be used.
+  const TimeWindow later{s.at("14:00"), s.at("15:00")};
+  ASSERT_TRUE(s.executor().update_task("A", later, std::nullopt).ok());
+  gate->set_open(true);
+  ASSERT_TRUE(s.settle_until([&] { return s.stats().background_runs >= 2 && s.planned("A"); }));
+  EXPECT_EQ(s.stats().background_stale, 1);
+  EXPECT_GE(*s.executor().tasks().at("A").planned_start, s.at("14:00"));
+}
+
+}  // namespace
+}  // namespace rondo::exec::testing
