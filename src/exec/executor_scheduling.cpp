@@ -56,8 +56,8 @@ void Executor::reschedule(std::vector<TaskId> new_ids, const std::string& why) {
   for (TaskId& back : settle_jobs()) new_ids.push_back(std::move(back));
   PendingTasks pending;
   std::vector<TaskId>& ids = pending.ids;
-  const auto add = [&ids](const TaskId& id) {
-    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+  const auto add = [this, &ids](const TaskId& id) {  // a task waiting for its door stays out
+    if (std::find(ids.begin(), ids.end(), id) == ids.end() && !blocked(id)) ids.push_back(id);
   };
   if (run_ && run_->waiting()) add(run_->id());  // waiting = still pending
   for (const TaskId& id : dispatcher_->planned) add(id);
@@ -67,7 +67,7 @@ void Executor::reschedule(std::vector<TaskId> new_ids, const std::string& why) {
   for (const TaskId& id : offered_again) add(id);
   if (ids.empty()) {
     dispatcher_->planned.clear();
-    return;
+    return after_schedule(why);
   }
   refresh_learned_durations(ids);
   const auto [here, free] = free_at();
@@ -92,6 +92,7 @@ void Executor::reschedule(std::vector<TaskId> new_ids, const std::string& why) {
     return;
   }
   apply_schedule(ids, result.schedule, why);
+  after_schedule(why);
 }
 
 void Executor::apply_schedule(const std::vector<TaskId>& ids, const schedule::Schedule& s, const std::string& why) {
