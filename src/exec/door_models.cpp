@@ -13,6 +13,12 @@ void DoorModels::observe(const std::string& door, Time when, bool open) {
 void DoorModels::refit(Time now, std::optional<Duration> window) {
   learn::EpisodeOptions options;
   options.zone = zone_;
+  // Buildings keep weekly hours (offices shut at weekends): the time-of-week term always, with a
+  // weak pull towards the time of day. Doors shut for an hour (a lunch, a meeting): one-hour bins
+  // (averaged over four shifts of their edges), not the edges' two to twenty-four hours.
+  options.weekly = learn::WeeklyTerm::kOn;
+  options.weekly_prior = 2;
+  options.day_resolutions = {24};
   for (auto& [door, s] : samples_) {
     if (window) std::erase_if(s, [&](const learn::BinarySample& x) { return x.time < now - *window; });
     if (s.empty()) {

@@ -37,6 +37,8 @@ std::optional<double> Executor::door_open_probability(const std::string& door, T
   return door_models_->probability(door, t);
 }
 
+std::vector<std::string> Executor::door_names() const { return door_models_->doors(); }
+
 void Executor::refit_doors() { door_models_->refit(clock_.now(), options_.refit_window); }
 
 // With a learned door model, a blocked task does not only wait to be passed by: it is offered to

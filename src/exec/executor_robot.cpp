@@ -144,6 +144,7 @@ void Executor::on_observation(const Observation& seen) {
                              .text = seen.text.empty() ? std::nullopt : std::optional<std::string>(seen.text)};
   if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
   if (!started_ || seen.what != "door_open") return;
+  ++assumption_stats_.door_observations;
   if (seen.value < 0.5)
     door_seen_closed(seen);  // executor_observations.cpp
   else

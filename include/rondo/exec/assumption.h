@@ -24,6 +24,7 @@ struct Assumption {
 
 // What the courier's assumptions did in a run (the report's `assumptions`).
 struct AssumptionStats {
+  int door_observations = 0;   // "door_open" observations seen
   int broken = 0;               // door observations that broke an assumption of the plan
   int reschedules = 0;          // reschedules they caused
   int opportunities_taken = 0;  // blocked tasks run when their door was seen open

@@ -140,6 +140,8 @@ class Executor final : public RobotListener {
   const AssumptionStats& assumption_stats() const { return assumption_stats_; }
   // The learned probability that `door` is open at `t` (nothing before the first refit with data).
   std::optional<double> door_open_probability(const std::string& door, Time t) const;
+  std::vector<std::string> door_names() const;  // the doors with a learned model, by name
+  const TimeZone& zone() const { return zone_; }
   bool paused() const { return in_fault_; }
 
   // RobotListener
