@@ -14,6 +14,7 @@
 #include "door_models.h"
 #include "opportunities.h"
 #include "rondo/exec/executor.h"
+#include "rondo/store/observations.h"
 #include "scheduling.h"
 #include "task_run.h"
 
@@ -40,6 +41,16 @@ std::optional<double> Executor::door_open_probability(const std::string& door, T
 std::vector<std::string> Executor::door_names() const { return door_models_->doors(); }
 
 void Executor::refit_doors() { door_models_->refit(clock_.now(), options_.refit_window); }
+
+Status Executor::restore_door_models() {
+  store::ObservationQuery q{.what = "door_open"};
+  if (options_.refit_window) q.from = clock_.now() - *options_.refit_window;
+  RONDO_ASSIGN_OR_RETURN(const std::vector<store::Observation> seen, store::find_observations(store_, q));
+  if (seen.empty()) return Status{};
+  for (const store::Observation& o : seen) door_models_->observe(o.where, o.when, o.value >= 0.5);
+  refit_doors();
+  return Status{};
+}
 
 // With a learned door model, a blocked task does not only wait to be passed by: it is offered to
 // the scheduler again at the first time its door is likely open, if that is before its latest start.
@@ -136,13 +147,24 @@ void Executor::door_seen_closed(const Observation& seen) {
       hit.emplace_back(a.task, a);
   }
   if (hit.empty()) return;
-  // A drop whose pickup waits for the door waits with it.
-  for (const TaskId& id : dispatcher_->planned) {
-    const Task& t = book_.at(id).task;
-    for (std::size_t i = 0, n = hit.size(); i < n; ++i)
-      if (std::find(t.after.begin(), t.after.end(), hit[i].first) != t.after.end() &&
-          std::none_of(hit.begin(), hit.end(), [&](const auto& h) { return h.first == id; }))
-        hit.emplace_back(id, Assumption(hit[i].second));
+  // A job's halves wait together: a drop whose pickup waits, and a pickup whose drop waits (the
+  // object is not fetched while it cannot be delivered; one already on board stays on board).
+  std::vector<TaskId> live = dispatcher_->planned;
+  if (run_ && !run_->acting_since()) live.push_back(run_->id());
+  const auto hit_has = [&](const TaskId& id) {
+    return std::any_of(hit.begin(), hit.end(), [&](const auto& h) { return h.first == id; });
+  };
+  for (std::size_t i = 0; i < hit.size(); ++i) {
+    const Assumption why = hit[i].second;
+    const Task& blocked_task = book_.at(hit[i].first).task;
+    for (const TaskId& id : live) {
+      if (hit_has(id)) continue;
+      const Task& t = book_.at(id).task;
+      const bool behind = std::find(t.after.begin(), t.after.end(), hit[i].first) != t.after.end();
+      const bool before = std::find(blocked_task.after.begin(), blocked_task.after.end(), id) !=
+                          blocked_task.after.end();
+      if (behind || before) hit.emplace_back(id, why);
+    }
   }
   ++assumption_stats_.broken;
   const std::string& node = map_.node(robot_.location()).name;
@@ -187,7 +209,8 @@ void Executor::door_seen_closed(const Observation& seen) {
   kick();
 }
 
-bool Executor::opportunity_fits(const TaskId& id, bool interrupt, std::string& why_not) {
+bool Executor::opportunity_fits(const TaskId& id, bool interrupt, const std::vector<TaskId>& with,
+                                std::string& why_not) {
   const TaskRecord& r = book_.at(id);
   const Time now = clock_.now();
   // Where and when the robot would take it: now from here (the running task goes back to the
@@ -204,8 +227,11 @@ bool Executor::opportunity_fits(const TaskId& id, bool interrupt, std::string& w
   }
   PendingTasks pending;
   if (interrupt && running_standard()) pending.ids.push_back(run_->id());
-  for (const TaskId& p : dispatcher_->planned)
-    if (p != id && std::find(pending.ids.begin(), pending.ids.end(), p) == pending.ids.end()) pending.ids.push_back(p);
+  const std::vector<TaskId>* lists[] = {&dispatcher_->planned, &with};
+  for (const std::vector<TaskId>* list : lists)
+    for (const TaskId& p : *list)
+      if (p != id && std::find(pending.ids.begin(), pending.ids.end(), p) == pending.ids.end())
+        pending.ids.push_back(p);
   if (pending.ids.empty()) return true;
   pending.old_count = pending.first_reoffered = pending.ids.size();
   std::vector<OnBoard> load = interrupt ? on_board() : on_board_when_free();
@@ -263,7 +289,7 @@ void Executor::door_seen_open(const Observation& seen) {
     std::string why_not;
     if (taken || behind) {
       back.push_back(id);
-    } else if (opportunity_fits(id, interrupt, why_not)) {
+    } else if (opportunity_fits(id, interrupt, waiting, why_not)) {
       taken = id;
     } else {
       ++assumption_stats_.opportunities_declined;

@@ -232,14 +232,16 @@ class Executor final : public RobotListener {
   void door_seen_closed(const Observation& seen);
   void door_seen_open(const Observation& seen);
   // Whether running `id` now (interrupting the running task) or right after the running task
-  // leaves every planned task its window; `why_not` says which would not fit.
-  bool opportunity_fits(const TaskId& id, bool interrupt, std::string& why_not);
+  // leaves every planned task, and the other tasks of `with` (back from waiting), its window;
+  // `why_not` says which would not fit.
+  bool opportunity_fits(const TaskId& id, bool interrupt, const std::vector<TaskId>& with, std::string& why_not);
   // `serial`: the block the timer was set for (a later block of the same task has its own).
   void blocked_until_deadline(const TaskId& id, std::uint64_t serial);
   // A blocked task's retry when its door is likely open (learned), before its latest start.
   void place_retry(const TaskId& id, const std::string& door, Time latest, std::uint64_t serial);
   void retry_blocked(const TaskId& id, std::uint64_t serial);
   void refit_doors();  // the door-open models, at the nightly refit
+  Status restore_door_models();  // learned again from the stored door observations, and fitted
 
   // daily (executor_daily.cpp)
   void create_routine_tasks(std::chrono::year_month_day day);
