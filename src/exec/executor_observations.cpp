@@ -136,13 +136,24 @@ void Executor::note_look_alikes() {
   if (!text.empty()) book_.note_schedule("look-alike", Outcome::kNone, text);
 }
 
+// A task that can wait for a door: a standard one, not final, not blocked already, and not running
+// past the point of stopping (acting inside the room, or on its way but not interruptible now).
+// An on-demand task has no window to wait in: navigation deals with its door.
+bool Executor::can_wait(const TaskId& id) const {
+  if (!book_.contains(id) || blocked(id)) return false;
+  const TaskRecord& r = book_.at(id);
+  if (is_final(r.state) || r.task.kind != TaskKind::kStandard || !r.task.window) return false;
+  if (run_ && run_->id() == id && !run_->waiting()) return !run_->acting_since() && interruptible_now();
+  return true;
+}
+
 void Executor::door_seen_closed(const Observation& seen) {
   const Time now = clock_.now();
   door_models_->observe(seen.where, seen.when, false);
   std::vector<std::pair<TaskId, Assumption>> hit;
   for (const Assumption& a : assumptions_) {
     if (a.kind != Assumption::Kind::kDoorOpen || a.what != seen.where || a.until < now) continue;
-    if (!book_.contains(a.task) || is_final(book_.at(a.task).state) || blocked(a.task)) continue;
+    if (!can_wait(a.task)) continue;
     if (std::none_of(hit.begin(), hit.end(), [&](const auto& h) { return h.first == a.task; }))
       hit.emplace_back(a.task, a);
   }
@@ -163,7 +174,7 @@ void Executor::door_seen_closed(const Observation& seen) {
       const bool behind = std::find(t.after.begin(), t.after.end(), hit[i].first) != t.after.end();
       const bool before = std::find(blocked_task.after.begin(), blocked_task.after.end(), id) !=
                           blocked_task.after.end();
-      if (behind || before) hit.emplace_back(id, why);
+      if ((behind || before) && can_wait(id)) hit.emplace_back(id, why);
     }
   }
   ++assumption_stats_.broken;
@@ -195,7 +206,7 @@ void Executor::door_seen_closed(const Observation& seen) {
       if (run_->waiting()) {
         end_wait();
         book_.transition(id, TaskState::kQueued, Outcome::kAssumptionBroken, reason);
-      } else if (!run_->acting_since() && interruptible_now()) {
+      } else {  // on its way and interruptible (can_wait)
         stopping_run = true;
         preempt_for(Outcome::kAssumptionBroken, fmt::format("its door {} was seen closed", seen.where), {});
       }

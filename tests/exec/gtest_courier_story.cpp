@@ -201,6 +201,42 @@ TEST(CourierStory, TheDoorNeverReopensTheLetterFailsAtItsDeadlineAndTheBookIsDel
   EXPECT_EQ(s.executor().assumption_stats().failed_blocked, 1);
 }
 
+TEST(CourierStory, ADoorSeenClosedFromInsideWhileActingBreaksNothing) {
+  Story s;
+  const std::vector<TaskId> book = s.say(kBook);
+  ASSERT_EQ(book.size(), 2u);
+  s.executor().start();
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("A-110-Desk"));
+  ASSERT_TRUE(s.robot().acting());
+  s.robot().observe("door_open", "A-110-door", 0);
+  s.settle();
+  EXPECT_EQ(s.code_of(book[0], "blocked"), "");
+  EXPECT_TRUE(s.robot().acting());
+  EXPECT_EQ(s.executor().assumption_stats().broken, 0);
+  EXPECT_EQ(s.executor().assumption_stats().door_observations, 1);
+}
+
+TEST(CourierStory, AnOnDemandTaskIsNotBlockedByItsDoor) {
+  Story s;
+  s.executor().start();
+  s.settle();
+  Task come;
+  come.id = "come";
+  come.activity = "come to A-120";
+  come.kind = TaskKind::kOnDemand;
+  come.duration = minutes(2);
+  come.start_node = "A-120";
+  come.actions = {Action{.name = "visit", .args = {}}};
+  ASSERT_TRUE(s.executor().add_task(come, "test").ok());
+  s.settle();
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Hall-A-117"));
+  s.robot().observe("door_open", "A-120-door", 0);
+  s.settle();
+  EXPECT_EQ(s.code_of("come", "blocked"), "");
+  EXPECT_EQ(s.executor().current_task(), "come");
+  EXPECT_TRUE(s.robot().driving());
+}
+
 TEST(CourierStory, TwoRedLettersAreNeverOnBoardTogetherAndTheScheduleSaysWhy) {
   Story s;
   const std::vector<TaskId> first = s.say(kLetter);

@@ -229,6 +229,7 @@ class Executor final : public RobotListener {
   void after_schedule(const std::string& why);  // records what the new plan assumes
   void note_look_alikes();                      // why look-alike jobs do not interleave
   bool blocked(const TaskId& id) const;         // waits for its door: kept out of the schedule
+  bool can_wait(const TaskId& id) const;        // may be blocked by a door seen closed
   void door_seen_closed(const Observation& seen);
   void door_seen_open(const Observation& seen);
   // Whether running `id` now (interrupting the running task) or right after the running task
