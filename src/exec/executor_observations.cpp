@@ -8,8 +8,10 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 
 #include "assumptions.h"
+#include "deliveries.h"
 #include "dispatcher.h"
 #include "door_models.h"
 #include "opportunities.h"
@@ -22,6 +24,15 @@ namespace rondo::exec {
 namespace {
 
 constexpr double kLikelyOpen = 0.5;  // a retry goes when the door is at least this likely open
+
+// Two tasks that stand or fall together: the halves of one delivery job, or one after the other.
+bool linked(const Task& a, const Task& b) {
+  if (a.delivery && b.delivery && a.delivery->job == b.delivery->job) return true;
+  const auto after = [](const Task& x, const Task& y) {
+    return std::find(x.after.begin(), x.after.end(), y.id) != x.after.end();
+  };
+  return after(a, b) || after(b, a);
+}
 
 std::string joined(const std::vector<TaskId>& ids) {
   if (ids.empty()) return "nothing";
@@ -70,9 +81,13 @@ void Executor::retry_blocked(const TaskId& id, std::uint64_t serial) {
   const Blocked* b = opportunities_->find(id);
   if (b == nullptr || b->serial != serial || book_.at(id).state != TaskState::kQueued) return;
   const std::string door = b->door;
-  opportunities_->unblock(id);
+  // The tasks waiting with it (the other half of its job) go back with it.
+  std::vector<TaskId> ids{id};
+  for (const TaskId& other : opportunities_->waiting_for(door))
+    if (other != id && linked(book_.at(other).task, book_.at(id).task)) ids.push_back(other);
+  for (const TaskId& t : ids) opportunities_->unblock(t);
   ++assumption_stats_.retries;
-  reschedule({id}, fmt::format("retry of {}: {} likely open", id, door));
+  reschedule(ids, fmt::format("retry of {}: {} likely open", joined(ids), door));
   kick();
 }
 
@@ -171,10 +186,7 @@ void Executor::door_seen_closed(const Observation& seen) {
     for (const TaskId& id : live) {
       if (hit_has(id)) continue;
       const Task& t = book_.at(id).task;
-      const bool behind = std::find(t.after.begin(), t.after.end(), hit[i].first) != t.after.end();
-      const bool before = std::find(blocked_task.after.begin(), blocked_task.after.end(), id) !=
-                          blocked_task.after.end();
-      if ((behind || before) && can_wait(id)) hit.emplace_back(id, why);
+      if (linked(t, blocked_task) && can_wait(id)) hit.emplace_back(id, why);
     }
   }
   ++assumption_stats_.broken;
@@ -186,6 +198,7 @@ void Executor::door_seen_closed(const Observation& seen) {
       plan_before_break_.push_back(id);
   std::vector<TaskId> ids;
   bool stopping_run = false;
+  std::optional<std::string> running_reason;  // the running task is one of them
   for (const auto& [id, a] : hit) {
     ids.push_back(id);
     TaskRecord& r = book_.at(id);
@@ -202,19 +215,22 @@ void Executor::door_seen_closed(const Observation& seen) {
     book_.note(id, "blocked", Outcome::kAssumptionBroken, reason);
     clock_.schedule_at(std::max(now, latest) + milliseconds(1), [this, id, serial] { blocked_until_deadline(id, serial); });
     place_retry(id, seen.where, latest, serial);
-    if (run_ && run_->id() == id) {
-      if (run_->waiting()) {
-        end_wait();
-        book_.transition(id, TaskState::kQueued, Outcome::kAssumptionBroken, reason);
-      } else {  // on its way and interruptible (can_wait)
-        stopping_run = true;
-        preempt_for(Outcome::kAssumptionBroken, fmt::format("its door {} was seen closed", seen.where), {});
-      }
-    }
+    if (run_ && run_->id() == id) running_reason = reason;
   }
   broken_ = fmt::format("assumption broken: {} seen closed from {} at {}: {} {}", seen.where, node,
                         zone_.format_clock(now), joined(ids),
                         ids.size() == 1 ? "waits as an opportunity" : "wait as opportunities");
+  // Every task of the break is blocked before the running one stops (its end may reschedule at once).
+  if (running_reason) {
+    if (run_->waiting()) {
+      const TaskId id = run_->id();
+      end_wait();
+      book_.transition(id, TaskState::kQueued, Outcome::kAssumptionBroken, *running_reason);
+    } else {  // on its way and interruptible (can_wait)
+      stopping_run = true;
+      preempt_for(Outcome::kAssumptionBroken, fmt::format("its door {} was seen closed", seen.where), {});
+    }
+  }
   if (stopping_run) return;  // the task's end reschedules the rest (without it)
   reschedule({}, "door " + seen.where + " seen closed");
   kick();
@@ -295,8 +311,11 @@ void Executor::door_seen_open(const Observation& seen) {
   for (const TaskId& id : waiting) {
     opportunities_->unblock(id);
     const Task& t = book_.at(id).task;
-    const bool behind = std::any_of(t.after.begin(), t.after.end(),
-                                    [&](const TaskId& a) { return !is_final(book_.at(a).state); });
+    bool behind = std::any_of(t.after.begin(), t.after.end(),
+                              [&](const TaskId& a) { return !is_final(book_.at(a).state); });
+    if (t.delivery && t.delivery->role == DeliveryRole::kDrop)
+      if (const Deliveries::Job* job = deliveries_->job(t.delivery->job); job && job->pickup)
+        behind = behind || !is_final(book_.at(*job->pickup).state);
     std::string why_not;
     if (taken || behind) {
       back.push_back(id);
