@@ -237,6 +237,41 @@ TEST(CourierStory, AnOnDemandTaskIsNotBlockedByItsDoor) {
   EXPECT_TRUE(s.robot().driving());
 }
 
+// A job as the requests make it: the halves linked by their job only (no `after`). Its pickup's
+// door seen closed blocks the drop too (a drop is never planned without its pickup), and the door
+// seen open brings both back: the pickup as the opportunity, then the drop.
+TEST(CourierStory, BothHalvesOfAJobWaitForThePickupsDoor) {
+  Story s;
+  std::vector<Task> job;
+  for (const auto& [role, node] : {std::pair{DeliveryRole::kPickup, "A-120-Desk"}, {DeliveryRole::kDrop, "A-110-Desk"}}) {
+    Task t;
+    t.id = role == DeliveryRole::kPickup ? "parcel-pickup" : "parcel-drop";
+    t.activity = t.id;
+    t.window = TimeWindow{s.at("08:00"), s.at("11:00")};
+    t.duration = minutes(1);
+    t.start_node = node;
+    t.actions = {Action{.name = role == DeliveryRole::kPickup ? "load" : "unload", .args = {}}};
+    t.delivery = Delivery{.job = "parcel", .role = role, .object = "parcel", .appearance = "parcel", .load = 1};
+    job.push_back(t);
+  }
+  ASSERT_TRUE(s.executor().add_tasks(job, "requests").ok());
+  s.executor().start();
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Hall-A-120"));
+  s.robot().observe("door_open", "A-120-door", 0);
+  s.settle();
+  EXPECT_EQ(s.code_of("parcel-pickup", "blocked"), "assumption broken");
+  EXPECT_EQ(s.code_of("parcel-drop", "blocked"), "assumption broken");
+  for (const store::Event& e : s.all_events()) EXPECT_NE(e.event, "not rescheduled") << e.reason;
+  EXPECT_NE(s.executor().current_task(), std::optional<TaskId>("parcel-drop"));
+  s.robot().observe("door_open", "A-120-door", 1);
+  s.settle();
+  EXPECT_EQ(s.code_of("parcel-pickup", "opportunity"), "opportunity taken");
+  ASSERT_NO_FATAL_FAILURE(s.serve("A-120-Desk"));
+  ASSERT_NO_FATAL_FAILURE(s.serve("A-110-Desk"));
+  EXPECT_EQ(s.state("parcel-pickup"), "succeeded");
+  EXPECT_EQ(s.state("parcel-drop"), "succeeded");
+}
+
 TEST(CourierStory, TwoRedLettersAreNeverOnBoardTogetherAndTheScheduleSaysWhy) {
   Story s;
   const std::vector<TaskId> first = s.say(kLetter);
