@@ -94,6 +94,14 @@ void run_run(const RunArgs& args, CommandContext& ctx) {
   ctx.out << fmt::format("events     {} preemptions (back to the queue), {} drops for now, {} re-offers\n",
                          count(r["events"]["preempted"]), count(r["events"]["dropped_for_now"]),
                          count(r["events"]["re_offered"]));
+  if (r.contains("assumptions")) {
+    const Json& a = r["assumptions"];
+    ctx.out << fmt::format("doors      {} seen, {} assumptions broken ({} reschedules), {} opportunities taken, "
+                           "{} retries, {} failed still blocked\n",
+                           a["door_observations"].get<int>(), a["broken"].get<int>(), a["reschedules"].get<int>(),
+                           a["opportunities_taken"].get<int>(), a["retries"].get<int>(),
+                           a["failed_blocked"].get<int>());
+  }
   const Json& n = r["navigation"];
   ctx.out << fmt::format("navigation {} of {} edge attempts succeeded, {:.0f} m driven\n",
                          n["successes"].get<int>(), n["attempts"].get<int>(), n["distance_m"].get<double>());

@@ -74,6 +74,33 @@ std::optional<Json> delivery_summary(const exec::Executor& executor) {
   return j;
 }
 
+// What the door observations did (docs/executor.md, "Assumptions" and "Opportunities"); nothing
+// when the robot saw no door (no door sensor), so such reports stay as they were.
+std::optional<Json> assumption_summary(const exec::Executor& executor, Time end) {
+  const exec::AssumptionStats& a = executor.assumption_stats();
+  if (a.door_observations == 0) return std::nullopt;
+  Json doors = Json::object();
+  // The learned chance that each door the schedules rested on is open, at a few hours of the last
+  // day (local time), against the rhythm of the world file.
+  const TimeZone& zone = executor.zone();
+  const auto day = zone.local_date(end - seconds(1));
+  for (const std::string& door : executor.door_names()) {
+    Json by_hour = Json::object();
+    for (int h : {8, 10, 12, 13, 16, 20})
+      if (const auto p = executor.door_open_probability(door, zone.at(day, hours(h))))
+        by_hour[fmt::format("{:02}:00", h)] = std::round(*p * 1000) / 1000;
+    if (!by_hour.empty()) doors[door] = by_hour;
+  }
+  return Json{{"door_observations", a.door_observations},
+              {"broken", a.broken},
+              {"reschedules", a.reschedules},
+              {"opportunities_taken", a.opportunities_taken},
+              {"opportunities_declined", a.opportunities_declined},
+              {"retries", a.retries},
+              {"failed_blocked", a.failed_blocked},
+              {"door_open_learned", doors}};
+}
+
 // What happened on the way that is not a final outcome: preemptions (the task went back to the
 // queue), drops for now and re-offers, cancels that waited, robot faults; each by outcome code.
 Json event_summary(const exec::Executor& executor) {
@@ -141,6 +168,7 @@ Json run_report(const exec::Executor& executor, const RunFigures& figures) {
   j["tasks"] = task_summary(executor);
   j["events"] = event_summary(executor);
   if (std::optional<Json> d = delivery_summary(executor)) j["deliveries"] = *d;
+  if (std::optional<Json> a = assumption_summary(executor, figures.to)) j["assumptions"] = *a;
   const std::vector<exec::LearnedActionTime> learned = executor.loading_times();
   if (!learned.empty()) {
     Json times = Json::array();

@@ -6,9 +6,12 @@
 #include <algorithm>
 #include <utility>
 
+#include "assumptions.h"
 #include "deliveries.h"
 #include "dispatcher.h"
+#include "door_models.h"
 #include "loading_times.h"
+#include "opportunities.h"
 #include "rondo/schedule/default_scheduler.h"
 #include "task_run.h"
 
@@ -53,7 +56,10 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
       loading_(std::make_unique<LoadingTimes>()),
       // With the online model off the executor plans with the snapshot itself: no second cache.
       steps_{clock_,    robot_, map_,   book_,        *travel_, options_.online_model ? *offline_travel_ : *travel_,
-             *planner_, options_, zone_, stats_, navigations_, in_fault_} {
+             *planner_, options_, zone_, stats_, navigations_, in_fault_},
+      assumption_map_(std::make_unique<AssumptionMap>(map_, options_.dock)),
+      opportunities_(std::make_unique<Opportunities>()),
+      door_models_(std::make_unique<DoorModels>(zone_)) {
   robot_.set_listener(this);
 }
 

@@ -124,7 +124,8 @@ void Executor::background_answered(ScheduleAnswer answer) {
   for (const TaskId& id : f.ids) {
     if (!valid) break;
     const TaskRecord* r = book_.contains(id) ? &book_.at(id) : nullptr;
-    valid = r && !is_final(r->state) && (current_task() != id || waiting);
+    // A task blocked by a door seen closed meanwhile is no longer the scheduler's to place.
+    valid = r && !is_final(r->state) && !blocked(id) && (current_task() != id || waiting);
   }
   if (!valid) {
     ++stats_.background_stale;

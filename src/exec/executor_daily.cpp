@@ -48,6 +48,7 @@ void Executor::schedule_refit() {
 }
 
 void Executor::refit() {
+  refit_doors();  // executor_observations.cpp
   // A bounded window: the same cost every night however long the robot has lived.
   store::TraversalQuery window;
   if (options_.refit_window) window.from = clock_.now() - *options_.refit_window;

@@ -21,13 +21,19 @@ std::vector<OnBoard> Executor::on_board() const { return deliveries_->on_board(b
 
 std::vector<OnBoard> Executor::on_board_when_free() const {
   std::vector<OnBoard> items = on_board();
-  if (!run_ || run_->waiting() || !run_->task().delivery) return items;
-  const Delivery& d = *run_->task().delivery;
-  if (d.role == DeliveryRole::kPickup)
-    items.push_back({.job = d.job, .object = d.object, .appearance = d.appearance, .load = d.load,
-                     .picked_up_by = run_->id()});
-  else
-    std::erase_if(items, [&](const OnBoard& o) { return o.job == d.job; });
+  // The running task, then the on-demand queue (an opportunity taken waits there): free_at() runs
+  // them first.
+  const auto after = [&items](const Task& t) {
+    if (!t.delivery) return;
+    const Delivery& d = *t.delivery;
+    if (d.role == DeliveryRole::kPickup)
+      items.push_back({.job = d.job, .object = d.object, .appearance = d.appearance, .load = d.load,
+                       .picked_up_by = t.id});
+    else
+      std::erase_if(items, [&](const OnBoard& o) { return o.job == d.job; });
+  };
+  if (run_ && !run_->waiting()) after(run_->task());
+  for (const TaskId& id : dispatcher_->on_demand) after(book_.at(id).task);
   return items;
 }
 

@@ -74,6 +74,7 @@ Status Executor::restore() {
     book_.restore(std::move(r));
   }
   RONDO_RETURN_IF_ERROR(restore_loading_times());
+  RONDO_RETURN_IF_ERROR(restore_door_models());  // executor_observations.cpp
 
   const Time now = clock_.now();
   for (const TaskId& id : book_.order()) {

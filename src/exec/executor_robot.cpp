@@ -143,6 +143,12 @@ void Executor::on_observation(const Observation& seen) {
   const store::Observation o{.what = seen.what, .where = seen.where, .when = seen.when, .value = seen.value,
                              .text = seen.text.empty() ? std::nullopt : std::optional<std::string>(seen.text)};
   if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
+  if (!started_ || seen.what != "door_open") return;
+  ++assumption_stats_.door_observations;
+  if (seen.value < 0.5)
+    door_seen_closed(seen);  // executor_observations.cpp
+  else
+    door_seen_open(seen);
 }
 
 void Executor::on_fault(const RobotFault& fault) {

@@ -65,8 +65,8 @@ std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_
   for (TaskId& back : settle_jobs()) new_ids.push_back(std::move(back));
   PendingTasks pending;
   std::vector<TaskId>& ids = pending.ids;
-  const auto add = [&ids](const TaskId& id) {
-    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+  const auto add = [this, &ids](const TaskId& id) {  // a task waiting for its door stays out
+    if (std::find(ids.begin(), ids.end(), id) == ids.end() && !blocked(id)) ids.push_back(id);
   };
   if (run_ && run_->waiting()) add(run_->id());  // waiting = still pending
   for (const TaskId& id : dispatcher_->planned) add(id);
@@ -76,6 +76,7 @@ std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_
   for (const TaskId& id : offered_again) add(id);
   if (ids.empty()) {
     dispatcher_->planned.clear();
+    after_schedule(why);
     return std::nullopt;
   }
   refresh_learned_durations(ids);
@@ -105,6 +106,7 @@ void Executor::finish_schedule(const std::vector<TaskId>& ids, std::vector<TaskI
     return;
   }
   apply_schedule(ids, result.schedule, why);
+  after_schedule(why);
 }
 
 void Executor::apply_schedule(const std::vector<TaskId>& ids, const schedule::Schedule& s, const std::string& why) {

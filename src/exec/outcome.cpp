@@ -6,7 +6,7 @@
 namespace rondo::exec {
 namespace {
 
-constexpr std::array<std::pair<Outcome, std::string_view>, 33> kNames{{
+constexpr std::array<std::pair<Outcome, std::string_view>, 37> kNames{{
     {Outcome::kNone, ""},
     {Outcome::kAdded, "added"},
     {Outcome::kScheduled, "scheduled"},
@@ -38,6 +38,10 @@ constexpr std::array<std::pair<Outcome, std::string_view>, 33> kNames{{
     {Outcome::kPickupFailed, "pickup failed"},
     {Outcome::kReturnPlanned, "return planned"},
     {Outcome::kNoLongerValid, "no longer valid"},
+    {Outcome::kAssumptionBroken, "assumption broken"},
+    {Outcome::kOpportunity, "opportunity"},
+    {Outcome::kOpportunityTaken, "opportunity taken"},
+    {Outcome::kOpportunityDeclined, "opportunity declined"},
     {Outcome::kObservation, "observation"},
     {Outcome::kBattery, "battery"},
 }};

@@ -41,6 +41,13 @@ TEST(OfficeRun, LoadingTimesLearnedOverAFortnightAreCloserToThePeopleThanTheDecl
   ASSERT_GE(places, 5);
   EXPECT_LT(learned_error / places, 0.6 * declared_error / places)
       << "mean relative error learned " << learned_error / places << ", declared " << declared_error / places;
+  // The robot sees the doors as it passes them, and learns when they are open.
+  ASSERT_TRUE(report.contains("assumptions"));
+  const Json& a = report["assumptions"];
+  EXPECT_GT(a["door_observations"].get<int>(), 100);
+  EXPECT_GE(a["broken"].get<int>(), 1);
+  EXPECT_EQ(a["reschedules"].get<int>(), a["broken"].get<int>());
+  EXPECT_TRUE(a["door_open_learned"].contains("A-120-door"));
 }
 
 }  // namespace

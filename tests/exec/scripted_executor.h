@@ -15,16 +15,30 @@ namespace rondo::exec::testing {
 // The scenario map with the executor on a ScriptedRobot at the dock, at 08:00 on a Monday.
 class ScriptedExecutor {
  public:
-  explicit ScriptedExecutor(ExecutorOptions options = {}, map::TopoMap map = scenario_map(), ExecutorParts parts = {})
+  // `dock`: the map's dock node (the office map's is "ChargingPoint").
+  explicit ScriptedExecutor(ExecutorOptions options = {}, map::TopoMap map = scenario_map(), ExecutorParts parts = {},
+                            const std::string& dock = "Dock")
       : map_(std::move(map)),
         zone_(TimeZone::named("Europe/London").value()),
         clock_(zone_.parse_time("2026-11-23T08:00").value()),
         db_(fresh_db_path()),
         store_(store::Store::open(db_, {.sync_commits = false}).value()),
-        robot_(clock_, map_, *map_.find_node("Dock")) {
-    options.dock = *map_.find_node("Dock");
+        robot_(clock_, map_, *map_.find_node(dock)) {
+    options.dock = *map_.find_node(dock);
     options.refit_at.reset();
+    options_ = options;
     executor_ = std::make_unique<Executor>(clock_, robot_, map_, store_, zone_, options, std::move(parts));
+  }
+  // The executive is killed and started again on the same store (Executor::restore): the robot
+  // stops what the dead executive asked of it and stays where it is.
+  void kill_and_restart() {
+    executor_.reset();
+    if (robot_.driving()) robot_.finish_edge(EdgeOutcome::kCancelled, seconds(1));
+    if (robot_.acting()) robot_.finish_action(ActionOutcome::kCancelled, "the executive died");
+    settle();
+    executor_ = std::make_unique<Executor>(clock_, robot_, map_, store_, zone_, options_);
+    ASSERT_TRUE(executor_->restore().ok());
+    executor_->start();
   }
   ~ScriptedExecutor() {
     executor_.reset();
@@ -63,6 +77,7 @@ class ScriptedExecutor {
   std::filesystem::path db_;
   store::Store store_;
   ScriptedRobot robot_;
+  ExecutorOptions options_;
   std::unique_ptr<Executor> executor_;
 };
 

@@ -92,6 +92,13 @@ class ScriptedRobot final : public Robot {
       if (listener_) listener_->on_action_finished(r);
     });
   }
+  // The robot sees something (a door: what "door_open", where the door, value 1 open / 0 closed).
+  void observe(std::string what, std::string where, double value) {
+    const Observation o{.what = std::move(what), .where = std::move(where), .when = clock_.now(), .value = value};
+    clock_.schedule_at(clock_.now(), [this, o] {
+      if (listener_) listener_->on_observation(o);
+    });
+  }
   void set_interruptible(bool interruptible) {
     clock_.schedule_at(clock_.now(), [this, interruptible] {
       if (listener_) listener_->on_interruptible_changed(interruptible);

@@ -49,6 +49,7 @@
 #include "rondo/core/routine.h"
 #include "rondo/core/task.h"
 #include "rondo/core/timezone.h"
+#include "rondo/exec/assumption.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor_types.h"
 #include "rondo/exec/map_travel.h"
@@ -67,10 +68,13 @@ namespace rondo::exec {
 
 struct ScheduleAnswer;
 struct ScheduleCall;
+class AssumptionMap;
 class Deliveries;
+class DoorModels;
 class LoadingTimes;
 class Dispatcher;
 class NavigateStep;
+class Opportunities;
 class TaskRun;
 
 // What the executor plans with, when the caller wants to choose (as rmf_task::TaskPlanner takes
@@ -133,6 +137,14 @@ class Executor final : public RobotListener {
   // The objects on board now (delivery jobs picked up and not yet dropped).
   std::vector<OnBoard> on_board() const;
   std::optional<TaskId> current_task() const;
+  // What the current schedule assumes (doors open, edges passable; docs/executor.md), and what
+  // broken assumptions and opportunities did so far.
+  const std::vector<Assumption>& assumptions() const { return assumptions_; }
+  const AssumptionStats& assumption_stats() const { return assumption_stats_; }
+  // The learned probability that `door` is open at `t` (nothing before the first refit with data).
+  std::optional<double> door_open_probability(const std::string& door, Time t) const;
+  std::vector<std::string> door_names() const;  // the doors with a learned model, by name
+  const TimeZone& zone() const { return zone_; }
   bool paused() const { return in_fault_; }
 
   // RobotListener
@@ -239,6 +251,25 @@ class Executor final : public RobotListener {
   // A cancelled delivery task whose object is not on board takes the rest of its job with it.
   void cancel_job_of(const TaskId& id, const std::string& why);
 
+  // assumptions and opportunities (executor_observations.cpp)
+  void after_schedule(const std::string& why);  // records what the new plan assumes
+  void note_look_alikes();                      // why look-alike jobs do not interleave
+  bool blocked(const TaskId& id) const;         // waits for its door: kept out of the schedule
+  bool can_wait(const TaskId& id) const;        // may be blocked by a door seen closed
+  void door_seen_closed(const Observation& seen);
+  void door_seen_open(const Observation& seen);
+  // Whether running `id` now (interrupting the running task) or right after the running task
+  // leaves every planned task, and the other tasks of `with` (back from waiting), its window;
+  // `why_not` says which would not fit.
+  bool opportunity_fits(const TaskId& id, bool interrupt, const std::vector<TaskId>& with, std::string& why_not);
+  // `serial`: the block the timer was set for (a later block of the same task has its own).
+  void blocked_until_deadline(const TaskId& id, std::uint64_t serial);
+  // A blocked task's retry when its door is likely open (learned), before its latest start.
+  void place_retry(const TaskId& id, const std::string& door, Time latest, std::uint64_t serial);
+  void retry_blocked(const TaskId& id, std::uint64_t serial);
+  void refit_doors();  // the door-open models, at the nightly refit
+  Status restore_door_models();  // learned again from the stored door observations, and fitted
+
   // daily (executor_daily.cpp)
   void create_routine_tasks(std::chrono::year_month_day day);
   void schedule_midnight();
@@ -281,7 +312,16 @@ class Executor final : public RobotListener {
   std::optional<RobotFault> fault_;
   std::optional<Time> fault_since_;
   bool started_ = false;
-  bool out_of_service_ = false;                                // set_out_of_service(): next() starts nothing
+  bool out_of_service_ = false;  // set_out_of_service(): next() starts nothing
+  // assumptions and opportunities
+  std::unique_ptr<AssumptionMap> assumption_map_;
+  std::vector<Assumption> assumptions_;
+  std::unique_ptr<Opportunities> opportunities_;
+  AssumptionStats assumption_stats_;
+  std::optional<std::string> broken_;   // the next schedule's event says what the break changed
+  std::vector<TaskId> plan_before_break_;
+  std::string look_alikes_;  // the last look-alike note
+  std::unique_ptr<DoorModels> door_models_;
   std::unique_ptr<Background, BackgroundDeleter> background_;  // last: its worker goes first
 };
 

@@ -44,6 +44,10 @@ enum class Outcome {
   kPickupFailed,              // a drop that cannot happen: its pickup ended without the object
   kReturnPlanned,             // a drop that did not happen: a new task takes the object back
   kNoLongerValid,             // a stored task that the changed deployment cannot run (restore)
+  kAssumptionBroken,          // an observation broke what the schedule assumed (a door seen closed)
+  kOpportunity,               // blocked: waits for its enabling condition while its deadline allows
+  kOpportunityTaken,          // its condition was seen: it runs now (the running task interrupted)
+  kOpportunityDeclined,       // its condition was seen, but taking it would break another deadline
   kObservation,               // the robot saw something that matters
   kBattery,                   // a battery reading
 };
