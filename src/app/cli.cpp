@@ -93,6 +93,7 @@ int run_commands(const std::vector<std::string>& args, std::ostream& out, std::o
   add_plan_commands(app, ctx);
   add_run_commands(app, ctx);
   add_serve_commands(app, ctx);
+  add_backup_commands(app, ctx);
 
   // CLI11 wants argv with the program name first and parses from the back.
   std::vector<std::string> reversed(args.rbegin(), args.rend());

@@ -1,12 +1,15 @@
 // `rondo log ...`: the traversal log in the SQLite store (import robot logs, summarise them).
 #include <fmt/format.h>
 
+#include <charconv>
 #include <memory>
 #include <string>
 
 #include "commands.h"
 #include "rondo/core/document.h"
 #include "rondo/core/utf8.h"
+#include "rondo/exec/executor_types.h"
+#include "rondo/store/backup.h"
 #include "rondo/store/store.h"
 #include "rondo/store/traversal_stats.h"
 #include "rondo/store/witham_import.h"
@@ -28,6 +31,43 @@ struct StatsArgs {
 struct MigrateArgs {
   std::string db;
 };
+
+struct ArchiveArgs {
+  std::string db;
+  std::string older_than;
+  std::string out;
+};
+
+// "90d", "2160h", "1h30m": days, or what parse_duration reads.
+Result<Duration> parse_age(const std::string& text) {
+  if (!text.empty() && text.back() == 'd') {
+    int n = -1;
+    const auto [end, err] = std::from_chars(text.data(), text.data() + text.size() - 1, n);
+    if (err == std::errc{} && end == text.data() + text.size() - 1 && n >= 0) return Duration{hours(24 * n)};
+    return Error::invalid(fmt::format("--older-than: '{}' is not a number of days", text));
+  }
+  auto d = parse_duration(text);
+  if (!d) return Error::invalid(fmt::format("--older-than: {}", d.error().message));
+  return *d;
+}
+
+void run_archive(const ArchiveArgs& args, CommandContext& ctx) {
+  auto age = parse_age(args.older_than);
+  if (!age) return (void)fail(ctx, age.error());
+  auto db = store::Store::open(args.db, {.mode = store::OpenMode::kMustExist});
+  if (!db) return (void)fail(ctx, db.error());
+  // The executor's learning window: the nightly refit reads the traversals of its last 14 days.
+  const Duration window = exec::ExecutorOptions{}.refit_window.value_or(Duration{0});
+  auto report = store::archive_old_records(*db, *age, window, args.out);
+  if (!report) return (void)fail(ctx, report.error());
+  if (!report->cut) {
+    ctx.out << fmt::format("{}: the store is empty; nothing archived\n", printable_path(args.db));
+    return;
+  }
+  ctx.out << fmt::format("{}: before {} (latest record {}): {} finished tasks, {} events and {} traversals moved to {}\n",
+                         printable_path(args.db), format_time(*report->cut), format_time(*report->latest),
+                         report->tasks, report->events, report->traversals, printable_path(args.out));
+}
 
 void run_import(const ImportArgs& args, CommandContext& ctx) {
   auto db = store::Store::open(args.db, {.mode = store::OpenMode::kCreateIfMissing});
@@ -161,6 +201,16 @@ void add_log_commands(CLI::App& root, CommandContext& ctx) {
       "migrate", "Bring a database to this rondo's schema (the read-only commands refuse an older one)");
   migrate->add_option("--db", migrate_args->db, "The SQLite database file (must exist)")->required();
   migrate->callback([migrate_args, &ctx] { run_migrate(*migrate_args, ctx); });
+
+  auto archive_args = std::make_shared<ArchiveArgs>();
+  CLI::App* archive = log->add_subcommand(
+      "archive", "Move old events, traversals and finished tasks to an archive database (retention)");
+  archive->add_option("--db", archive_args->db, "The SQLite database file (must exist; may be in use)")->required();
+  archive->add_option("--older-than", archive_args->older_than,
+                      "Age counted back from the store's latest record: 90d, 2160h (at least the 14-day learning window)")
+      ->required();
+  archive->add_option("--out", archive_args->out, "The archive database (created, or added to)")->required();
+  archive->callback([archive_args, &ctx] { run_archive(*archive_args, ctx); });
 }
 
 }  // namespace rondo::app

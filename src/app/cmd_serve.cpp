@@ -18,6 +18,7 @@ struct ServeArgs {
   std::string data = "rondo-data";
   std::string token_file;
   double speed = 1.0;
+  int streams = 64;
 };
 
 // "HOST:PORT", "[::1]:PORT"
@@ -48,7 +49,8 @@ void run_serve(const ServeArgs& args, CommandContext& ctx) {
       .port = listen->second,
       .data = args.data,
       .token_file = args.token_file.empty() ? std::nullopt : std::optional<std::filesystem::path>(args.token_file),
-      .speed = args.speed};
+      .speed = args.speed,
+      .max_streams = args.streams};
   if (Status ok = serve_deployment(request, ctx.err); !ok) return (void)fail(ctx, ok.error());
 }
 
@@ -63,6 +65,8 @@ void add_serve_commands(CLI::App& root, CommandContext& ctx) {
   serve->add_option("--token-file", args->token_file,
                     "A file (mode 600) holding the token every write must present as 'Authorization: Bearer'");
   serve->add_option("--speed", args->speed, "Run the clock X times faster than real time (default 1)");
+  serve->add_option("--streams", args->streams,
+                    "At most N event streams (/api/v1/events) open at once (default 64; more get 503)");
   serve->callback([args, &ctx] { run_serve(*args, ctx); });
 }
 

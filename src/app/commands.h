@@ -35,5 +35,6 @@ void add_learn_commands(CLI::App& root, CommandContext& ctx);
 void add_plan_commands(CLI::App& root, CommandContext& ctx);
 void add_run_commands(CLI::App& root, CommandContext& ctx);
 void add_serve_commands(CLI::App& root, CommandContext& ctx);
+void add_backup_commands(CLI::App& root, CommandContext& ctx);
 
 }  // namespace rondo::app

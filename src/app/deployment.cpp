@@ -142,8 +142,17 @@ Result<Deployment> load_deployment(const std::filesystem::path& file) {
   return decode(doc.root(), file);
 }
 
+// Installed (cmake/RondoInstall.cmake): PREFIX/bin/rondo finds PREFIX/share/rondo/examples; a
+// binary in its build folder finds the source tree's examples.
 std::filesystem::path default_deployment() {
-  return std::filesystem::path(RONDO_SOURCE_DIR) / "examples" / "g4s" / "deployment.yaml";
+  const std::filesystem::path in_tree = std::filesystem::path("examples") / "g4s" / "deployment.yaml";
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const std::filesystem::path installed = self.parent_path().parent_path() / "share" / "rondo" / in_tree;
+    if (std::filesystem::is_regular_file(installed, ec)) return installed;
+  }
+  return std::filesystem::path(RONDO_SOURCE_DIR) / in_tree;
 }
 
 }  // namespace rondo::app

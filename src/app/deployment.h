@@ -54,7 +54,8 @@ struct Deployment {
 // file:line and the field.
 Result<Deployment> load_deployment(const std::filesystem::path& file);
 
-// The bundled example, examples/g4s/deployment.yaml, found next to the binary's source tree.
+// The bundled example, examples/g4s/deployment.yaml: installed beside the binary
+// (PREFIX/share/rondo/examples), else in the source tree the binary was built from.
 std::filesystem::path default_deployment();
 
 }  // namespace rondo::app

@@ -52,6 +52,8 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   const Deployment& d = request.deployment;
   if (!(request.speed > 0) || request.speed > 1e6)
     return Error::invalid(fmt::format("--speed: {} is not between 0 (excluded) and 1000000", request.speed));
+  if (request.max_streams < 1 || request.max_streams > 4096)
+    return Error::invalid(fmt::format("--streams: {} is not from 1 to 4096", request.max_streams));
   std::optional<std::string> token;
   if (request.token_file) {
     RONDO_ASSIGN_OR_RETURN(std::string t, service::load_token_file(*request.token_file));
@@ -120,7 +122,8 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
                           .map = parts.map,
                           .zone = d.zone,
                           .deployment = d.name},
-                         {.host = request.host, .port = request.port, .token = token});
+                         {.host = request.host, .port = request.port, .token = token,
+                          .threads = 2 * request.max_streams});
   RONDO_ASSIGN_OR_RETURN(const int port, server.bind());
   log << fmt::format("rondo serve: {} on http://{}:{}/ (speed {}, data {}, {})\n", d.name, request.host, port,
                      request.speed, request.data.string(), token ? "writes need the token" : "writes open on loopback")

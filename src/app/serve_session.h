@@ -28,6 +28,7 @@ struct ServeRequest {
   std::filesystem::path data = "rondo-data";
   std::optional<std::filesystem::path> token_file;
   double speed = 1.0;
+  int max_streams = 64;  // event streams open at once; each holds an HTTP thread, as many again answer
 };
 
 // kInvalidInput (exit 2) for a bad deployment, token file, or a non-loopback host without a token;

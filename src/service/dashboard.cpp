@@ -28,6 +28,7 @@ void add_dashboard_routes(std::vector<Route>& routes) {
   routes.push_back({"GET", "/", false, file_handler("index.html")});
   routes.push_back({"GET", "/dashboard.js", false, file_handler("dashboard.js")});
   routes.push_back({"GET", "/dashboard.css", false, file_handler("dashboard.css")});
+  routes.push_back({"GET", "/favicon.svg", false, file_handler("favicon.svg")});
 }
 
 }  // namespace rondo::service

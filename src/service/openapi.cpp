@@ -49,6 +49,7 @@ Json document() {
   paths["/"]["get"] = op("The dashboard (HTML).", responses({{200, "text/html"}}));
   paths["/dashboard.js"]["get"] = op("The dashboard's script.", responses({{200, "text/javascript"}}));
   paths["/dashboard.css"]["get"] = op("The dashboard's style.", responses({{200, "text/css"}}));
+  paths["/favicon.svg"]["get"] = op("The dashboard's icon.", responses({{200, "image/svg+xml"}}));
   paths["/healthz"]["get"] = op("The service is up and its executive answers.",
                                 responses({{200, "ok"}, {503, "the executive does not answer"}}));
   paths["/metrics"]["get"] = op("Figures in the Prometheus text format.", responses({{200, "text/plain"}}));

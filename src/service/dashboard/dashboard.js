@@ -14,6 +14,14 @@ const PHASE_WORDS = {
   idle: "is free", waiting: "is waiting for a task's time", navigating: "is on the way to a task",
   acting: "is doing a task", docking: "is going back to its charger",
 };
+// The event log's words in the feed ("<time>: <who> <words>"); states use STATE_WORDS.
+const EVENT_WORDS = {
+  queued: "was added", scheduled: "is planned", navigating: "is being travelled to", acting: "is being done",
+  succeeded: "is done", failed: "failed", cancelled: "was cancelled", dropped: "was dropped",
+  preempted: "was interrupted", changed: "was changed",
+};
+// Events whose reason is the scheduler's own note, not worth a manager's time.
+const QUIET_REASONS = new Set(["queued", "scheduled", "navigating", "acting", "succeeded"]);
 const view = { zone: "UTC", tasks: [], names: new Map(), map: null, robot: null, schedule: null };
 
 const $ = (selector) => document.querySelector(selector);
@@ -53,7 +61,24 @@ function dayAndClock(iso) {
   return new Intl.DateTimeFormat(undefined, { timeZone: view.zone, weekday: "short", hour: "2-digit", minute: "2-digit" })
     .format(new Date(iso));
 }
+// The offset of the deployment's time zone from UTC at the instant t (ms since the epoch), in ms.
+function zoneOffset(t) {
+  const parts = Object.fromEntries(new Intl.DateTimeFormat("en-US", { timeZone: view.zone, hourCycle: "h23",
+    year: "numeric", month: "2-digit", day: "2-digit", hour: "2-digit", minute: "2-digit", second: "2-digit" })
+    .formatToParts(new Date(t)).map((p) => [p.type, p.value]));
+  const wall = Date.UTC(Number(parts.year), Number(parts.month) - 1, Number(parts.day), Number(parts.hour),
+    Number(parts.minute), Number(parts.second));
+  return wall - Math.floor(t / 1000) * 1000;
+}
+// A datetime-local field's value ("2026-12-02T09:30") for the instant t, in the deployment's zone.
+function toLocalInput(t) { return new Date(t + zoneOffset(t)).toISOString().slice(0, 16); }
+// The instant a datetime-local value names in the deployment's zone (twice: the offset may change).
+function fromLocalInput(value) {
+  const wall = Date.parse(value + ":00Z");
+  return wall - zoneOffset(wall - zoneOffset(wall));
+}
 function taskName(task) { return task.activity || task.id; }
+function serviceNow() { return view.schedule ? Date.parse(view.schedule.now) : Date.now(); }
 function showProblem(message) {
   const p = $("#problem");
   p.hidden = !message;
@@ -67,7 +92,9 @@ async function refreshRobot() {
   let line = `The robot ${PHASE_WORDS[r.phase] || r.phase}`;
   if (r.current_task) line += `: ${view.names.get(r.current_task) || "a task"}`;
   line += `. It is at ${r.node}, battery ${Math.round(r.battery * 100)} %${r.charging ? ", charging" : ""}.`;
+  line += ` Its clock: ${dayAndClock(r.time)}${view.zone === "UTC" ? " UTC" : ""}.`;
   if (r.faults.length) line += ` Problem: ${r.faults.map((f) => f.message).join("; ")}.`;
+  if (r.dispatch_paused) line += " It takes no new task until the problem is cleared.";
   $("#robot-line").textContent = line;
   drawMap();
 }
@@ -78,6 +105,7 @@ async function refreshSchedule() {
   view.schedule = s;
   view.zone = s.zone || "UTC";
   drawGantt();
+  followClock();
 }
 
 function drawGantt() {
@@ -86,9 +114,9 @@ function drawGantt() {
   box.replaceChildren();
   if (!s) return;
   const rows = s.tasks;
-  const width = 1100, label = 260, rowH = 20, top = 22;
+  const width = 1300, label = 320, stateW = 120, rowH = 20, top = 22;
   const from = Date.parse(s.from), to = Date.parse(s.to);
-  const x = (iso) => label + Math.max(0, Math.min(1, (Date.parse(iso) - from) / (to - from))) * (width - label - 10);
+  const x = (iso) => label + stateW + Math.max(0, Math.min(1, (Date.parse(iso) - from) / (to - from))) * (width - label - stateW - 10);
   const svg = el("svg:svg", { width, height: top + rows.length * rowH + 10, role: "img", "aria-label": "today's schedule" });
   for (let h = 0; h <= 24; h += 2) {
     const t = new Date(from + h * 3600e3).toISOString();
@@ -97,8 +125,10 @@ function drawGantt() {
   }
   rows.forEach((t, i) => {
     const y = top + i * rowH;
-    const g = el("svg:g", { class: "gantt-row", "data-task": t.id });
-    g.append(el("svg:text", { x: 0, y: y + 14 }, `${taskName(t)} (${t.start_node})`.slice(0, 42)));
+    const g = el("svg:g", { class: "gantt-row", "data-task": t.id, "data-name": taskName(t) });
+    const name = `${taskName(t)}${t.start_node ? " at " + t.start_node : ""}`;
+    g.append(el("svg:text", { x: 0, y: y + 14 }, name.length > 52 ? name.slice(0, 51) + "…" : name));
+    g.append(el("svg:text", { x: label, y: y + 14, class: "gantt-state s-" + t.state }, STATE_WORDS[t.state] || t.state));
     if (t.window) {
       g.append(el("svg:rect", { x: x(t.window.release), y: y + 3, height: rowH - 6, fill: "#dde3ea",
         width: Math.max(2, x(t.window.deadline) - x(t.window.release)) }));
@@ -113,7 +143,8 @@ function drawGantt() {
       g.append(el("svg:rect", { x: x(t.actual.start), y: y + 8, height: rowH - 16, fill: colour,
         width: Math.max(3, x(end) - x(t.actual.start)) }));
     }
-    const tip = el("svg:title", {}, `${taskName(t)}: ${STATE_WORDS[t.state] || t.state}${t.reason ? " (" + t.reason + ")" : ""}`);
+    const tip = el("svg:title", {}, `${name}: ${STATE_WORDS[t.state] || t.state}${t.reason ? " (" + t.reason + ")" : ""}` +
+      (t.planned.start ? `, planned ${clock(t.planned.start)}` : "") + (t.actual.start ? `, started ${clock(t.actual.start)}` : ""));
     g.append(tip);
     svg.append(g);
   });
@@ -172,20 +203,21 @@ async function refreshTasks() {
   const t = await api("GET", "/api/v1/tasks?limit=1000" + (filter ? "&state=" + filter : ""));
   view.tasks = t.tasks;
   for (const task of t.tasks) view.names.set(task.id, taskName(task));
+  for (const item of document.querySelectorAll("#feed li[data-unnamed=yes]")) nameFeedItem(item);
   const body = $("#tasks tbody");
   body.replaceChildren();
   for (const task of t.tasks.slice().reverse()) {
-    const row = el("tr", { "data-task": task.id });
+    const row = el("tr", { "data-task": task.id, "data-name": taskName(task) });
     row.append(el("td", {}, taskName(task)), el("td", {}, task.start_node || "where the robot is"));
     row.append(el("td", {}, task.window ? `${dayAndClock(task.window.release)} to ${clock(task.window.deadline)}` : "now"));
     row.append(el("td", { class: "state s-" + task.state }, STATE_WORDS[task.state] || task.state));
-    row.append(el("td", { class: "reason" }, task.reason));
+    row.append(el("td", { class: "reason" }, plainReason(task)));
     const cell = el("td");
     if (!FINAL.has(task.state)) {
       const b = el("button", { type: "button", class: "cancel" }, "Cancel");
       b.addEventListener("click", async () => {
         if (!window.confirm(`Cancel "${taskName(task)}"?`)) return;
-        try { await api("POST", `/api/v1/tasks/${encodeURIComponent(task.id)}/cancel`, { reason: "cancelled on the dashboard" }); showProblem(""); }
+        try { await api("POST", `/api/v1/tasks/${encodeURIComponent(task.id)}/cancel`, { reason: "asked on the dashboard" }); showProblem(""); }
         catch (err) { showProblem(err.message); }
         refreshSoon();
       });
@@ -199,17 +231,20 @@ async function refreshTasks() {
 function setUpForm() {
   const select = $("#add-form select[name=place]");
   for (const name of view.map.nodes.map((n) => n.name).sort()) select.append(el("option", { value: name }, name));
-  const local = (d) => new Date(d.getTime() - d.getTimezoneOffset() * 60e3).toISOString().slice(0, 16);
-  const now = new Date();
-  $("#add-form input[name=from]").value = local(now);
-  $("#add-form input[name=to]").value = local(new Date(now.getTime() + 2 * 3600e3));
+  for (const field of ["from", "to"]) {
+    const input = $(`#add-form input[name=${field}]`);
+    input.addEventListener("input", () => { input.dataset.edited = "yes"; });
+  }
+  $("#zone-note").textContent = `Times are the building's local time (${view.zone}).`;
+  followClock();
   $("#add-form").addEventListener("submit", async (ev) => {
     ev.preventDefault();
     const f = new FormData(ev.target);
     const task = {
       id: "web-" + Date.now().toString(36),
       activity: f.get("activity"),
-      window: { release: new Date(f.get("from")).toISOString(), deadline: new Date(f.get("to")).toISOString() },
+      window: { release: new Date(fromLocalInput(f.get("from"))).toISOString(),
+                deadline: new Date(fromLocalInput(f.get("to"))).toISOString() },
       duration: Number(f.get("minutes")) * 60,
       priority: Number(f.get("priority")),
       start_node: f.get("place"),
@@ -219,11 +254,31 @@ function setUpForm() {
       await api("POST", "/api/v1/tasks", { tasks: [task] });
       result.textContent = `Added "${task.activity}".`;
       showProblem("");
+      for (const input of document.querySelectorAll("#add-form input[type=datetime-local]")) delete input.dataset.edited;
     } catch (err) {
       result.textContent = "Not added: " + err.message;
     }
     refreshSoon();
   });
+}
+
+// The form's window is "from now for two hours" on the service's clock (which may run faster than
+// the wall clock) until someone edits it.
+function followClock() {
+  const from = $("#add-form input[name=from]"), to = $("#add-form input[name=to]");
+  if (!view.schedule || from.dataset.edited || to.dataset.edited) return;
+  const now = serviceNow();
+  from.value = toLocalInput(now);
+  to.value = toLocalInput(now + 2 * 3600e3);
+}
+
+// A task's reason in words a facility manager reads: why it failed, was dropped or cancelled;
+// the scheduler's own notes ("planned start ...") are left out.
+function plainReason(task) {
+  if (["failed", "dropped", "cancelled", "preempted"].includes(task.state)) return task.reason;
+  if (task.dropped_for_now) return "not planned for now: " + task.dropped_for_now.reason;
+  if (task.state === "queued" && task.planned && task.planned.start) return "planned for " + clock(task.planned.start);
+  return "";
 }
 
 // --- one path's rhythm ----------------------------------------------------------------------------
@@ -254,14 +309,25 @@ async function drawRhythm() {
 }
 
 // --- the live feed --------------------------------------------------------------------------------
+// One feed line; a task not listed yet is "A task" until the next refresh of the list names it.
+function nameFeedItem(item) {
+  const e = item.event;
+  const known = e.task_id ? view.names.get(e.task_id) : undefined;
+  const who = e.task_id ? (known ? `"${known}"` : "A task") : e.subject === "robot" ? "The robot" : e.subject;
+  const words = EVENT_WORDS[e.event] || STATE_WORDS[e.event] || e.event;
+  const why = e.reason && !QUIET_REASONS.has(e.event) ? " (" + e.reason + ")" : "";
+  item.textContent = `${dayAndClock(e.time)}: ${who} ${words}${why}`;
+  item.dataset.unnamed = e.task_id && !known ? "yes" : "";
+}
 function startFeed() {
   const feed = $("#feed");
   const source = new EventSource("/api/v1/events?tail=50");
   source.onmessage = (msg) => {
     const e = JSON.parse(msg.data);
-    const who = e.task_id ? view.names.get(e.task_id) || "a task" : e.subject === "robot" ? "The robot" : e.subject;
-    const words = STATE_WORDS[e.event] || e.event;
-    feed.prepend(el("li", {}, `${dayAndClock(e.time)}: ${who}: ${words}${e.reason ? " (" + e.reason + ")" : ""}`));
+    const item = el("li", e.task_id ? { "data-task": e.task_id } : {});
+    item.event = e;
+    feed.prepend(item);
+    nameFeedItem(item);
     while (feed.children.length > 100) feed.lastChild.remove();
     refreshSoon();
   };

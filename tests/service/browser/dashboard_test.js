@@ -1,0 +1,179 @@
+// The dashboard in a real browser (docs/api.md, "The dashboard"): Debian's headless Chromium
+// driven by puppeteer-core (pinned in tests/vda5050/peer/package-lock.json, installed by
+// scripts/setup), against `rondo serve --speed 600` on the G4S example, a free loopback port and a
+// temporary data folder. It loads the page with no console errors, adds a task through the form,
+// sees it in the Gantt chart and then in its final state (with the reason when it failed),
+// cancels another task and sees it cancelled, and saves screenshots.
+//
+//   node tests/service/browser/dashboard_test.js --rondo build/rondo --out build/dashboard-shots
+//
+// Every wait is for a condition, with a generous deadline; nothing sleeps a fixed time.
+// Exit 0 when all holds, 1 naming what did not, 2 on bad arguments, 77 (ctest: skipped) when
+// Chromium or puppeteer-core is not installed.
+"use strict";
+
+const { spawn } = require("child_process");
+const fs = require("fs");
+const os = require("os");
+const path = require("path");
+const { createRequire } = require("module");
+
+const root = path.resolve(__dirname, "../../..");
+const args = Object.fromEntries(
+  process.argv.slice(2).reduce((pairs, a, i, all) => (a.startsWith("--") ? [...pairs, [a.slice(2), all[i + 1]]] : pairs), []));
+const rondo = args.rondo || path.join(root, "build/rondo");
+const out = path.resolve(args.out || path.join(root, "build/dashboard-shots"));
+const deployment = args.deployment || path.join(root, "examples/g4s/deployment.yaml");
+const chromium = args.chromium || process.env.CHROMIUM || "/usr/bin/chromium";
+const DEADLINE_MS = 120e3;  // for every condition: generous, the machine may be busy
+
+function die(code, message) {
+  console.error("dashboard_test: " + message);
+  process.exit(code);
+}
+if (!fs.existsSync(rondo)) die(2, `no rondo binary at ${rondo}`);
+if (!fs.existsSync(chromium)) die(77, `no Chromium at ${chromium} (scripts/setup installs Debian's chromium)`);
+let puppeteer;
+try {
+  puppeteer = createRequire(path.join(root, "tests/vda5050/peer/package.json"))("puppeteer-core");
+} catch (err) {
+  die(77, "puppeteer-core is not installed (scripts/setup runs npm ci in tests/vda5050/peer): " + err.message);
+}
+
+// `rondo serve` on a free port; resolves with its port once it says where it listens.
+function startServer(data) {
+  const server = spawn(rondo, ["serve", deployment, "--listen", "127.0.0.1:0", "--data", data, "--speed", "600"],
+                       { cwd: root, stdio: ["ignore", "pipe", "pipe"] });
+  let log = "";
+  return new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error("the server did not start within 120 s:\n" + log)), DEADLINE_MS);
+    const take = (chunk) => {
+      log += chunk;
+      const m = log.match(/on http:\/\/127\.0\.0\.1:(\d+)\//);
+      if (m) { clearTimeout(timer); resolve({ server, port: Number(m[1]), log: () => log }); }
+    };
+    server.stdout.on("data", take);
+    server.stderr.on("data", take);
+    server.on("exit", (code) => { clearTimeout(timer); reject(new Error(`the server exited (${code}):\n${log}`)); });
+  });
+}
+
+const FINAL_WORDS = ["done", "failed", "cancelled", "dropped", "interrupted"];
+
+async function main() {
+  fs.mkdirSync(out, { recursive: true });
+  const data = fs.mkdtempSync(path.join(os.tmpdir(), "rondo-dashboard-"));
+  const { server, port, log } = await startServer(data);
+  const base = `http://127.0.0.1:${port}`;
+  const problems = [];
+  const browser = await puppeteer.launch({
+    executablePath: chromium,
+    headless: true,
+    args: ["--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--no-first-run", "--lang=en-GB"],
+    env: { ...process.env, LANG: "en_GB.UTF-8", TZ: "Europe/London" },
+  });
+  try {
+    const page = await browser.newPage();
+    await page.emulateTimezone("Europe/London");
+    await (await page.createCDPSession()).send("Emulation.setLocaleOverride", { locale: "en-GB" });
+    await page.setViewport({ width: 1400, height: 1800 });
+    page.setDefaultTimeout(DEADLINE_MS);
+    page.on("console", (m) => { if (m.type() === "error") problems.push("console error: " + m.text()); });
+    page.on("pageerror", (e) => problems.push("page error: " + e.message));
+    page.on("dialog", (d) => d.accept());  // the cancel button asks "Cancel ...?"
+    const shot = async (name) => page.screenshot({ path: path.join(out, name + ".png"), fullPage: true });
+    const step = (what) => console.log("dashboard_test: " + what);
+
+    // 1. It loads: the robot's line, the Gantt chart, the map and the form's places are there.
+    await page.goto(base + "/", { waitUntil: "load" });
+    await page.waitForFunction(() => document.querySelector("#robot-line").textContent.startsWith("The robot"));
+    await page.waitForSelector("#gantt svg");
+    await page.waitForSelector("#map svg #robot-dot");
+    await page.waitForFunction(() => document.querySelectorAll("#add-form select[name=place] option").length > 3);
+    await page.waitForFunction(() => document.querySelectorAll("#feed li").length > 0);
+    await shot("1-loaded");
+    step("the dashboard loaded");
+
+    // 2. A task through the form, at a place the robot can reach, in the default window (from the
+    //    service's clock: the next two hours).
+    const activity = "check the browser test door";
+    await page.$eval("#add-form input[name=activity]", (e, v) => { e.value = v; }, activity);
+    await page.select("#add-form select[name=place]", "WayPoint1");
+    await page.$eval("#add-form input[name=minutes]", (e) => { e.value = "3"; });
+    await page.click("#add-form button[type=submit]");
+    await page.waitForFunction(() => /^Added/.test(document.querySelector("#add-result").textContent));
+    const rowOf = (name) => `[...document.querySelectorAll("#gantt .gantt-row")].find((g) => g.dataset.name === ${JSON.stringify(name)})`;
+    await page.waitForFunction(`!!${rowOf(activity)}`);
+    await shot("2-added");
+    step("the task added through the form is in the Gantt chart");
+
+    // 3. It reaches its final state, in the chart and in the task list; a failure shows why.
+    await page.waitForFunction(
+      (words, name) => {
+        const row = [...document.querySelectorAll("#tasks tbody tr")].find((r) => r.dataset.name === name);
+        return row && words.includes(row.querySelector("td.state").textContent);
+      }, {}, FINAL_WORDS, activity);
+    const final = await page.evaluate((name) => {
+      const row = [...document.querySelectorAll("#tasks tbody tr")].find((r) => r.dataset.name === name);
+      return { state: row.querySelector("td.state").textContent, reason: row.querySelector("td.reason").textContent };
+    }, activity);
+    if (final.state === "failed" && !final.reason.trim()) problems.push("the failed task shows no reason");
+    await page.waitForFunction((name, state) => {
+      const g = [...document.querySelectorAll("#gantt .gantt-row")].find((r) => r.dataset.name === name);
+      return g && g.querySelector(".gantt-state").textContent.startsWith(state);
+    }, {}, activity, final.state);
+    await shot("3-final");
+    step(`the task ended: ${final.state}${final.reason ? " (" + final.reason + ")" : ""}`);
+
+    // 4. Another task, later in the day so that it waits; cancelled with its button.
+    const later = "check the browser test window";
+    await page.evaluate(() => {
+      const from = document.querySelector("#add-form input[name=from]");
+      const to = document.querySelector("#add-form input[name=to]");
+      const shift = (v, h) => {  // a datetime-local value plus h hours, as wall-clock arithmetic
+        const d = new Date(v + ":00Z");
+        return new Date(d.getTime() + h * 3600e3).toISOString().slice(0, 16);
+      };
+      from.value = shift(from.value, 6);
+      to.value = shift(to.value, 8);
+    });
+    await page.$eval("#add-form input[name=activity]", (e, v) => { e.value = v; }, later);
+    await page.click("#add-form button[type=submit]");
+    await page.waitForFunction((name) => /^Added/.test(document.querySelector("#add-result").textContent) &&
+      document.querySelector("#add-result").textContent.includes(name), {}, later);
+    await page.waitForFunction((name) => {
+      const row = [...document.querySelectorAll("#tasks tbody tr")].find((r) => r.dataset.name === name);
+      return row && row.querySelector("button.cancel");
+    }, {}, later);
+    await page.evaluate((name) => {
+      [...document.querySelectorAll("#tasks tbody tr")].find((r) => r.dataset.name === name).querySelector("button.cancel").click();
+    }, later);
+    await page.waitForFunction((name) => {
+      const row = [...document.querySelectorAll("#tasks tbody tr")].find((r) => r.dataset.name === name);
+      return row && row.querySelector("td.state").textContent === "cancelled";
+    }, {}, later);
+    await page.waitForFunction((name) => {
+      const g = [...document.querySelectorAll("#gantt .gantt-row")].find((r) => r.dataset.name === name);
+      return g && g.querySelector(".gantt-state").textContent.startsWith("cancelled");
+    }, {}, later);
+    await shot("4-cancelled");
+    step("the later task was cancelled with its button");
+
+    // The service agrees with what the page shows.
+    const listed = await (await fetch(base + "/api/v1/tasks?limit=1000&source=api")).json();
+    const mine = listed.tasks.filter((t) => t.activity === activity || t.activity === later);
+    if (mine.length !== 2) problems.push(`the service holds ${mine.length} of the 2 tasks added on the page`);
+    const cancelled = mine.find((t) => t.activity === later);
+    if (cancelled && cancelled.state !== "cancelled") problems.push(`the service says the cancelled task is ${cancelled.state}`);
+  } finally {
+    await browser.close();
+    server.kill("SIGTERM");
+    await new Promise((resolve) => server.once("exit", resolve));
+    fs.rmSync(data, { recursive: true, force: true });
+    if (problems.length) fs.writeFileSync(path.join(out, "server.log"), log());
+  }
+  if (problems.length) die(1, problems.join("\n"));
+  console.log(`dashboard_test: all held; screenshots in ${out}`);
+}
+
+main().catch((err) => die(1, err.stack || String(err)));
