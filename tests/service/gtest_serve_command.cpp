@@ -83,11 +83,18 @@ Child spawn(const std::vector<std::string>& args) {
   return c;
 }
 
+// `rondo serve` of the G4S example on a free loopback port, its store in `data`, and the port it
+// says it listens on (empty when it said nothing of the kind in time).
+Child spawn_serve(const std::filesystem::path& data, std::string& port_text) {
+  Child c = spawn({RONDO_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", data.string(), "--speed", "10"});
+  port_text = c.wait_for(std::regex(R"(on http://127\.0\.0\.1:(\d+)/)"));
+  return c;
+}
+
 TEST(ServeCommand, ServesAndStopsCleanlyOnSigterm) {
   const auto dir = fresh_dir("rondo-service-test", "process");
-  Child c =
-      spawn({RONDO_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", (dir / "data").string(), "--speed", "10"});
-  const std::string port_text = c.wait_for(std::regex(R"(on http://127\.0\.0\.1:(\d+)/)"));
+  std::string port_text;
+  Child c = spawn_serve(dir / "data", port_text);
   ASSERT_FALSE(port_text.empty()) << c.seen;
   httplib::Client cli("127.0.0.1", std::stoi(port_text));
   cli.set_read_timeout(std::chrono::seconds(60));
@@ -137,9 +144,8 @@ TEST(ServeCommand, RoutinesChangedThroughTheApiSurviveARestart) {
     return out;
   };
   for (int life = 0; life < 2; ++life) {
-    Child c =
-        spawn({RONDO_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", (dir / "data").string(), "--speed", "10"});
-    const std::string port_text = c.wait_for(std::regex(R"(on http://127\.0\.0\.1:(\d+)/)"));
+    std::string port_text;
+    Child c = spawn_serve(dir / "data", port_text);
     ASSERT_FALSE(port_text.empty()) << c.seen;
     httplib::Client cli("127.0.0.1", std::stoi(port_text));
     cli.set_read_timeout(std::chrono::seconds(60));
@@ -168,9 +174,8 @@ TEST(ServeCommand, RoutinesChangedThroughTheApiSurviveARestart) {
 TEST(ServeCommand, OutOfServiceSurvivesARestartUntilResumed) {
   const auto dir = fresh_dir("rondo-service-test", "serve-pause");
   for (int life = 0; life < 2; ++life) {
-    Child c =
-        spawn({RONDO_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", (dir / "data").string(), "--speed", "10"});
-    const std::string port_text = c.wait_for(std::regex(R"(on http://127\.0\.0\.1:(\d+)/)"));
+    std::string port_text;
+    Child c = spawn_serve(dir / "data", port_text);
     ASSERT_FALSE(port_text.empty()) << c.seen;
     httplib::Client cli("127.0.0.1", std::stoi(port_text));
     cli.set_read_timeout(std::chrono::seconds(60));
@@ -211,9 +216,8 @@ TEST(ServeCommand, OutOfServiceSurvivesARestartUntilResumed) {
 // it went is in the store (answered after its commit).
 TEST(ServeCommand, SigintWhileSubmittingLosesNoAnsweredTask) {
   const auto dir = fresh_dir("rondo-service-test", "sigint");
-  Child c =
-      spawn({RONDO_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", (dir / "data").string(), "--speed", "10"});
-  const std::string port_text = c.wait_for(std::regex(R"(on http://127\.0\.0\.1:(\d+)/)"));
+  std::string port_text;
+  Child c = spawn_serve(dir / "data", port_text);
   ASSERT_FALSE(port_text.empty()) << c.seen;
   std::vector<std::string> answered;
   std::atomic<int> sent{0};
