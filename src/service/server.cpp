@@ -129,6 +129,10 @@ Server::Server(ServiceContext context, ServerOptions options)
   Impl& im = *impl_;
   const ServerOptions& o = im.api.options;
   im.http.new_task_queue = [threads = o.threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
+  // Answers are small and written in pieces (headers, then the body): without TCP_NODELAY a
+  // piece can wait for the client's delayed ACK, about 40 ms on Linux (the VDA 5050 broker had the
+  // same trouble, docs/vda5050.md).
+  im.http.set_tcp_nodelay(true);
   im.http.set_payload_max_length(o.body_limit);
   im.http.set_read_timeout(std::chrono::duration_cast<std::chrono::microseconds>(o.read_timeout));
   im.http.set_write_timeout(std::chrono::duration_cast<std::chrono::microseconds>(o.read_timeout));
