@@ -34,9 +34,9 @@ Result<Duration> non_negative_duration(const Field& f) {
 
 Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
   RONDO_RETURN_IF_ERROR(f.expect_keys({"navigation_overrun", "navigation_slack", "action_overrun", "action_slack",
-                                       "dock_when_waiting_over", "max_failed_edges", "refit_at", "refit_window",
-                                       "online_model", "slot_width", "scheduler_polls", "capacity", "return_to",
-                                       "return_within"}));
+                                       "dock_when_waiting_over", "max_failed_edges", "blocked_edge", "refit_at",
+                                       "refit_window", "online_model", "slot_width", "scheduler_polls", "capacity",
+                                       "return_to", "return_within"}));
   if (auto v = f.optional("navigation_overrun")) { RONDO_ASSIGN_OR_RETURN(o.navigation_overrun, positive(*v)); }
   if (auto v = f.optional("navigation_slack")) { RONDO_ASSIGN_OR_RETURN(o.navigation_slack, non_negative_duration(*v)); }
   if (auto v = f.optional("action_overrun")) { RONDO_ASSIGN_OR_RETURN(o.action_overrun, positive(*v)); }
@@ -48,6 +48,18 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
     RONDO_ASSIGN_OR_RETURN(const std::int64_t n, v->as_int());
     if (n < 1 || n > 100000) return v->error("must be between 1 and 100000");
     o.max_failed_edges = static_cast<int>(n);
+  }
+  if (auto v = f.optional("blocked_edge")) {
+    RONDO_ASSIGN_OR_RETURN(const std::string s, v->as_string());
+    using B = exec::ExecutorOptions::BlockedEdge;
+    if (s == "retry")
+      o.blocked_edge = B::kRetry;
+    else if (s == "give_up")
+      o.blocked_edge = B::kGiveUp;
+    else if (s == "wait")
+      o.blocked_edge = B::kWait;
+    else
+      return v->error("must be retry, give_up or wait, not '" + s + "'");
   }
   // optional() hides a null value: null is "never" / "the whole log", so ask has() first.
   if (f.has("refit_at") && !f.optional("refit_at")) o.refit_at.reset();

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -158,6 +159,53 @@ Json live_estimates(const exec::Executor& executor) {
                 {"mean_abs", e.mean_abs}, {"std", e.std}, {"count", e.count}};
   };
   return Json{{"used", row(plan::summarize_errors(used))}, {"offline_snapshot", row(plan::summarize_errors(offline))}};
+}
+
+Json weekly_summary(std::span<const Traversal> log, std::span<const store::Event> events, Time from, Time to) {
+  struct Week {
+    int attempts = 0, failed = 0;
+    std::map<std::string, int> failed_by_edge, navigation_failures;
+  };
+  const Duration week = hours(24 * 7);
+  std::vector<Week> weeks(static_cast<std::size_t>(std::max<std::int64_t>(1, (to - from + week - Duration{1}) / week)));
+  const auto week_of = [&](Time t) -> Week* {
+    if (t < from || t >= to) return nullptr;
+    return &weeks[static_cast<std::size_t>((t - from) / week)];
+  };
+  for (const Traversal& t : log) {
+    Week* w = week_of(t.start);
+    if (w == nullptr) continue;
+    ++w->attempts;
+    if (!t.success) {
+      ++w->failed;
+      ++w->failed_by_edge[t.edge_id];
+    }
+  }
+  static constexpr std::array<exec::Outcome, 4> kNavigation{exec::Outcome::kNavigationOverrun,
+                                                            exec::Outcome::kNavigationGaveUp, exec::Outcome::kNoRoute,
+                                                            exec::Outcome::kNoRouteNow};
+  for (const store::Event& e : events) {
+    Week* w = week_of(e.time);
+    if (w == nullptr || e.event != "failed") continue;
+    const std::optional<exec::Outcome> code = exec::parse_outcome(e.code);
+    if (code && std::find(kNavigation.begin(), kNavigation.end(), *code) != kNavigation.end())
+      ++w->navigation_failures[e.code];
+  }
+  Json out = Json::array();
+  for (std::size_t i = 0; i < weeks.size(); ++i) {
+    const Week& w = weeks[i];
+    Json row{{"week", i + 1},
+             {"from", format_time(from + week * static_cast<std::int64_t>(i))},
+             {"edge_attempts", w.attempts},
+             {"failed_attempts", w.failed},
+             {"navigation_failures", w.navigation_failures}};
+    // The edge that failed most (the first in id order among equals: a stable report).
+    const auto most = std::max_element(w.failed_by_edge.begin(), w.failed_by_edge.end(),
+                                       [](const auto& a, const auto& b) { return a.second < b.second; });
+    if (most != w.failed_by_edge.end()) row["most_failed_edge"] = Json{{"edge", most->first}, {"failed", most->second}};
+    out.push_back(std::move(row));
+  }
+  return out;
 }
 
 Json run_report(const exec::Executor& executor, const RunFigures& figures) {

@@ -12,6 +12,7 @@
 #include "rondo/core/traversal.h"
 #include "rondo/exec/executor.h"
 #include "rondo/map/topo_map.h"
+#include "rondo/store/events.h"
 
 namespace rondo::app {
 
@@ -36,6 +37,12 @@ Json travel_table(const map::TopoMap& map, std::span<const Traversal> log, Time 
 // The estimates the executor used (NavigationRecord::expected) and the snapshot's alone, scored
 // on the same journeys in Table I's columns; report.json's "live_estimates".
 Json live_estimates(const exec::Executor& executor);
+
+// Per 7-day block from `from` (the last may be shorter): edge attempts, failed ones, the edge that
+// failed most, and tasks failed on navigation by code (navigation overrun, navigation gave up, no
+// route, no route now), from the traversal log and the event log, so a reader can see learning
+// happen (or not) week by week; report.json's "weeks".
+Json weekly_summary(std::span<const Traversal> log, std::span<const store::Event> events, Time from, Time to);
 
 Json run_report(const exec::Executor& executor, const RunFigures& figures);
 

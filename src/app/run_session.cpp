@@ -19,6 +19,7 @@
 #include "rondo/sim/request_generator.h"
 #include "rondo/sim/rng.h"
 #include "rondo/sim/sim_world.h"
+#include "rondo/store/events.h"
 #include "rondo/store/read_back.h"
 #include "rondo/store/robot_state.h"
 #include "rondo/store/store.h"
@@ -245,6 +246,8 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   result.report["seed"] = d.seed;
   result.report["days"] = d.days;
   result.report["travel_table"] = travel_table(map, log, start, d.days);
+  RONDO_ASSIGN_OR_RETURN(const std::vector<store::Event> events, store::read_events(db));
+  result.report["weeks"] = weekly_summary(log, events, start, end);
   result.write_errors = static_cast<int>(executor.write_errors().size());
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   RONDO_RETURN_IF_ERROR(write_file(request.out / "report.json", result.report.dump(2) + "\n"));

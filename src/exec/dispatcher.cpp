@@ -34,7 +34,11 @@ Decision Dispatcher::next(map::NodeIndex here, Time now) {
                                   duration_text(travel), zone_.format_clock(latest_start),
                                   zone_.format_clock(task.window->deadline))};
   }
-  const Time depart = task.window->release - travel;
+  Time depart = r.release() - travel;
+  // Held back for a blocked way: the travel now counts that way's failures, so leave by the travel
+  // expected at the retry time instead.
+  if (r.release() > task.window->release)
+    depart = std::max(depart, r.release() - travel_.travel(here, *map_.find_node(task.start_node), r.release()));
   if (now < depart && depart - now > options_.dock_when_waiting_over) {  // a long wait: on the charger
     if (here != options_.dock) return {.kind = Decision::Kind::kDock};
     return {.kind = Decision::Kind::kIdleUntil, .until = depart};

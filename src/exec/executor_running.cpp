@@ -64,6 +64,11 @@ void Executor::run_ended(TaskEnd e) {
   const TaskRecord& r = book_.at(id);
   if (r.started) stats_.busy += clock_.now() - *r.started;
   std::vector<TaskId> again = std::exchange(after_preempt_, {});
+  if (e.requeue && e.edge && !hold_back(id, *e.edge)) {
+    e.requeue = false;
+    e.state = TaskState::kFailed;
+    e.reason += "; the way is not likely passable again before its latest start";
+  }
   if (e.requeue) {
     // Preempted: the task keeps its id and goes back to the queue, to be scheduled again.
     requeue_preempted(id, e.outcome, e.reason);
@@ -117,6 +122,23 @@ void Executor::preempt_for(Outcome outcome, const std::string& reason, std::vect
   after_preempt_.insert(after_preempt_.end(), then_schedule.begin(), then_schedule.end());
   if (run_->stopping()) return;  // it ends anyway; the new tasks are scheduled then
   run_->stop(TaskRun::Stop::kPreempt, outcome, reason);
+}
+
+bool Executor::hold_back(const TaskId& id, map::EdgeIndex edge) {
+  constexpr double kLikelyPassable = 0.5;
+  TaskRecord& r = book_.at(id);
+  const Time now = clock_.now();
+  const Time latest = r.task.window->deadline - r.remaining();
+  for (Time t = planner_->slot_start(now) + options_.slot_width; t <= latest; t += options_.slot_width) {
+    const double p = models_->outcome(edge, t).success_probability;
+    if (p < kLikelyPassable) continue;
+    r.not_before = t;
+    book_.note(id, "retry planned", Outcome::kNoRouteNow,
+               fmt::format("{} is likely passable again at {} (p = {:.2f}): not scheduled before then",
+                           map_.edge(edge).id, zone_.format_clock(t), p));
+    return true;
+  }
+  return false;
 }
 
 void Executor::requeue_preempted(const TaskId& id, Outcome outcome, const std::string& reason) {

@@ -24,7 +24,7 @@ std::pair<map::NodeIndex, Time> Executor::free_at() const {
       t = std::max(now, *acting_until);
     } else {
       Time s = t + travel_->travel(here, start, t);
-      if (task.window) s = std::max(s, task.window->release);
+      if (task.window) s = std::max(s, r.release());
       t = s + r.remaining();
     }
     here = task.end_node.empty() ? start : *map_.find_node(task.end_node);

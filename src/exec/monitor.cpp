@@ -42,6 +42,11 @@ void Monitor::suspend() {
   left_ = at_ - clock_.now();
 }
 
+std::optional<Time> Monitor::deadline() const {
+  if (timer_ == 0) return std::nullopt;
+  return at_;
+}
+
 void Monitor::resume() {
   if (!left_) return;
   set(*left_);

@@ -33,6 +33,8 @@ class Monitor {
   void cancel();
   void suspend();
   void resume();
+  // When it fires, while it runs (not cancelled, fired or suspended).
+  std::optional<Time> deadline() const;
 
  private:
   void set(Duration after);

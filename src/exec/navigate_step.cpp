@@ -88,8 +88,36 @@ void NavigateStep::on_edge_finished(const EdgeAttempt& a) {
   if (a.outcome == EdgeOutcome::kCancelled) return end({.status = StepEnd::Status::kHalted});
   if (ctx_.robot.busy()) return;  // more of a committed route to come
   if (halting()) return end({.status = StepEnd::Status::kHalted});
-  if (a.outcome == EdgeOutcome::kFailed) ++failed_edges_;
+  if (a.outcome == EdgeOutcome::kFailed) {
+    ++failed_edges_;
+    if (purpose_ == Purpose::kToStart && ctx_.options.blocked_edge != ExecutorOptions::BlockedEdge::kRetry) {
+      if (std::optional<std::string> why = not_worth_trying(a)) {
+        const bool wait = ctx_.options.blocked_edge == ExecutorOptions::BlockedEdge::kWait;
+        monitor_.cancel();
+        return end({.status = wait ? StepEnd::Status::kBlocked : StepEnd::Status::kFailed,
+                    .outcome = Outcome::kNoRouteNow,
+                    .reason = std::move(*why),
+                    .edge = a.edge});
+      }
+    }
+  }
   advance();
+}
+
+std::optional<std::string> NavigateStep::not_worth_trying(const EdgeAttempt& failed) const {
+  const std::optional<Time> limit = monitor_.deadline();
+  if (!limit) return std::nullopt;  // held by a fault: the monitor decides later
+  const Time now = ctx_.clock.now();
+  const map::NodeIndex here = ctx_.robot.location();
+  if (here == target_) return std::nullopt;
+  const Duration left = ctx_.travel.travel(here, target_, now);
+  if (left < kUnreachable && now + left <= *limit) return std::nullopt;
+  const map::Edge& e = ctx_.map.edge(failed.edge);
+  return fmt::format(
+      "no route now: {} failed; the way from {} to {} is expected to take {} more, past the "
+      "navigation's limit at {}",
+      e.id, ctx_.map.node(here).name, ctx_.map.node(target_).name,
+      left < kUnreachable ? duration_text(left) : std::string("forever"), ctx_.clock_text(*limit));
 }
 
 }  // namespace rondo::exec

@@ -6,7 +6,7 @@
 namespace rondo::exec {
 namespace {
 
-constexpr std::array<std::pair<Outcome, std::string_view>, 37> kNames{{
+constexpr std::array<std::pair<Outcome, std::string_view>, 38> kNames{{
     {Outcome::kNone, ""},
     {Outcome::kAdded, "added"},
     {Outcome::kScheduled, "scheduled"},
@@ -18,6 +18,7 @@ constexpr std::array<std::pair<Outcome, std::string_view>, 37> kNames{{
     {Outcome::kNoRoute, "no route"},
     {Outcome::kNavigationGaveUp, "navigation gave up"},
     {Outcome::kNavigationOverrun, "navigation overrun"},
+    {Outcome::kNoRouteNow, "no route now"},
     {Outcome::kActionOverrun, "action overrun"},
     {Outcome::kActionFailed, "action failed"},
     {Outcome::kPreemptedOnDemand, "preempted on demand"},

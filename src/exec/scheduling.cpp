@@ -42,7 +42,7 @@ Result<PendingProblem> pending_problem(const ScheduleInputs& in, const PendingTa
     const Task& t = r.task;
     const schedule::LocationIndex start = location_of(t.start_node);
     problem.tasks.push_back({.id = id,
-                             .release = t.window->release,
+                             .release = r.release(),
                              .deadline = t.window->deadline,
                              .duration = r.remaining(),
                              .priority = t.priority,

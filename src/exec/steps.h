@@ -68,6 +68,9 @@ class NavigateStep final : public RobotStep {
   void advance();  // the next edge, or the end
   void arrived();
   std::vector<map::EdgeIndex> expected_route(map::NodeIndex from) const;
+  // After a failed edge: why trying again is not worth it (the re-planned travel from here would
+  // take the navigation past its monitor's limit), or nothing.
+  std::optional<std::string> not_worth_trying(const EdgeAttempt& failed) const;
 
   Purpose purpose_;
   std::optional<TaskId> task_;

@@ -12,11 +12,13 @@ WaitStep::~WaitStep() { stop_timer(); }
 
 void WaitStep::start() {
   since_ = ctx_.clock.now();
-  const Task& task = ctx_.book.at(task_).task;
-  ctx_.book.transition(task_, TaskState::kWaiting, Outcome::kEarly,
-                       fmt::format("early: waits {} at {} so as to arrive at {} when the window opens at {}",
-                                   duration_text(until_ - since_), ctx_.map.node(ctx_.robot.location()).name,
-                                   task.start_node, ctx_.clock_text(task.window->release)));
+  const TaskRecord& r = ctx_.book.at(task_);
+  ctx_.book.transition(
+      task_, TaskState::kWaiting, Outcome::kEarly,
+      fmt::format("early: waits {} at {} so as to arrive at {} when {} at {}", duration_text(until_ - since_),
+                  ctx_.map.node(ctx_.robot.location()).name, r.task.start_node,
+                  r.release() > r.task.window->release ? "it may start again" : "the window opens",
+                  ctx_.clock_text(r.release())));
   timer_ = ctx_.clock.schedule_at(until_, [this] {
     timer_ = 0;
     ctx_.stats.waiting += ctx_.clock.now() - since_;

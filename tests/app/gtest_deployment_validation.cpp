@@ -14,14 +14,14 @@
 #include <string>
 
 #include "cli_runner.h"
-#include "test_files.h"
 #include "rondo/core/document.h"
+#include "test_files.h"
 
 namespace rondo {
 namespace {
 
-using ::testing::HasSubstr;
 using test::slurp;
+using ::testing::HasSubstr;
 
 std::filesystem::path fresh_dir(const std::string& name) { return test::fresh_dir("rondo-validate-test", name); }
 
@@ -180,6 +180,41 @@ TEST(RunCommand, TheRefitWindowAndTheOnlineModelAreExecutorKeys) {
     const auto r = test::run_cli({"run", deployment.string(), "--days", "2", "--out", (dir / "run").string()});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(Json::parse(slurp(dir / "run" / "report.json"))["model_refits"].get<int>(), 0);
+    std::filesystem::remove_all(dir);
+  }
+}
+
+}  // namespace
+}  // namespace rondo
+
+namespace rondo {
+namespace {
+
+// What the executor does after a failed edge expected to stay blocked is a deployment key; a value
+// it does not know is refused naming the line and the values it takes. report.json has a row per
+// week with the failed attempts and the navigation failures.
+TEST(RunCommand, BlockedEdgeIsAnExecutorKeyAndTheReportHasItsWeeks) {
+  const std::string refit = "refit_at: \"02:00\"        # nightly refit of the edge models";
+  {
+    const auto dir = fresh_dir("blocked-edge-bad");
+    const auto deployment = edited_example(dir, "deployment.yaml", refit, refit + "\n  blocked_edge: sometimes");
+    const auto r = test::run_cli({"run", deployment.string(), "--days", "1", "--out", (dir / "run").string()});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_THAT(r.err, HasSubstr("deployment.yaml:" + std::to_string(line_of(slurp(deployment), "blocked_edge"))));
+    EXPECT_THAT(r.err, HasSubstr("retry, give_up or wait"));
+    std::filesystem::remove_all(dir);
+  }
+  {
+    const auto dir = fresh_dir("blocked-edge-wait");
+    const auto deployment = edited_example(dir, "deployment.yaml", refit, refit + "\n  blocked_edge: wait");
+    const auto r = test::run_cli({"run", deployment.string(), "--days", "9", "--out", (dir / "run").string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Json report = Json::parse(slurp(dir / "run" / "report.json"));
+    ASSERT_EQ(report["weeks"].size(), 2u);  // a week and two days
+    int failed = 0;
+    for (const Json& w : report["weeks"]) failed += w["failed_attempts"].get<int>();
+    EXPECT_EQ(failed, report["navigation"]["attempts"].get<int>() - report["navigation"]["successes"].get<int>());
+    EXPECT_EQ(report["weeks"][0]["most_failed_edge"]["edge"], "WayPoint24_WayPoint28");  // the Wednesday closure
     std::filesystem::remove_all(dir);
   }
 }

@@ -217,6 +217,10 @@ class Executor final : public RobotListener {
   void look_again_at(Time at);
   void preempt_for(Outcome outcome, const std::string& reason, std::vector<TaskId> then_schedule);
   void requeue_preempted(const TaskId& id, Outcome outcome, const std::string& reason);
+  // A way the task needs was found blocked (ExecutorOptions::BlockedEdge::kWait): it is not
+  // scheduled before the edge is likely passable again; false when that is not before its latest
+  // start (the caller fails it).
+  bool hold_back(const TaskId& id, map::EdgeIndex edge);
   // Frees the run or the trip later: it ended in a callback of its own, still on the stack.
   void retire_run();
   void retire_trip();

@@ -24,6 +24,7 @@ enum class Outcome {
   kNoRoute,                   // no way to the place now (every way closed)
   kNavigationGaveUp,          // too many failed edge attempts
   kNavigationOverrun,         // the navigation monitor: far past the expected travel time
+  kNoRouteNow,                // an edge failed and trying it again would take past the navigation's limit
   kActionOverrun,             // the action monitor: far past the processing time
   kActionFailed,              // the robot reported an action failed
   kPreemptedOnDemand,         // an on-demand task took the robot

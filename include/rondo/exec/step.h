@@ -11,6 +11,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,13 +34,15 @@ class TravelCache;
 // How a step ended.
 struct StepEnd {
   enum class Status {
-    kDone,    // it did what it is for
-    kFailed,  // it cannot: `outcome` and `reason` say why
-    kHalted,  // halt() was asked, or the robot stopped it: the task run decides what that means
+    kDone,     // it did what it is for
+    kFailed,   // it cannot: `outcome` and `reason` say why
+    kHalted,   // halt() was asked, or the robot stopped it: the task run decides what that means
+    kBlocked,  // it cannot now (the way is blocked): the task may wait and be scheduled again
   };
   Status status = Status::kDone;
   Outcome outcome = Outcome::kNone;
   std::string reason{};
+  std::optional<map::EdgeIndex> edge{};  // kBlocked, or kFailed for no route now: the edge found blocked
 };
 
 // How a task's run ended: a final state, or back to the queue (preempted).
@@ -48,6 +51,7 @@ struct TaskEnd {
   TaskState state = TaskState::kSucceeded;
   Outcome outcome = Outcome::kNone;
   std::string reason{};
+  std::optional<map::EdgeIndex> edge{};  // requeued because this edge was found blocked
 };
 
 // How a step talks back to whoever runs it (a task run, or the executor for its own trips).

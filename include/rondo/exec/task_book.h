@@ -38,7 +38,9 @@ struct TaskRecord {
   std::string source;                 // who added it: "routine", "request", "api", ...
   Time added{};
   std::optional<Time> planned_start{}, planned_end{};  // from the latest schedule
-  std::optional<Time> started{}, ended{};              // left for it .. final state
+  // A way it needs was found blocked: not scheduled to start before this (ExecutorOptions::blocked_edge).
+  std::optional<Time> not_before{};
+  std::optional<Time> started{}, ended{};  // left for it .. final state
   // Dropped by the last schedule but not given up: offered again at every reschedule while its
   // window can still be met (the outcome and reason of that drop are kept for the final one).
   std::optional<std::pair<Outcome, std::string>> dropped_for_now{};
@@ -50,6 +52,11 @@ struct TaskRecord {
   std::optional<Duration> learned_duration{};
 
   std::size_t action_count() const { return std::max<std::size_t>(1, task.actions.size()); }
+  // When it may start: its window's release, or later while a way it needs is held to be blocked
+  // (never after the deadline). Precondition: the task has a window.
+  Time release() const {
+    return std::min(std::max(task.window->release, not_before.value_or(task.window->release)), task.window->deadline);
+  }
   Duration expected_duration() const { return learned_duration.value_or(task.duration); }
   // The processing time still to spend: the share of the actions not done yet.
   Duration remaining() const {

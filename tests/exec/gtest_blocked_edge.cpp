@@ -1,0 +1,140 @@
+// A way found blocked (ExecutorOptions::blocked_edge, docs/executor.md): after a failed edge that
+// the live model has learned stays blocked, the executor tries again (retry), fails the task with
+// "no route now" (give up), or puts it back in the queue not to be scheduled before the edge is
+// likely passable again (wait). On the scripted robot, with models fitted on a history in which
+// Hall_Office, once it fails, fails every immediate retry.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rondo/learn/edge_models.h"
+#include "rondo/plan/learned_edge_models.h"
+#include "rondo/store/traversal_log.h"
+#include "scenario.h"
+#include "scripted_executor.h"
+
+namespace rondo::exec::testing {
+namespace {
+
+using ::testing::HasSubstr;
+
+// Two weeks before the test's Monday: every edge crossed at every even hour from 08:00 to 18:00,
+// and Hall_Office closed each day from 10:00 to 10:40, found so at 10:00 and retried at once 8
+// times (the shape of a closure in a robot's own log).
+std::shared_ptr<plan::LearnedEdgeModels> models_where_hall_office_stays_closed(const map::TopoMap& map,
+                                                                               const TimeZone& zone) {
+  std::vector<Traversal> log;
+  const Time monday = zone.parse_time("2026-11-23T00:00").value();
+  for (int day = 14; day >= 1; --day) {
+    const Time midnight = monday - hours(24 * day);
+    for (map::EdgeIndex e = 0; e < map.edge_count(); ++e) {
+      const std::string& id = map.edge(e).id;
+      for (int h = 8; h <= 18; h += 2) {
+        if (id == "Hall_Office" && h == 10) {
+          Time t = midnight + hours(h);
+          for (int i = 0; i < 9; ++i, t += seconds(20))
+            log.push_back(
+                {.edge_id = id, .from = "Hall", .to = "Office", .start = t, .duration = seconds(20), .success = false});
+          continue;
+        }
+        log.push_back({.edge_id = id,
+                       .from = map.edge(e).from,
+                       .to = map.edge(e).to,
+                       .start = midnight + hours(h),
+                       .duration = seconds(20),
+                       .success = true});
+      }
+    }
+  }
+  std::sort(log.begin(), log.end(), [](const Traversal& a, const Traversal& b) { return a.start < b.start; });
+  learn::EdgeModelsOptions options;
+  options.episode.zone = zone;
+  auto fitted = learn::EdgeModels::fit(plan::edge_specs(map), log, options).value();
+  return std::make_shared<plan::LearnedEdgeModels>(map, fitted, plan::DistancePriorOptions{},
+                                                   plan::LearnedEdgeModels::Reading::kOnline);
+}
+
+struct Blocked : ScriptedExecutor {
+  explicit Blocked(ExecutorOptions::BlockedEdge policy)
+      : ScriptedExecutor(options_with(policy), scenario_map(), parts()) {}
+  static ExecutorOptions options_with(ExecutorOptions::BlockedEdge policy) {
+    ExecutorOptions o;
+    o.blocked_edge = policy;
+    return o;
+  }
+  static ExecutorParts parts() {
+    static const map::TopoMap map = scenario_map();
+    ExecutorParts p;
+    p.models = models_where_hall_office_stays_closed(map, TimeZone::named("Europe/London").value());
+    return p;
+  }
+  // Starts task A at the Office (window 08:00-12:00), drives to the Hall and fails Hall_Office.
+  void fail_on_the_way() {
+    ASSERT_TRUE(executor().add_task(task("A", "Office", at("08:00"), at("12:00"), minutes(5)), "test").ok());
+    executor().start();
+    ASSERT_NO_FATAL_FAILURE(drive_to("Hall"));
+    settle();
+    ASSERT_TRUE(robot().driving());
+    ASSERT_EQ(robot().calls.back(), "drive Hall_Office +0");
+    clock_.run_until(clock_.now() + seconds(20));
+    robot().finish_edge(EdgeOutcome::kFailed, seconds(20));
+    settle();
+  }
+  Time now() const { return clock_.now(); }
+  void wait_for(Duration d) { clock_.run_until(clock_.now() + d); }
+  std::size_t drives_of(const std::string& edge) const {
+    return static_cast<std::size_t>(std::count(robot_.calls.begin(), robot_.calls.end(), "drive " + edge + " +0"));
+  }
+};
+
+TEST(BlockedEdge, RetryTriesTheSameEdgeAgain) {
+  Blocked s(ExecutorOptions::BlockedEdge::kRetry);
+  ASSERT_NO_FATAL_FAILURE(s.fail_on_the_way());
+  EXPECT_EQ(s.state("A"), "navigating");
+  EXPECT_EQ(s.drives_of("Hall_Office"), 2u);
+}
+
+TEST(BlockedEdge, GiveUpFailsTheTaskAtOnceWithNoRouteNow) {
+  Blocked s(ExecutorOptions::BlockedEdge::kGiveUp);
+  ASSERT_NO_FATAL_FAILURE(s.fail_on_the_way());
+  EXPECT_EQ(s.state("A"), "failed");
+  EXPECT_EQ(s.code_of("A", "failed"), "no route now");
+  EXPECT_THAT(s.reason_of("A", "failed"), HasSubstr("Hall_Office failed"));
+  EXPECT_EQ(s.drives_of("Hall_Office"), 1u);
+  EXPECT_EQ(store::count_traversals(s.store()).value(), 2u);  // Dock_Hall and the failed attempt
+}
+
+TEST(BlockedEdge, WaitRequeuesTheTaskUntilTheEdgeIsLikelyPassableThenCompletesIt) {
+  Blocked s(ExecutorOptions::BlockedEdge::kWait);
+  ASSERT_NO_FATAL_FAILURE(s.fail_on_the_way());
+  ASSERT_TRUE(s.executor().tasks().at("A").not_before.has_value());
+  EXPECT_GT(*s.executor().tasks().at("A").not_before, s.now());
+  EXPECT_EQ(s.code_of("A", "queued"), "no route now");
+  EXPECT_THAT(s.reason_of("A", "queued"), HasSubstr("back in the queue"));
+  EXPECT_EQ(s.code_of("A", "retry planned"), "no route now");
+  EXPECT_EQ(s.drives_of("Hall_Office"), 1u);
+  // Nothing drives through the closed edge before the retry time; then the task is done.
+  const Time retry = *s.executor().tasks().at("A").not_before;
+  for (int guard = 0; guard < 2000 && s.state("A") != "succeeded"; ++guard) {
+    s.settle();
+    if (s.robot().driving()) {
+      if (s.robot().calls.back() == "drive Hall_Office +0") {
+        EXPECT_GE(s.now(), retry - seconds(60));
+      }
+      s.wait_for(seconds(20));
+      s.robot().finish_edge(EdgeOutcome::kSucceeded, seconds(20));
+    } else if (s.robot().acting()) {
+      s.robot().finish_action(ActionOutcome::kSucceeded, "");
+    } else {
+      s.wait_for(seconds(20));
+    }
+  }
+  EXPECT_EQ(s.state("A"), "succeeded");
+  EXPECT_EQ(s.drives_of("Hall_Office"), 2u);
+}
+
+}  // namespace
+}  // namespace rondo::exec::testing
