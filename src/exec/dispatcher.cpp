@@ -37,8 +37,8 @@ Decision Dispatcher::next(map::NodeIndex here, Time now) {
   Time depart = r.release() - travel;
   // Held back for a blocked way: the travel now counts that way's failures, so leave by the travel
   // expected at the retry time instead.
-  if (r.release() > task.window->release)
-    depart = std::max(depart, r.release() - travel_.travel(here, *map_.find_node(task.start_node), r.release()));
+  if (r.not_before && *r.not_before > now)
+    depart = std::max(depart, *r.not_before - travel_.travel(here, *map_.find_node(task.start_node), *r.not_before));
   if (now < depart && depart - now > options_.dock_when_waiting_over) {  // a long wait: on the charger
     if (here != options_.dock) return {.kind = Decision::Kind::kDock};
     return {.kind = Decision::Kind::kIdleUntil, .until = depart};

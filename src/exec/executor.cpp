@@ -56,7 +56,7 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
       loading_(std::make_unique<LoadingTimes>()),
       // With the online model off the executor plans with the snapshot itself: no second cache.
       steps_{clock_,    robot_, map_,   book_,        *travel_, options_.online_model ? *offline_travel_ : *travel_,
-             *planner_, options_, zone_, stats_, navigations_, in_fault_},
+             *planner_, options_, zone_, stats_, navigations_, in_fault_, *models_},
       assumption_map_(std::make_unique<AssumptionMap>(map_, options_.dock)),
       opportunities_(std::make_unique<Opportunities>()),
       door_models_(std::make_unique<DoorModels>(zone_)) {

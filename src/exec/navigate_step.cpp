@@ -1,5 +1,8 @@
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "rondo/exec/map_travel.h"
 #include "rondo/plan/travel_planner.h"
 #include "steps.h"
@@ -111,13 +114,21 @@ std::optional<std::string> NavigateStep::not_worth_trying(const EdgeAttempt& fai
   const map::NodeIndex here = ctx_.robot.location();
   if (here == target_) return std::nullopt;
   const Duration left = ctx_.travel.travel(here, target_, now);
-  if (left < kUnreachable && now + left <= *limit) return std::nullopt;
+  if (left >= kUnreachable) return std::nullopt;  // no way at all from here: advance() says so
   const map::Edge& e = ctx_.map.edge(failed.edge);
+  // The attempts left before giving up, each as likely to pass as the live model says the next one is.
+  const int tries = ctx_.options.max_failed_edges - failed_edges_;
+  const double p = std::clamp(ctx_.models.outcome(failed.edge, now).success_probability, 0.0, 1.0);
+  if (tries > 0 && std::pow(1 - p, tries) > 0.5)
+    return fmt::format("no route now: {} failed, and the next {} attempts are more likely than not to fail too "
+                       "(p = {:.3f} each)",
+                       e.id, tries, p);
+  if (now + left <= *limit) return std::nullopt;
   return fmt::format(
       "no route now: {} failed; the way from {} to {} is expected to take {} more, past the "
       "navigation's limit at {}",
       e.id, ctx_.map.node(here).name, ctx_.map.node(target_).name,
-      left < kUnreachable ? duration_text(left) : std::string("forever"), ctx_.clock_text(*limit));
+      duration_text(left), ctx_.clock_text(*limit));
 }
 
 }  // namespace rondo::exec

@@ -68,8 +68,9 @@ class NavigateStep final : public RobotStep {
   void advance();  // the next edge, or the end
   void arrived();
   std::vector<map::EdgeIndex> expected_route(map::NodeIndex from) const;
-  // After a failed edge: why trying again is not worth it (the re-planned travel from here would
-  // take the navigation past its monitor's limit), or nothing.
+  // After a failed edge: why trying again is not worth it (the attempts left are more likely than
+  // not all to fail, or the re-planned travel from here would take the navigation past its
+  // monitor's limit), or nothing.
   std::optional<std::string> not_worth_trying(const EdgeAttempt& failed) const;
 
   Purpose purpose_;

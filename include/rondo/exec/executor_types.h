@@ -19,13 +19,14 @@ struct ExecutorOptions {
   Duration action_slack = seconds(30);
   Duration dock_when_waiting_over = minutes(15);  // longer waits are spent on the charger
   int max_failed_edges = 25;                      // a navigation gives up after this many failed attempts
-  // After a failed edge, when trying again is expected to take the navigation past its monitor's
-  // limit (the live model has learned that this edge stays blocked): kRetry tries anyway (until
-  // the monitor or max_failed_edges stops it), kGiveUp fails the task at once ("no route now"),
-  // kWait puts a task with a window back in the queue, not to be scheduled before the edge is
-  // likely passable again (docs/executor.md, "A way found blocked").
+  // After a failed edge, when trying again is not worth it by the live model (the attempts left
+  // before max_failed_edges are more likely than not all to fail, or the travel still to go would
+  // take the navigation past its monitor's limit): kWait puts a task with a window back in the
+  // queue, not to be scheduled before the edge is likely passable again; kGiveUp fails the task
+  // at once ("no route now"); kRetry tries anyway, until the monitor or max_failed_edges stops it
+  // (docs/executor.md, "A way found blocked").
   enum class BlockedEdge { kRetry, kGiveUp, kWait };
-  BlockedEdge blocked_edge = BlockedEdge::kRetry;
+  BlockedEdge blocked_edge = BlockedEdge::kWait;
   std::optional<Duration> refit_at = hours(2);  // local time of day; nothing = never refit
   // The nightly refit reads the traversals that started within this long before it (nothing: the
   // whole log), so a night costs the same however long the robot has lived (docs/executor.md).

@@ -22,6 +22,7 @@
 #include "rondo/exec/robot.h"
 #include "rondo/exec/task_book.h"
 #include "rondo/map/topo_map.h"
+#include "rondo/plan/edge_model_view.h"
 
 namespace rondo::plan {
 class TravelPlanner;
@@ -75,6 +76,7 @@ struct StepContext {
   ExecutorStats& stats;
   std::vector<NavigationRecord>& navigations;
   const bool& in_fault;  // the robot reports a fault: steps send nothing new to it
+  const plan::EdgeModelView& models;  // what the planner reads (the live model, when online)
 
   std::string clock_text(Time t) const { return zone.format_clock(t); }
 };
