@@ -270,9 +270,13 @@ double EpisodeEdgeModel::expected_seconds(Time t, const EpisodeStats& live, bool
   return p * durations_.success_mean[bin] + (1 - p) * durations_.failure_mean[bin];
 }
 
+const std::vector<QuantileTable>& EpisodeEdgeModel::offline_tables() const {
+  return durations_.offline->of_edge(durations_.offline_edge);
+}
+
 double EpisodeEdgeModel::quantile_seconds(Time t, double q, const EpisodeStats& live, bool use_state) const {
   if (use_state && live.in_retry(t, *priors_)) return live.last_seconds * priors_->retry_ratio.at(q);
-  if (!use_state || !live.has_last) return durations_.offline[idx(priors_->day_slot(t))].at(q);
+  if (!use_state || !live.has_last) return offline_tables()[idx(priors_->day_slot(t))].at(q);
   const auto bin = idx(priors_->duration_bin(t));
   return mixture_quantile(durations_.success[bin], probability(t, live, use_state), durations_.failure[bin], q);
 }
@@ -409,11 +413,13 @@ EpisodeFit fit_episode_models(const std::vector<std::vector<Attempt>>& edges, co
   EpisodeFit fit;
   auto priors = pooled_priors(options, sums);
   fit.priors = priors;
-  auto offline = offline_duration_tables(edges, *priors);
+  // Computed when first read (the executor's refit never reads them).
+  const auto offline = std::make_shared<const OfflineDurations>(edges, priors);
   const PooledDurations pooled(sums.durations);
   for (std::size_t e = 0; e < edges.size(); ++e) {
     auto tables = duration_tables(edges[e], *priors, pooled);
-    tables.offline = std::move(offline[e]);
+    tables.offline = offline;
+    tables.offline_edge = e;
     WeeklyChoice weekly;
     if (options.weekly == WeeklyTerm::kOn) weekly.weekly = true;
     if (options.weekly == WeeklyTerm::kAuto) {

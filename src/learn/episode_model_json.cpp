@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "json_util.h"
+#include "offline_durations.h"
 #include "rondo/learn/episode_model.h"
 
 namespace rondo::learn {
@@ -214,7 +215,7 @@ Json EpisodeEdgeModel::to_json() const {
   Json success = Json::array(), failure = Json::array(), offline = Json::array();
   for (const auto& t : durations_.success) success.push_back(t.to_json());
   for (const auto& t : durations_.failure) failure.push_back(t.to_json());
-  for (const auto& t : durations_.offline) offline.push_back(t.to_json());
+  for (const auto& t : offline_tables()) offline.push_back(t.to_json());
   return Json{{"stats", stats_.to_json()},
               {"weekly", weekly_.to_json()},
               {"durations",
@@ -247,11 +248,14 @@ Result<EpisodeEdgeModel> EpisodeEdgeModel::from_json(const Json& j, std::shared_
   if (!d.contains("offline") || !d["offline"].is_array() || d["offline"].size() != idx(kDaySlots)) {
     return Error::invalid("model: 'durations.offline' must have one table per 15 minutes of the day");
   }
+  std::vector<QuantileTable> offline;
   for (const Json& t : d["offline"]) {
     auto table = QuantileTable::from_json(t);
     if (!table) return table.error().with_context("durations.offline");
-    tables.offline.push_back(*table);
+    offline.push_back(*table);
   }
+  tables.offline =
+      std::make_shared<const OfflineDurations>(std::vector<std::vector<QuantileTable>>{std::move(offline)});
   auto success_mean = json_numbers(d, "success_mean");
   auto failure_mean = json_numbers(d, "failure_mean");
   if (!success_mean) return success_mean.error();

@@ -208,4 +208,23 @@ std::vector<std::vector<QuantileTable>> offline_duration_tables(const std::vecto
   return out;
 }
 
+OfflineDurations::OfflineDurations(std::vector<std::vector<QuantileTable>> tables) : tables_(std::move(tables)) {
+  std::call_once(once_, [] {});
+  computed_ = true;
+}
+
+const std::vector<QuantileTable>& OfflineDurations::of_edge(std::size_t edge) const {
+  std::call_once(once_, [this] {
+    tables_ = offline_duration_tables(edges_, *priors_);
+    edges_ = {};
+    priors_.reset();
+    computed_ = true;
+  });
+  return tables_[edge];
+}
+
+bool OfflineDurations::computed() const {
+  return computed_;
+}
+
 }  // namespace rondo::learn

@@ -16,8 +16,15 @@
 //     each bin is shrunk towards the edge's distribution (`duration_prior` effective
 //     observations), the edge's towards the pooled one. With `duration_mixture = false`, quantile
 //     averages (Vincentisation) instead of mixtures.
+//
+// OfflineDurations keeps a fit's inputs and computes those tables, for all its edges at once, when
+// one is first read. The executor's nightly refit plans with p and E[τ] and never reads them (they
+// were most of its cost); `rondo learn`, `rondo eval` and the service's edge route do.
 #pragma once
 
+#include <atomic>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include "rondo/learn/edge_predictor.h"
@@ -30,5 +37,27 @@ namespace rondo::learn {
 // must be the pooled priors of the same fit (options, pooled log retry length).
 std::vector<std::vector<QuantileTable>> offline_duration_tables(const std::vector<std::vector<Attempt>>& edges,
                                                                 const EpisodePriors& priors);
+
+// The tables of offline_duration_tables(edges, *priors), computed on the first read of any edge's
+// (bit for bit the same), or tables already known (a loaded model). Thread-safe.
+class OfflineDurations {
+ public:
+  OfflineDurations(std::vector<std::vector<Attempt>> edges, std::shared_ptr<const EpisodePriors> priors)
+      : edges_(std::move(edges)), priors_(std::move(priors)) {}
+  explicit OfflineDurations(std::vector<std::vector<QuantileTable>> tables);
+
+  // Edge `edge`'s kDaySlots tables. Precondition: edge < the number of edges.
+  const std::vector<QuantileTable>& of_edge(std::size_t edge) const;
+  // Whether the tables have been computed (or were given).
+  bool computed() const;
+
+ private:
+  mutable std::once_flag once_;
+  mutable std::atomic<bool> computed_{false};
+  mutable std::vector<std::vector<QuantileTable>> tables_;
+  // The fit's inputs, released once the tables are computed.
+  mutable std::vector<std::vector<Attempt>> edges_;
+  mutable std::shared_ptr<const EpisodePriors> priors_;
+};
 
 }  // namespace rondo::learn

@@ -13,8 +13,9 @@
 namespace rondo::learn {
 
 WeeklyChoice choose_weekly(std::span<const SlotAttempt> all, double pooled_rate, const EpisodeOptions& options) {
-  std::vector<double> day_s(kDaySlots, 0.0), day_a(kDaySlots, 0.0), week_s(kWeekSlots, 0.0), week_a(kWeekSlots, 0.0);
-  const SlotCounts counts{day_s.data(), day_a.data(), week_s.data(), week_a.data()};
+  // Counts per bin of every histogram: a prediction reads one bin per histogram (the window of a
+  // nightly refit holds thousands of first attempts).
+  BinCounts counts(options.day_resolutions);
   double successes = 0, attempts = 0;
   double sum_d = 0, sum_dd = 0, day_loss = 0, week_loss = 0;
   WeeklyChoice out;
@@ -22,15 +23,9 @@ WeeklyChoice choose_weekly(std::span<const SlotAttempt> all, double pooled_rate,
   std::vector<SlotAttempt> today;
   auto flush = [&] {
     for (const SlotAttempt& f : today) {
-      const auto day = static_cast<std::size_t>(f.week_slot % kDaySlots), week = static_cast<std::size_t>(f.week_slot);
-      day_a[day] += 1;
-      week_a[week] += 1;
+      counts.add(f.week_slot, f.success);
       attempts += 1;
-      if (f.success) {
-        day_s[day] += 1;
-        week_s[week] += 1;
-        successes += 1;
-      }
+      successes += f.success ? 1 : 0;
     }
     today.clear();
   };
@@ -57,7 +52,7 @@ WeeklyChoice choose_weekly(std::span<const SlotAttempt> all, double pooled_rate,
     const double edge = (successes + options.edge_prior * pooled_rate) / (attempts + options.edge_prior);
     double q_day = 0, q_week = 0;
     int n = 0;
-    for_each_bin_estimate(f.week_slot, counts, edge, options, true, [&](double d, double w) {
+    counts.for_each_bin_estimate(f.week_slot, edge, options, true, [&](double d, double w) {
       q_day += d;
       q_week += w;
       ++n;

@@ -10,6 +10,7 @@
 #include <map>
 #include <random>
 
+#include "histogram_family.h"
 #include "rondo/learn/edge_models.h"
 #include "rondo/learn/episode_model.h"
 #include "rondo/learn/model_json.h"
@@ -262,6 +263,34 @@ RC_GTEST_PROP(Weekly, FirstAttemptProbabilityMatchesTheSlowReference, ()) {
   RC_ASSERT(std::abs(m.first_attempt_probability(at, m.stats()) - q_week) < 1e-9);
   const auto daily = fit_episode_binary(samples, with_weekly(WeeklyTerm::kOff));
   RC_ASSERT(std::abs(daily->model().first_attempt_probability(at, daily->model().stats()) - q_day) < 1e-9);
+}
+
+// The bin counts choose_weekly keeps against the sums over the slot counts they replace: the same
+// estimates exactly, for every histogram, with and without the weekly term.
+RC_GTEST_PROP(Weekly, BinCountsEqualTheSlotSums, ()) {
+  EpisodeOptions o;
+  o.day_resolutions =
+      *rc::gen::element(std::vector<int>{1, 2, 3, 4, 6, 8, 12}, std::vector<int>{3, 24}, std::vector<int>{5, 6});
+  const auto attempts = *rc::gen::container<std::vector<std::tuple<int, bool>>>(
+      rc::gen::tuple(rc::gen::inRange(0, kWeekSlots), rc::gen::arbitrary<bool>()));
+  std::vector<double> day_s(kDaySlots, 0.0), day_a(kDaySlots, 0.0), week_s(kWeekSlots, 0.0), week_a(kWeekSlots, 0.0);
+  BinCounts bins(o.day_resolutions);
+  for (auto [slot, ok] : attempts) {
+    bins.add(slot, ok);
+    day_a[static_cast<std::size_t>(slot % kDaySlots)] += 1;
+    week_a[static_cast<std::size_t>(slot)] += 1;
+    day_s[static_cast<std::size_t>(slot % kDaySlots)] += ok ? 1 : 0;
+    week_s[static_cast<std::size_t>(slot)] += ok ? 1 : 0;
+  }
+  const SlotCounts slots{day_s.data(), day_a.data(), week_s.data(), week_a.data()};
+  const double edge = *rc::gen::inRange(0, 101) / 100.0;
+  const bool weekly = *rc::gen::arbitrary<bool>();
+  for (int slot = 0; slot < kWeekSlots; ++slot) {
+    std::vector<std::pair<double, double>> summed, binned;
+    for_each_bin_estimate(slot, slots, edge, o, weekly, [&](double d, double w) { summed.emplace_back(d, w); });
+    bins.for_each_bin_estimate(slot, edge, o, weekly, [&](double d, double w) { binned.emplace_back(d, w); });
+    RC_ASSERT(binned == summed);
+  }
 }
 
 }  // namespace

@@ -179,6 +179,10 @@ struct WeeklyChoice {
 // `pooled_rate` is what an edge's rate is shrunk towards. Deterministic.
 WeeklyChoice choose_weekly(std::span<const SlotAttempt> attempts, double pooled_rate, const EpisodeOptions& options);
 
+// The offline duration tables of the edges of one fit (offline_durations.h), computed when first
+// read.
+class OfflineDurations;
+
 // One edge's fitted model: shared priors, the edge's statistics and duration tables. Immutable.
 class EpisodeEdgeModel {
  public:
@@ -186,8 +190,10 @@ class EpisodeEdgeModel {
     // Per time-of-day bin, durations of successful and of failed attempts.
     std::vector<QuantileTable> success, failure;
     std::vector<double> success_mean, failure_mean;
-    // Offline: per 15-minute slot of the local day, all attempts (offline_durations.h).
-    std::vector<QuantileTable> offline;
+    // Offline: per 15-minute slot of the local day, all attempts: the tables of edge
+    // `offline_edge` of the fit's OfflineDurations, shared by its edges.
+    std::shared_ptr<const OfflineDurations> offline;
+    std::size_t offline_edge = 0;
   };
   EpisodeEdgeModel(std::shared_ptr<const EpisodePriors> priors, EpisodeStats stats, DurationTables durations,
                    WeeklyChoice weekly = {})
@@ -226,6 +232,9 @@ class EpisodeEdgeModel {
   static Result<EpisodeEdgeModel> from_json(const Json& j, std::shared_ptr<const EpisodePriors> priors);
 
  private:
+  // The offline duration tables (kDaySlots), computed on the first call for the whole fit.
+  const std::vector<QuantileTable>& offline_tables() const;
+
   std::shared_ptr<const EpisodePriors> priors_;
   EpisodeStats stats_;
   DurationTables durations_;
