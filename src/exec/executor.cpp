@@ -84,11 +84,12 @@ Status Executor::runs_here(const Task& task) const {
   return Status{};
 }
 
-Result<std::vector<TaskId>> Executor::insert_tasks(std::vector<Task> tasks, std::string_view source) {
+Result<std::vector<TaskId>> Executor::insert_tasks(std::vector<Task> tasks, std::string_view source,
+                                                   const store::RequestTaken* taken) {
   for (const Task& t : tasks) RONDO_RETURN_IF_ERROR(accept(t));
   std::vector<TaskId> ids;
   for (const Task& t : tasks) ids.push_back(t.id);
-  RONDO_RETURN_IF_ERROR(book_.add(std::move(tasks), source));
+  RONDO_RETURN_IF_ERROR(book_.add(std::move(tasks), source, taken));
   std::vector<TaskId> standard;
   for (const TaskId& id : ids) {
     deliveries_->add(book_.at(id).task);
@@ -100,14 +101,16 @@ Result<std::vector<TaskId>> Executor::insert_tasks(std::vector<Task> tasks, std:
   return standard;
 }
 
-Status Executor::add_tasks(std::vector<Task> tasks, std::string_view source) {
+Status Executor::add_tasks(std::vector<Task> tasks, std::string_view source, const store::RequestTaken* taken) {
   std::string ids;
   for (const Task& t : tasks) ids += (ids.empty() ? "" : ",") + t.id;
-  auto inserted = insert_tasks(std::move(tasks), source);
+  auto inserted = insert_tasks(std::move(tasks), source, taken);
   if (!inserted) {
-    // A refused request is part of the record too.
-    book_.note_request(ids, "rejected", Outcome::kInvalidRequest,
-                       fmt::format("from {}: {}", source, inserted.error().message));
+    // A refused request is part of the record too (a queued one is taken with it).
+    std::optional<store::RequestTaken> refused;
+    if (taken) refused = store::RequestTaken{taken->id, taken->at, "rejected: " + inserted.error().message};
+    book_.note_request(taken ? fmt::format("request {}", taken->id) : ids, "rejected", Outcome::kInvalidRequest,
+                       fmt::format("from {}: {}", source, inserted.error().message), refused ? &*refused : nullptr);
     return inserted.error();
   }
   std::vector<TaskId> standard = std::move(*inserted);

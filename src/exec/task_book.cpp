@@ -10,7 +10,7 @@
 
 namespace rondo::exec {
 
-Status TaskBook::add(std::vector<Task> tasks, std::string_view source) {
+Status TaskBook::add(std::vector<Task> tasks, std::string_view source, const store::RequestTaken* taken) {
   std::set<TaskId> ids;
   for (const Task& t : tasks) {
     if (t.id.empty()) return Error::invalid("a task needs an id");
@@ -31,7 +31,7 @@ Status TaskBook::add(std::vector<Task> tasks, std::string_view source) {
                     .updated = now,
                     .source = std::string(source)});
   }
-  RONDO_RETURN_IF_ERROR(store::add_tasks(store_, rows, reason, to_string(Outcome::kAdded)));
+  RONDO_RETURN_IF_ERROR(store::add_tasks(store_, rows, reason, to_string(Outcome::kAdded), taken));
   for (Task& t : tasks) {
     const TaskId id = t.id;
     records_.emplace(id, TaskRecord{.task = std::move(t), .state = TaskState::kQueued, .outcome = Outcome::kAdded,
@@ -107,18 +107,23 @@ void TaskBook::note_schedule(const std::string& event, Outcome outcome, const st
 }
 
 void TaskBook::note_request(const std::string& about, const std::string& event, Outcome outcome,
-                            const std::string& reason) {
+                            const std::string& reason, const store::RequestTaken* taken) {
   append({.time = clock_.now(),
           .subject = store::Subject::kRequest,
           .about = about,
           .event = event,
           .code = std::string(to_string(outcome)),
-          .reason = reason});
+          .reason = reason},
+         taken);
 }
 
-void TaskBook::append(store::Event event) {
+void TaskBook::append(store::Event event, const store::RequestTaken* taken) {
   if (auto code = parse_outcome(event.code)) ++event_counts_[event.event][*code];
-  if (auto ok = store::append_event(store_, event); !ok) write_errors_.push_back(ok.error().message);
+  if (taken) {
+    if (auto ok = store::take_request(store_, *taken, &event); !ok) write_errors_.push_back(ok.error().message);
+  } else if (auto ok = store::append_event(store_, event); !ok) {
+    write_errors_.push_back(ok.error().message);
+  }
 }
 
 }  // namespace rondo::exec

@@ -62,6 +62,7 @@
 #include "rondo/plan/travel_planner.h"
 #include "rondo/schedule/scheduler.h"
 #include "rondo/schedule/try_schedule.h"
+#include "rondo/store/requests.h"
 #include "rondo/store/store.h"
 
 namespace rondo::exec {
@@ -102,7 +103,9 @@ class Executor final : public RobotListener {
   // Accepts tasks (committed to the store before this returns), then schedules them together.
   // kInvalidInput for a task that cannot be run here (unknown node, no window, duplicate id, an
   // id the store already holds), kStorage when the store cannot write; either way nothing is added.
-  Status add_tasks(std::vector<Task> tasks, std::string_view source);
+  // With `taken` (a request of the store's queue, store/requests.h), the request is marked taken
+  // in the transaction that stores the tasks, or in the one of its `rejected` event.
+  Status add_tasks(std::vector<Task> tasks, std::string_view source, const store::RequestTaken* taken = nullptr);
   Status add_task(Task task, std::string_view source) { return add_tasks({std::move(task)}, source); }
   // Cancels a task: a queued (or waiting, or dropped-for-now) one ends `cancelled` at once; a
   // running one is stopped through the robot's cancel() when it is interruptible now, else at its
@@ -191,7 +194,8 @@ class Executor final : public RobotListener {
   Status runs_here(const Task& task) const;  // its places are on the map
   // Validates, stores (all or nothing) and records tasks; returns the standard ones (on-demand ones
   // are queued).
-  Result<std::vector<TaskId>> insert_tasks(std::vector<Task> tasks, std::string_view source);
+  Result<std::vector<TaskId>> insert_tasks(std::vector<Task> tasks, std::string_view source,
+                                           const store::RequestTaken* taken);
   bool interruptible_now() const;
   bool running_standard() const;  // a standard task navigates or acts
   void preempt_for_on_demand();

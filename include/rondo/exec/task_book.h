@@ -25,6 +25,7 @@
 #include "rondo/exec/clock.h"
 #include "rondo/exec/outcome.h"
 #include "rondo/store/events.h"
+#include "rondo/store/requests.h"
 #include "rondo/store/store.h"
 
 namespace rondo::exec {
@@ -66,7 +67,8 @@ class TaskBook {
 
   // Stores the tasks, all or nothing, then records them as queued. kInvalidInput for an empty or
   // repeated id or one already in the book or the store; kStorage when the store cannot write.
-  Status add(std::vector<Task> tasks, std::string_view source);
+  // With `taken`, the queued request they come from is marked taken in the same transaction.
+  Status add(std::vector<Task> tasks, std::string_view source, const store::RequestTaken* taken = nullptr);
 
   // Restore after a restart (exec/executor_restore.cpp): records a task read back from the store
   // as it is, without writing anything (precondition: its id is not in the book yet), and counts
@@ -90,7 +92,9 @@ class TaskBook {
   // Events about the robot, a request (`about`: its id) or the schedule.
   void note_robot(const std::string& event, Outcome outcome, const std::string& reason);
   void note_schedule(const std::string& event, Outcome outcome, const std::string& reason);
-  void note_request(const std::string& about, const std::string& event, Outcome outcome, const std::string& reason);
+  // With `taken`, the queued request is marked taken in the event's transaction.
+  void note_request(const std::string& about, const std::string& event, Outcome outcome, const std::string& reason,
+                    const store::RequestTaken* taken = nullptr);
 
   // How many events were written that are not final states, by event name and code (for the
   // report): {"preempted": {kPreemptedOnDemand: 3}, "dropped for now": {...}, "fault": {...}}.
@@ -101,7 +105,7 @@ class TaskBook {
   store::Store& store() { return store_; }
 
  private:
-  void append(store::Event event);
+  void append(store::Event event, const store::RequestTaken* taken = nullptr);
 
   store::Store& store_;
   const Clock& clock_;
