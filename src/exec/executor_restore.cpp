@@ -90,6 +90,11 @@ Status Executor::restore() {
     const bool on_demand = r.task.kind == TaskKind::kOnDemand;
     if (r.state != TaskState::kQueued) {
       // It was waiting for, driving to or acting on this task when the executive stopped.
+      if (r.actions_done >= r.action_count() && (r.task.end_node.empty() || r.task.end_node == r.task.start_node)) {
+        // Its last action was stored as done, its success not yet: nothing is left to run.
+        book_.transition(id, TaskState::kSucceeded, Outcome::kDone, "done: every action finished before the restart");
+        continue;
+      }
       if (on_demand || !r.task.window || now + r.remaining() <= r.task.window->deadline) {
         book_.transition(id, TaskState::kQueued, Outcome::kInterrupted,
                          fmt::format("{}; back in the queue", kInterruptedReason));
