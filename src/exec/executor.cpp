@@ -176,6 +176,7 @@ void Executor::start() {
   for (const TaskId& id : book_.order())
     if (book_.at(id).task.kind == TaskKind::kStandard && book_.at(id).state == TaskState::kQueued &&
         !book_.at(id).dropped_for_now &&  // deferred (restore): reschedule() offers them again
+        !blocked(id) &&                   // waits for its door (restore)
         !queued(dispatcher_->planned, id) && !queued(dispatcher_->deferred, id))
       pending.push_back(id);
   if (!pending.empty()) reschedule(std::move(pending), "start");

@@ -80,8 +80,37 @@ void TaskBook::transition(const TaskId& id, TaskState state, Outcome outcome, co
 
 void TaskBook::set_progress(const TaskId& id, std::size_t actions_done) {
   records_.at(id).actions_done = actions_done;
-  if (auto ok = store::set_task_progress(store_, id, Json{{"actions_done", actions_done}}); !ok)
+  if (auto ok = store::set_task_progress(store_, id, progress_json(records_.at(id))); !ok)
     write_errors_.push_back(ok.error().message);
+}
+
+void TaskBook::set_door_wait(const TaskId& id, std::optional<DoorWait> wait) {
+  TaskRecord& r = records_.at(id);
+  if (r.door_wait == wait) return;
+  r.door_wait = std::move(wait);
+  if (auto ok = store::set_task_progress(store_, id, progress_json(r)); !ok)
+    write_errors_.push_back(ok.error().message);
+}
+
+Json TaskBook::progress_json(const TaskRecord& r) {
+  Json j{{"actions_done", r.actions_done}};
+  if (r.door_wait)
+    j["blocked"] = Json{{"door", r.door_wait->door},
+                        {"since_ms", r.door_wait->since.time_since_epoch().count()},
+                        {"seen_at", r.door_wait->seen_at}};
+  return j;
+}
+
+void TaskBook::read_progress(const Json& progress, TaskRecord& r) {
+  if (!progress.is_object()) return;
+  if (progress.contains("actions_done") && progress["actions_done"].is_number_unsigned())
+    r.actions_done = progress["actions_done"].get<std::size_t>();
+  if (!progress.contains("blocked") || !progress["blocked"].is_object()) return;
+  const Json& b = progress["blocked"];
+  const auto text = [&b](const char* key) { return b.contains(key) && b[key].is_string(); };
+  if (!text("door") || !text("seen_at") || !b.contains("since_ms") || !b["since_ms"].is_number_integer()) return;
+  r.door_wait = DoorWait{b["door"].get<std::string>(), Time{Duration{b["since_ms"].get<Duration::rep>()}},
+                         b["seen_at"].get<std::string>()};
 }
 
 void TaskBook::note(const TaskId& id, const std::string& event, Outcome outcome, const std::string& reason) {

@@ -260,6 +260,9 @@ class Executor final : public RobotListener {
   void note_look_alikes();                      // why look-alike jobs do not interleave
   bool blocked(const TaskId& id) const;         // waits for its door: kept out of the schedule
   bool can_wait(const TaskId& id) const;        // may be blocked by a door seen closed
+  // Blocks the task until `wait.door` is seen open (stored; timers for its retry and its end).
+  void wait_for_door(const TaskId& id, const DoorWait& wait);
+  void unblock(const TaskId& id);
   void door_seen_closed(const Observation& seen);
   void door_seen_open(const Observation& seen);
   // Whether running `id` now (interrupting the running task) or right after the running task

@@ -30,6 +30,15 @@
 
 namespace rondo::exec {
 
+// A door a task waits for (seen closed: the task waits as an opportunity), kept in the task's
+// stored progress so that a restart brings the task back waiting for it.
+struct DoorWait {
+  std::string door;
+  Time since{};         // when it was seen closed
+  std::string seen_at;  // the node the robot saw it from
+  bool operator==(const DoorWait&) const = default;
+};
+
 // What the executor knows of one task.
 struct TaskRecord {
   Task task;
@@ -46,6 +55,8 @@ struct TaskRecord {
   // Progress, kept when the task is preempted or interrupted: a re-run starts after the actions
   // already done (stored as the task's progress, {"actions_done": n}).
   std::size_t actions_done = 0;
+  // Blocked by a door seen closed (stored with the progress, {"blocked": {door, since, seen_at}}).
+  std::optional<DoorWait> door_wait{};
   // The processing time learned from experience (loading and unloading times), when the executor
   // knows better than the task's declared duration.
   std::optional<Duration> learned_duration{};
@@ -87,6 +98,12 @@ class TaskBook {
   void transition(const TaskId& id, TaskState state, Outcome outcome, const std::string& reason);
   // Records and stores how many of the task's actions are done.
   void set_progress(const TaskId& id, std::size_t actions_done);
+  // Records and stores the door the task waits for (none: it waits for nothing).
+  void set_door_wait(const TaskId& id, std::optional<DoorWait> wait);
+  // A task's progress as stored ({"actions_done": n, "blocked": {...}}), and read back into `r`
+  // (restore; what it does not understand is left as it was).
+  static Json progress_json(const TaskRecord& r);
+  static void read_progress(const Json& progress, TaskRecord& r);
   // An event of a task that is not a change of its state.
   void note(const TaskId& id, const std::string& event, Outcome outcome, const std::string& reason);
   // Events about the robot, a request (`about`: its id) or the schedule.
