@@ -150,6 +150,11 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   options.seed = d.seed;
   options.robot_name = "robot";
   exec::Executor executor(clock, robot, map, db, d.zone, options);
+  std::unique_ptr<exec::RobotListener> listener;
+  if (request.wrap_listener) {
+    listener = request.wrap_listener(executor);
+    robot.set_listener(listener.get());
+  }
   executor.add_routines(s.parts.plan.routines);
   if (resumed) RONDO_RETURN_IF_ERROR(executor.restore());
   // The deployment's one-off tasks, unless a previous start already stored them.
