@@ -18,16 +18,8 @@ std::string about(const store::RequestRow& r) {
 }
 
 // Refuses a request that cannot be carried out: its event and its mark, in one transaction.
-void reject(store::Store& db, Time now, const store::RequestRow& r, const std::string& why,
-            std::vector<std::string>& errors) {
-  const store::Event event{.time = now,
-                           .subject = store::Subject::kRequest,
-                           .about = about(r),
-                           .event = "rejected",
-                           .code = std::string(exec::to_string(exec::Outcome::kInvalidRequest)),
-                           .reason = fmt::format("'{}': {}", r.sentence, why)};
-  if (auto ok = store::take_request(db, {r.id, now, "rejected: " + why}, &event); !ok)
-    errors.push_back(ok.error().message);
+void reject(exec::Executor& executor, Time now, const store::RequestRow& r, const std::string& why) {
+  executor.reject_request({r.id, now, "rejected: " + why}, fmt::format("'{}': {}", r.sentence, why));
 }
 
 // The tasks the cancellation names that are not final yet, in the order they were added.
@@ -43,9 +35,9 @@ std::vector<TaskId> named_tasks(const exec::Executor& executor, const lang::Canc
 void take_cancel(exec::Executor& executor, store::Store& db, Time now, const store::RequestRow& r,
                  std::vector<std::string>& errors) {
   auto c = lang::decode_cancellation(r.body);
-  if (!c) return reject(db, now, r, c.error().message, errors);
+  if (!c) return reject(executor, now, r, c.error().message);
   const std::vector<TaskId> ids = named_tasks(executor, *c);
-  if (ids.empty()) return reject(db, now, r, "no task that is not over yet matches it", errors);
+  if (ids.empty()) return reject(executor, now, r, "no task that is not over yet matches it");
   int cancelled = 0;
   for (const TaskId& id : ids) {
     // Cancelling one half of a job may have ended the other already.
@@ -56,13 +48,12 @@ void take_cancel(exec::Executor& executor, store::Store& db, Time now, const sto
     errors.push_back(ok.error().message);
 }
 
-void take_tasks(exec::Executor& executor, store::Store& db, Time now, const store::RequestRow& r,
-                std::vector<std::string>& errors) {
+void take_tasks(exec::Executor& executor, Time now, const store::RequestRow& r) {
   auto file = parse_task_file(r.body.dump(), DocumentFormat::kJson, about(r));
-  if (!file) return reject(db, now, r, file.error().message, errors);
+  if (!file) return reject(executor, now, r, file.error().message);
   if (!file->routines.empty())
-    return reject(db, now, r, "routines cannot be queued (add them to the deployment or through the API)", errors);
-  if (file->tasks.empty()) return reject(db, now, r, "it holds no task", errors);
+    return reject(executor, now, r, "routines cannot be queued (add them to the deployment or through the API)");
+  if (file->tasks.empty()) return reject(executor, now, r, "it holds no task");
   const std::size_t n = file->tasks.size();
   const store::RequestTaken taken{r.id, now, fmt::format("added {} task(s)", n)};
   // A refusal (an unknown node, an id already taken) is written and marked by the executor.
@@ -79,7 +70,7 @@ Result<int> RequestIntake::take_waiting() {
     if (r.body.contains("cancel"))
       take_cancel(executor_, store_, now, r, errors);
     else
-      take_tasks(executor_, store_, now, r, errors);
+      take_tasks(executor_, now, r);
   }
   if (!errors.empty()) return Error::storage(errors.front());
   return static_cast<int>(waiting.size());

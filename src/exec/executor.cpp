@@ -128,6 +128,10 @@ Status Executor::add_tasks(std::vector<Task> tasks, std::string_view source, con
   return Status{};
 }
 
+void Executor::reject_request(const store::RequestTaken& taken, const std::string& reason) {
+  book_.note_request(fmt::format("request {}", taken.id), "rejected", Outcome::kInvalidRequest, reason, &taken);
+}
+
 Status Executor::cancel_task(const TaskId& id, const std::string& reason) {
   if (!book_.contains(id)) return Error::not_found(fmt::format("no task '{}'", id));
   const TaskRecord& r = book_.at(id);

@@ -107,6 +107,9 @@ class Executor final : public RobotListener {
   // in the transaction that stores the tasks, or in the one of its `rejected` event.
   Status add_tasks(std::vector<Task> tasks, std::string_view source, const store::RequestTaken* taken = nullptr);
   Status add_task(Task task, std::string_view source) { return add_tasks({std::move(task)}, source); }
+  // Refuses a queued request that cannot be carried out: a `rejected` request event (code
+  // `invalid request`, about "request N") and the request marked taken, in one transaction.
+  void reject_request(const store::RequestTaken& taken, const std::string& reason);
   // Cancels a task: a queued (or waiting, or dropped-for-now) one ends `cancelled` at once; a
   // running one is stopped through the robot's cancel() when it is interruptible now, else at its
   // next interruptible moment (a `cancel pending` event says so). kNotFound for an unknown task,
