@@ -7,6 +7,7 @@
 #include <fmt/ranges.h>
 
 #include "commands.h"
+#include "request_queue.h"
 #include "rondo/core/task_codec.h"
 #include "rondo/lang/command.h"
 #include "rondo/map/map_loader.h"
@@ -28,6 +29,7 @@ struct AddOptions {
   std::string places;
   std::string at;         // "now" for the sentence; default: the system clock
   std::string time_zone;  // default: the places file's time_zone
+  std::string data;       // a deployment's folder (rondo run --out, rondo serve --data): queue it there
   bool dry_run = false;
   bool json = false;
 };
@@ -89,6 +91,12 @@ void expand(const TaskOptions& o, CommandContext& ctx) {
   print_tasks(tasks, file->zone.value_or(TimeZone::utc()), ctx.out);
 }
 
+std::string sentence_of(const std::vector<std::string>& words) {
+  std::string sentence;
+  for (const auto& w : words) sentence += (sentence.empty() ? "" : " ") + w;
+  return sentence;
+}
+
 // The zone of the sentence's local times: --time-zone, else the places file's; one is needed.
 Result<TimeZone> zone_for(const AddOptions& o, const lang::Places& places) {
   if (!o.time_zone.empty()) {
@@ -115,16 +123,14 @@ Result<lang::Command> read_sentence(const AddOptions& o, TimeZone& zone) {
     if (!at) return Error::invalid("--at: " + at.error().message);
     ctx.now = *at;
   }
-  std::string sentence;
-  for (const auto& w : o.words) sentence += (sentence.empty() ? "" : " ") + w;
+  const std::string sentence = sentence_of(o.words);
   auto command = lang::parse_command(sentence, ctx);
   if (!command) return command.error().with_context("'" + sentence + "'");
   return command;
 }
 
-// Prints what the sentence means. Nothing is stored yet: `--data DIR` (queue the command in a
-// deployment's store, issue 16 point 6) plugs in here, after parsing and before printing, and
-// --dry-run will then skip it.
+// Prints what the sentence means; with --data (and without --dry-run) it is queued first in the
+// deployment's store, for its executive to take (request_queue.h).
 void add(const AddOptions& o, CommandContext& ctx) {
   TimeZone zone = TimeZone::utc();
   auto command = read_sentence(o, zone);
@@ -132,21 +138,27 @@ void add(const AddOptions& o, CommandContext& ctx) {
     fail(ctx, command.error());
     return;
   }
+  if (!o.data.empty() && !o.dry_run) {
+    auto q = queue_command(o.data, sentence_of(o.words), *command, zone);
+    if (!q) {
+      fail(ctx, q.error());
+      return;
+    }
+    ctx.err << fmt::format("rondo task add: queued as request {} in {}\n", q->id, q->file.string());
+  }
+  if (o.json) {
+    ctx.out << request_body(*command, zone).dump(2) << '\n';
+    return;
+  }
   if (command->cancel) {
     const auto& c = *command->cancel;
-    if (o.json) {
-      ctx.out << lang::encode(c).dump(2) << '\n';
-    } else if (c.what == lang::Cancellation::What::kDelivery) {
+    if (c.what == lang::Cancellation::What::kDelivery) {
       ctx.out << fmt::format("cancel the delivery of '{}'\n", c.object);
     } else if (c.what == lang::Cancellation::What::kActivity) {
       ctx.out << fmt::format("cancel '{}' tasks at {}\n", c.activity, fmt::join(c.nodes, ", "));
     } else {
       ctx.out << fmt::format("cancel task '{}'\n", c.id);
     }
-    return;
-  }
-  if (o.json) {
-    ctx.out << encode(TaskFile{zone, command->tasks, command->routines}).dump(2) << '\n';
     return;
   }
   if (!command->tasks.empty()) print_tasks(command->tasks, zone, ctx.out);
@@ -178,14 +190,16 @@ void add_task_commands(CLI::App& root, CommandContext& ctx) {
   expand_cmd->callback([options, &ctx] { expand(*options, ctx); });
 
   auto add_options = std::make_shared<AddOptions>();
-  auto* add_cmd = task->add_subcommand("add", "Print the task(s) a command in words means (docs/commands.md)");
+  auto* add_cmd = task->add_subcommand("add", "Print (and with --data queue) the task(s) a command in words means");
   add_cmd->add_option("SENTENCE", add_options->words, "the command, e.g. \"check office A-123 before 15:00\"")
       ->required();
   add_cmd->add_option("--map", add_options->map, "the map whose node names places resolve to")->required();
   add_cmd->add_option("--places", add_options->places, "places file: rooms, aliases, people, groups");
   add_cmd->add_option("--at", add_options->at, "what 'now' is: a time, local in the zone if it has no offset");
   add_cmd->add_option("--time-zone", add_options->time_zone, "IANA zone of local times (default: the places file's)");
-  add_cmd->add_flag("--dry-run", add_options->dry_run, "only print (nothing is ever stored yet)");
+  add_cmd->add_option("--data", add_options->data,
+                      "queue it in this deployment's store (a rondo run --out or rondo serve --data folder)");
+  add_cmd->add_flag("--dry-run", add_options->dry_run, "only print, even with --data");
   add_cmd->add_flag("--json", add_options->json, "print a task file in JSON (or the cancellation)");
   add_cmd->callback([add_options, &ctx] { add(*add_options, ctx); });
 }

@@ -87,10 +87,6 @@ Result<RunFolder> open_run_folder(const RunRequest& request, Time start) {
                       "another --out folder",
                       request.out.string(), list));
     }
-  } else {
-    std::error_code ec;
-    std::filesystem::create_directories(request.out / "days", ec);
-    if (ec) return Error::io(fmt::format("{}: cannot create the run folder: {}", request.out.string(), ec.message()));
   }
   if (const auto it = meta.find(kStart); it != meta.end()) {
     auto t = parse_time(it->second);
@@ -99,6 +95,10 @@ Result<RunFolder> open_run_folder(const RunRequest& request, Time start) {
   }
   if (meta.contains(kFinished))
     return RunFolder{.store = std::nullopt, .existed = true, .finished = true, .start = start};
+  // Also in a folder whose store another command made (rondo task add --data queues in it).
+  std::error_code ec;
+  std::filesystem::create_directories(request.out / "days", ec);
+  if (ec) return Error::io(fmt::format("{}: cannot create the run folder: {}", request.out.string(), ec.message()));
   RONDO_ASSIGN_OR_RETURN(store::Store store, store::Store::open(db, {.sync_commits = request.realtime}));
   // What run this store holds (in one transaction), so that a restart can tell its own store
   // from another's; keys that an interrupted first start did not write yet are written now.

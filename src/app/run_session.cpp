@@ -11,6 +11,8 @@
 #include <span>
 
 #include "deployment_parts.h"
+#include "request_intake.h"
+#include "robot_factory.h"
 #include "rondo/core/atomic_file.h"
 #include "rondo/core/task_codec.h"
 #include "rondo/exec/clock.h"
@@ -24,7 +26,6 @@
 #include "rondo/store/robot_state.h"
 #include "rondo/store/store.h"
 #include "rondo/store/traversal_log.h"
-#include "robot_factory.h"
 #include "run_folder.h"
 #include "run_report.h"
 
@@ -150,6 +151,11 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   options.seed = d.seed;
   options.robot_name = "robot";
   exec::Executor executor(clock, robot, map, db, d.zone, options);
+  std::unique_ptr<exec::RobotListener> listener;
+  if (request.wrap_listener) {
+    listener = request.wrap_listener(executor);
+    robot.set_listener(listener.get());
+  }
   executor.add_routines(s.parts.plan.routines);
   if (resumed) RONDO_RETURN_IF_ERROR(executor.restore());
   // The deployment's one-off tasks, unless a previous start already stored them.
@@ -157,7 +163,12 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   for (const Task& t : s.parts.plan.tasks)
     if (!executor.book().contains(t.id)) one_off.push_back(t);
   if (!one_off.empty()) RONDO_RETURN_IF_ERROR(executor.add_tasks(std::move(one_off), "deployment"));
+  // Requests queued by `rondo task add --data`: taken at start, and on the system clock every
+  // half second of wall time as well.
+  RequestIntake intake(clock, executor, db);
+  if (auto taken = intake.take_waiting(); !taken) return taken.error();
   executor.start();
+  if (request.realtime) intake.poll_every(intake_period(request.speed));
   // Said once the executor is running (scripts/crash-test waits for it before it aims a kill).
   if (!request.progress)
     progress_to << fmt::format("rondo run: {} the run in {} at {}\n", resumed ? "resumed" : "started",

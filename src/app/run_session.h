@@ -13,12 +13,16 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <iosfwd>
+#include <memory>
 #include <optional>
 
 #include "deployment.h"
 #include "rondo/core/document.h"
 #include "rondo/core/result.h"
+#include "rondo/exec/executor.h"
+#include "rondo/exec/robot.h"
 
 namespace rondo::app {
 
@@ -29,6 +33,9 @@ struct RunRequest {
   double speed = 1.0;     // with realtime: the system clock this many times faster (SystemClock)
   std::optional<Duration> run_for;  // stop this long after the start (rondo's clock), before the days end
   bool progress = false;  // draw a progress bar on `progress_to`
+  // Benchmarks only (bench/courier_fortnight_bench.cpp): a listener put between the robot and the
+  // executor, which must forward every callback to `executor` (it may time them); kept for the run.
+  std::function<std::unique_ptr<exec::RobotListener>(exec::Executor& executor)> wrap_listener{};
 };
 
 struct RunResult {

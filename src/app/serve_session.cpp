@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "deployment_parts.h"
+#include "request_intake.h"
 #include "robot_factory.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
@@ -112,6 +113,10 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
                          store::get_meta(db, service::kOutOfServiceKey));
   if (out_of_service == "1") executor.set_out_of_service(true, false, "as before the restart");
   executor.start();
+  // Requests queued by `rondo task add --data` (while it was down, and from now on): read again
+  // every half second of wall time.
+  RequestIntake intake(clock, executor, db);
+  intake.poll_every(intake_period(request.speed));
   sim::Rng people_rng(d.seed * 0x9E3779B97F4A7C15ULL + 17);
   if (parts.people) schedule_people(clock, executor, *parts.people, people_rng, d.zone, clock.now());
 

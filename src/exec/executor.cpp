@@ -84,11 +84,12 @@ Status Executor::runs_here(const Task& task) const {
   return Status{};
 }
 
-Result<std::vector<TaskId>> Executor::insert_tasks(std::vector<Task> tasks, std::string_view source) {
+Result<std::vector<TaskId>> Executor::insert_tasks(std::vector<Task> tasks, std::string_view source,
+                                                   const store::RequestTaken* taken) {
   for (const Task& t : tasks) RONDO_RETURN_IF_ERROR(accept(t));
   std::vector<TaskId> ids;
   for (const Task& t : tasks) ids.push_back(t.id);
-  RONDO_RETURN_IF_ERROR(book_.add(std::move(tasks), source));
+  RONDO_RETURN_IF_ERROR(book_.add(std::move(tasks), source, taken));
   std::vector<TaskId> standard;
   for (const TaskId& id : ids) {
     deliveries_->add(book_.at(id).task);
@@ -100,14 +101,16 @@ Result<std::vector<TaskId>> Executor::insert_tasks(std::vector<Task> tasks, std:
   return standard;
 }
 
-Status Executor::add_tasks(std::vector<Task> tasks, std::string_view source) {
+Status Executor::add_tasks(std::vector<Task> tasks, std::string_view source, const store::RequestTaken* taken) {
   std::string ids;
   for (const Task& t : tasks) ids += (ids.empty() ? "" : ",") + t.id;
-  auto inserted = insert_tasks(std::move(tasks), source);
+  auto inserted = insert_tasks(std::move(tasks), source, taken);
   if (!inserted) {
-    // A refused request is part of the record too.
-    book_.note_request(ids, "rejected", Outcome::kInvalidRequest,
-                       fmt::format("from {}: {}", source, inserted.error().message));
+    // A refused request is part of the record too (a queued one is taken with it).
+    std::optional<store::RequestTaken> refused;
+    if (taken) refused = store::RequestTaken{taken->id, taken->at, "rejected: " + inserted.error().message};
+    book_.note_request(taken ? fmt::format("request {}", taken->id) : ids, "rejected", Outcome::kInvalidRequest,
+                       fmt::format("from {}: {}", source, inserted.error().message), refused ? &*refused : nullptr);
     return inserted.error();
   }
   std::vector<TaskId> standard = std::move(*inserted);
@@ -123,6 +126,10 @@ Status Executor::add_tasks(std::vector<Task> tasks, std::string_view source) {
   }
   kick();
   return Status{};
+}
+
+void Executor::reject_request(const store::RequestTaken& taken, const std::string& reason) {
+  book_.note_request(fmt::format("request {}", taken.id), "rejected", Outcome::kInvalidRequest, reason, &taken);
 }
 
 Status Executor::cancel_task(const TaskId& id, const std::string& reason) {
@@ -173,6 +180,7 @@ void Executor::start() {
   for (const TaskId& id : book_.order())
     if (book_.at(id).task.kind == TaskKind::kStandard && book_.at(id).state == TaskState::kQueued &&
         !book_.at(id).dropped_for_now &&  // deferred (restore): reschedule() offers them again
+        !blocked(id) &&                   // waits for its door (restore)
         !queued(dispatcher_->planned, id) && !queued(dispatcher_->deferred, id))
       pending.push_back(id);
   if (!pending.empty()) reschedule(std::move(pending), "start");

@@ -63,6 +63,24 @@ Status Executor::restore_door_models() {
   return Status{};
 }
 
+// The task waits for its door (kept in its stored progress): it fails at its latest start unless
+// the door is seen open first, and is retried when the door is likely open.
+void Executor::wait_for_door(const TaskId& id, const DoorWait& wait) {
+  const TaskRecord& r = book_.at(id);
+  const Time latest = r.task.window->deadline - r.remaining();
+  const std::uint64_t serial =
+      opportunities_->block(id, {.door = wait.door, .since = wait.since, .seen_at = wait.seen_at});
+  book_.set_door_wait(id, wait);
+  clock_.schedule_at(std::max(clock_.now(), latest) + milliseconds(1),
+                     [this, id, serial] { blocked_until_deadline(id, serial); });
+  place_retry(id, wait.door, latest, serial);
+}
+
+void Executor::unblock(const TaskId& id) {
+  opportunities_->unblock(id);
+  book_.set_door_wait(id, std::nullopt);
+}
+
 // With a learned door model, a blocked task does not only wait to be passed by: it is offered to
 // the scheduler again at the first time its door is likely open, if that is before its latest start.
 void Executor::place_retry(const TaskId& id, const std::string& door, Time latest, std::uint64_t serial) {
@@ -85,7 +103,7 @@ void Executor::retry_blocked(const TaskId& id, std::uint64_t serial) {
   std::vector<TaskId> ids{id};
   for (const TaskId& other : opportunities_->waiting_for(door))
     if (other != id && linked(book_.at(other).task, book_.at(id).task)) ids.push_back(other);
-  for (const TaskId& t : ids) opportunities_->unblock(t);
+  for (const TaskId& t : ids) unblock(t);
   ++assumption_stats_.retries;
   reschedule(ids, fmt::format("retry of {}: {} likely open", joined(ids), door));
   kick();
@@ -203,7 +221,6 @@ void Executor::door_seen_closed(const Observation& seen) {
     ids.push_back(id);
     TaskRecord& r = book_.at(id);
     const Time latest = r.task.window->deadline - r.remaining();
-    const std::uint64_t serial = opportunities_->block(id, {.door = seen.where, .since = now, .seen_at = node});
     dispatcher_->forget(id);
     r.planned_start.reset();
     r.planned_end.reset();
@@ -213,8 +230,7 @@ void Executor::door_seen_closed(const Observation& seen) {
                     to_string(a.kind), a.what, zone_.format_clock(a.until), seen.where, node,
                     zone_.format_clock(now), zone_.format_clock(latest));
     book_.note(id, "blocked", Outcome::kAssumptionBroken, reason);
-    clock_.schedule_at(std::max(now, latest) + milliseconds(1), [this, id, serial] { blocked_until_deadline(id, serial); });
-    place_retry(id, seen.where, latest, serial);
+    wait_for_door(id, {.door = seen.where, .since = now, .seen_at = node});
     if (run_ && run_->id() == id) running_reason = reason;
   }
   broken_ = fmt::format("assumption broken: {} seen closed from {} at {}: {} {}", seen.where, node,
@@ -295,7 +311,7 @@ void Executor::door_seen_open(const Observation& seen) {
   std::vector<TaskId> waiting;
   for (const TaskId& id : opportunities_->waiting_for(seen.where)) {
     if (is_final(book_.at(id).state)) {
-      opportunities_->unblock(id);
+      unblock(id);
       continue;
     }
     waiting.push_back(id);
@@ -309,7 +325,7 @@ void Executor::door_seen_open(const Observation& seen) {
   std::optional<TaskId> taken;
   std::vector<TaskId> back;
   for (const TaskId& id : waiting) {
-    opportunities_->unblock(id);
+    unblock(id);
     const Task& t = book_.at(id).task;
     bool behind = std::any_of(t.after.begin(), t.after.end(),
                               [&](const TaskId& a) { return !is_final(book_.at(a).state); });
@@ -352,7 +368,7 @@ void Executor::blocked_until_deadline(const TaskId& id, std::uint64_t serial) {
   const std::string reason =
       fmt::format("{} seen closed from {} at {} and not seen open since: its deadline {} can no longer be met", b->door,
                   b->seen_at, zone_.format_clock(b->since), zone_.format_clock(book_.at(id).task.window->deadline));
-  opportunities_->unblock(id);
+  unblock(id);
   ++assumption_stats_.failed_blocked;
   book_.transition(id, TaskState::kFailed, Outcome::kAssumptionBroken, reason);
   reschedule({}, "task " + id + " failed");  // a letter on board gets its way back

@@ -46,9 +46,8 @@ Result<TaskRecord> record_of(const store::StoredTask& stored, const TimeZone& zo
                .source = row.source,
                .added = row.created};
   if (is_final(r.state)) r.ended = stored.last_transition ? stored.last_transition->time : row.updated;
-  // Its progress: a re-run goes on after the actions already done.
-  if (row.progress.is_object() && row.progress.contains("actions_done") && row.progress["actions_done"].is_number_unsigned())
-    r.actions_done = row.progress["actions_done"].get<std::size_t>();
+  // Its progress: a re-run goes on after the actions already done; a door it waited for.
+  TaskBook::read_progress(row.progress, r);
   if (r.state == TaskState::kQueued && stored.dropped_for_now)
     r.dropped_for_now = std::make_pair(stored_outcome(stored.dropped_for_now), stored.dropped_for_now->reason);
   return r;
@@ -90,6 +89,11 @@ Status Executor::restore() {
     const bool on_demand = r.task.kind == TaskKind::kOnDemand;
     if (r.state != TaskState::kQueued) {
       // It was waiting for, driving to or acting on this task when the executive stopped.
+      if (r.actions_done >= r.action_count() && (r.task.end_node.empty() || r.task.end_node == r.task.start_node)) {
+        // Its last action was stored as done, its success not yet: nothing is left to run.
+        book_.transition(id, TaskState::kSucceeded, Outcome::kDone, "done: every action finished before the restart");
+        continue;
+      }
       if (on_demand || !r.task.window || now + r.remaining() <= r.task.window->deadline) {
         book_.transition(id, TaskState::kQueued, Outcome::kInterrupted,
                          fmt::format("{}; back in the queue", kInterruptedReason));
@@ -101,6 +105,10 @@ Status Executor::restore() {
     }
     if (on_demand) {
       dispatcher_->on_demand.push_back(id);
+    } else if (r.door_wait && r.task.window) {
+      // Blocked by a door seen closed: it waits for the door again, with its retry and its end.
+      const DoorWait wait = *r.door_wait;
+      wait_for_door(id, wait);
     } else if (r.dropped_for_now && r.task.window) {
       // Offered again at every reschedule, and dropped for good once its window cannot be met.
       dispatcher_->deferred.push_back(id);

@@ -69,8 +69,11 @@ void Executor::learn_from(const ActionResult& result) {
   const TaskRecord& r = book_.at(run_->id());
   const std::string& place = map_.node(robot_.location()).name;
   const Duration declared = r.task.duration / static_cast<std::int64_t>(r.action_count());
-  loading_->observe(result.name, place, declared, result.duration, result.outcome != ActionOutcome::kFailed,
-                    result.start);
+  if (overran)  // the person had not finished: a lower bound of their time, which raises the estimate
+    loading_->observe_stopped(result.name, place, declared, result.duration, result.start);
+  else
+    loading_->observe(result.name, place, declared, result.duration, result.outcome != ActionOutcome::kFailed,
+                      result.start);
   if (result.outcome != ActionOutcome::kSucceeded) return;
   const store::Observation o{.what = result.name + " time", .where = place, .when = clock_.now(),
                              .value = to_seconds(result.duration), .text = r.task.id};

@@ -8,14 +8,23 @@ bool LoadingTimes::learns(const std::string& action) const {
   return std::find(actions_.begin(), actions_.end(), action) != actions_.end();
 }
 
-void LoadingTimes::observe(const std::string& action, const std::string& place, Duration declared, Duration took,
-                           bool success, Time at) {
-  if (!learns(action)) return;
+learn::OnlineStaticDuration& LoadingTimes::model(const std::string& action, const std::string& place,
+                                                 Duration declared) {
   auto it = models_.find({action, place});
   if (it == models_.end())
     it = models_.emplace(std::pair{action, place}, learn::OnlineStaticDuration(to_seconds(declared), kPriorCount))
              .first;
-  it->second.observe(at, to_seconds(took), success);
+  return it->second;
+}
+
+void LoadingTimes::observe(const std::string& action, const std::string& place, Duration declared, Duration took,
+                           bool success, Time at) {
+  if (learns(action)) model(action, place, declared).observe(at, to_seconds(took), success);
+}
+
+void LoadingTimes::observe_stopped(const std::string& action, const std::string& place, Duration declared,
+                                   Duration took, Time at) {
+  if (learns(action)) model(action, place, declared).observe_stopped(at, to_seconds(took));
 }
 
 Duration LoadingTimes::expected(const std::string& action, const std::string& place, Duration declared) const {

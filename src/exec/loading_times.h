@@ -31,12 +31,17 @@ class LoadingTimes {
   // take (the prior, the first time this action is seen at this place).
   void observe(const std::string& action, const std::string& place, Duration declared, Duration took, bool success,
                Time at);
+  // A run the action monitor stopped after `took`: the person had not finished (a lower bound of
+  // their time, learned as learn::OnlineStaticDuration::observe_stopped: it raises the estimate).
+  void observe_stopped(const std::string& action, const std::string& place, Duration declared, Duration took, Time at);
   // The expected duration of `action` at `place`; `declared` when nothing is known there.
   Duration expected(const std::string& action, const std::string& place, Duration declared) const;
 
   std::vector<LearnedActionTime> entries() const;  // by action, then place
 
  private:
+  learn::OnlineStaticDuration& model(const std::string& action, const std::string& place, Duration declared);
+
   std::vector<std::string> actions_;
   std::map<std::pair<std::string, std::string>, learn::OnlineStaticDuration> models_;
 };

@@ -10,7 +10,7 @@
 
 namespace rondo::exec {
 
-Status TaskBook::add(std::vector<Task> tasks, std::string_view source) {
+Status TaskBook::add(std::vector<Task> tasks, std::string_view source, const store::RequestTaken* taken) {
   std::set<TaskId> ids;
   for (const Task& t : tasks) {
     if (t.id.empty()) return Error::invalid("a task needs an id");
@@ -31,7 +31,7 @@ Status TaskBook::add(std::vector<Task> tasks, std::string_view source) {
                     .updated = now,
                     .source = std::string(source)});
   }
-  RONDO_RETURN_IF_ERROR(store::add_tasks(store_, rows, reason, to_string(Outcome::kAdded)));
+  RONDO_RETURN_IF_ERROR(store::add_tasks(store_, rows, reason, to_string(Outcome::kAdded), taken));
   for (Task& t : tasks) {
     const TaskId id = t.id;
     records_.emplace(id, TaskRecord{.task = std::move(t), .state = TaskState::kQueued, .outcome = Outcome::kAdded,
@@ -80,8 +80,37 @@ void TaskBook::transition(const TaskId& id, TaskState state, Outcome outcome, co
 
 void TaskBook::set_progress(const TaskId& id, std::size_t actions_done) {
   records_.at(id).actions_done = actions_done;
-  if (auto ok = store::set_task_progress(store_, id, Json{{"actions_done", actions_done}}); !ok)
+  if (auto ok = store::set_task_progress(store_, id, progress_json(records_.at(id))); !ok)
     write_errors_.push_back(ok.error().message);
+}
+
+void TaskBook::set_door_wait(const TaskId& id, std::optional<DoorWait> wait) {
+  TaskRecord& r = records_.at(id);
+  if (r.door_wait == wait) return;
+  r.door_wait = std::move(wait);
+  if (auto ok = store::set_task_progress(store_, id, progress_json(r)); !ok)
+    write_errors_.push_back(ok.error().message);
+}
+
+Json TaskBook::progress_json(const TaskRecord& r) {
+  Json j{{"actions_done", r.actions_done}};
+  if (r.door_wait)
+    j["blocked"] = Json{{"door", r.door_wait->door},
+                        {"since_ms", r.door_wait->since.time_since_epoch().count()},
+                        {"seen_at", r.door_wait->seen_at}};
+  return j;
+}
+
+void TaskBook::read_progress(const Json& progress, TaskRecord& r) {
+  if (!progress.is_object()) return;
+  if (progress.contains("actions_done") && progress["actions_done"].is_number_unsigned())
+    r.actions_done = progress["actions_done"].get<std::size_t>();
+  if (!progress.contains("blocked") || !progress["blocked"].is_object()) return;
+  const Json& b = progress["blocked"];
+  const auto text = [&b](const char* key) { return b.contains(key) && b[key].is_string(); };
+  if (!text("door") || !text("seen_at") || !b.contains("since_ms") || !b["since_ms"].is_number_integer()) return;
+  r.door_wait = DoorWait{b["door"].get<std::string>(), Time{Duration{b["since_ms"].get<Duration::rep>()}},
+                         b["seen_at"].get<std::string>()};
 }
 
 void TaskBook::note(const TaskId& id, const std::string& event, Outcome outcome, const std::string& reason) {
@@ -107,18 +136,23 @@ void TaskBook::note_schedule(const std::string& event, Outcome outcome, const st
 }
 
 void TaskBook::note_request(const std::string& about, const std::string& event, Outcome outcome,
-                            const std::string& reason) {
+                            const std::string& reason, const store::RequestTaken* taken) {
   append({.time = clock_.now(),
           .subject = store::Subject::kRequest,
           .about = about,
           .event = event,
           .code = std::string(to_string(outcome)),
-          .reason = reason});
+          .reason = reason},
+         taken);
 }
 
-void TaskBook::append(store::Event event) {
+void TaskBook::append(store::Event event, const store::RequestTaken* taken) {
   if (auto code = parse_outcome(event.code)) ++event_counts_[event.event][*code];
-  if (auto ok = store::append_event(store_, event); !ok) write_errors_.push_back(ok.error().message);
+  if (taken) {
+    if (auto ok = store::take_request(store_, *taken, &event); !ok) write_errors_.push_back(ok.error().message);
+  } else if (auto ok = store::append_event(store_, event); !ok) {
+    write_errors_.push_back(ok.error().message);
+  }
 }
 
 }  // namespace rondo::exec

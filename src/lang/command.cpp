@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+
 #include "rondo/lang/words.h"
 
 namespace rondo::lang {
@@ -48,6 +50,38 @@ Json encode(const Cancellation& c) {
       break;
   }
   return Json{{"cancel", what}};
+}
+
+Result<Cancellation> decode_cancellation(const Json& j) {
+  const auto text = [](const Json& o, const char* key) -> Result<std::string> {
+    if (!o.is_object() || !o.contains(key) || !o[key].is_string() || o[key].get<std::string>().empty())
+      return Error::invalid(fmt::format("cancel.{}: a non-empty text is needed", key));
+    return o[key].get<std::string>();
+  };
+  if (!j.is_object() || !j.contains("cancel") || !j["cancel"].is_object())
+    return Error::invalid("cancel: an object is needed");
+  const Json& c = j["cancel"];
+  RONDO_ASSIGN_OR_RETURN(const std::string what, text(c, "what"));
+  Cancellation out;
+  if (what == "delivery") {
+    out.what = Cancellation::What::kDelivery;
+    RONDO_ASSIGN_OR_RETURN(out.object, text(c, "object"));
+  } else if (what == "activity") {
+    out.what = Cancellation::What::kActivity;
+    RONDO_ASSIGN_OR_RETURN(out.activity, text(c, "activity"));
+    if (!c.contains("nodes") || !c["nodes"].is_array() || c["nodes"].empty())
+      return Error::invalid("cancel.nodes: a non-empty list of node names is needed");
+    for (const Json& n : c["nodes"]) {
+      if (!n.is_string()) return Error::invalid("cancel.nodes: a non-empty list of node names is needed");
+      out.nodes.push_back(n.get<std::string>());
+    }
+  } else if (what == "task") {
+    out.what = Cancellation::What::kTask;
+    RONDO_ASSIGN_OR_RETURN(out.id, text(c, "id"));
+  } else {
+    return Error::invalid(fmt::format("cancel.what: '{}' is not delivery, activity or task", what));
+  }
+  return out;
 }
 
 }  // namespace rondo::lang

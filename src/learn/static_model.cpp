@@ -50,6 +50,11 @@ void OnlineStaticDuration::observe(Time, double seconds, bool success) {
   quantiles_ = QuantileTable::from_samples(recent_);
 }
 
+void OnlineStaticDuration::observe_stopped(Time start, double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0) return;
+  observe(start, seconds + expected_seconds(start), true);
+}
+
 double OnlineStaticDuration::quantile_seconds(Time, double q) const {
   return recent_.empty() ? prior_ : quantiles_.at(q);
 }

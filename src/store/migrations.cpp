@@ -108,9 +108,27 @@ CREATE TABLE meta (
 ) STRICT;
 )sql";
 
+// Version 3 (commands in words, `rondo task add --data`): the durable queue of requests that
+// another process (the CLI) writes and the running executive takes. A request is taken once:
+// taken_ms is set in the same transaction that stores its tasks (or its rejection's event).
+constexpr std::string_view kSchemaV3 = R"sql(
+CREATE TABLE requests (
+  id         INTEGER PRIMARY KEY AUTOINCREMENT,
+  queued_ms  INTEGER NOT NULL,
+  source     TEXT    NOT NULL DEFAULT '',
+  sentence   TEXT    NOT NULL DEFAULT '',
+  body_json  TEXT    NOT NULL CHECK (json_valid(body_json)),
+  taken_ms   INTEGER,
+  outcome    TEXT    NOT NULL DEFAULT '',
+  CHECK ((taken_ms IS NULL) = (outcome = ''))
+) STRICT;
+CREATE INDEX requests_waiting ON requests (id) WHERE taken_ms IS NULL;
+)sql";
+
 constexpr Migration kMigrations[] = {
     {1, "tasks, task_events (append-only), traversals, observations", kSchemaV1},
     {2, "events with subject and outcome code; task source and progress; robot_state; meta", kSchemaV2},
+    {3, "requests: the queue of requests written by other processes (rondo task add --data)", kSchemaV3},
 };
 
 int read_user_version(SQLite::Database& db) {

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "event_rows.h"
+#include "request_rows.h"
 #include "sqlite_error.h"
 
 namespace rondo::store {
@@ -50,8 +51,9 @@ Status add_task(Store& store, const TaskRow& task, std::string_view reason, std:
   return add_tasks(store, std::span<const TaskRow>(&task, 1), reason, code);
 }
 
-Status add_tasks(Store& store, std::span<const TaskRow> tasks, std::string_view reason, std::string_view code) {
-  if (tasks.empty()) return {};
+Status add_tasks(Store& store, std::span<const TaskRow> tasks, std::string_view reason, std::string_view code,
+                 const RequestTaken* taken) {
+  if (tasks.empty() && !taken) return {};
   for (const TaskRow& t : tasks) {
     if (t.id.empty()) return Error::invalid(store.file().string() + ": a task needs a non-empty id");
   }
@@ -84,6 +86,7 @@ Status add_tasks(Store& store, std::span<const TaskRow> tasks, std::string_view 
                             .code = std::string(code),
                             .reason = std::string(reason)});
     }
+    if (taken) RONDO_RETURN_IF_ERROR(mark_request_taken(db, store.file(), *taken));
     tx.commit();  // with synchronous=FULL the WAL is synced to disk here
     return {};
   });

@@ -338,5 +338,56 @@ TEST(CourierStory, AfterAKillTheLetterOnBoardIsNotPickedUpAgain) {
                            [](const std::string& c) { return c.starts_with("drive A-111_A-111-Table"); }));
 }
 
+// A kill while the letter waits for A-120's door: after the restore it still waits for the door
+// (stored with its progress), is not driven to A-120, and is taken when the door is seen open.
+TEST(CourierStory, AfterAKillTheLetterStillWaitsForItsDoor) {
+  Story s;
+  const Started ids = pick_up_both_and_reach_a120(s);
+  ASSERT_FALSE(ids.letter_drop.empty());
+  ASSERT_FALSE(HasFailure());
+  s.robot().observe("door_open", "A-120-door", 0);
+  s.settle();
+  ASSERT_EQ(s.executor().current_task(), ids.book_drop);
+  ASSERT_NO_FATAL_FAILURE(s.kill_and_restart());
+  s.settle();
+  const TaskRecord& letter = s.executor().tasks().at(ids.letter_drop);
+  EXPECT_EQ(s.state(ids.letter_drop), "queued");
+  ASSERT_TRUE(letter.door_wait.has_value());
+  EXPECT_EQ(letter.door_wait->door, "A-120-door");
+  EXPECT_EQ(letter.door_wait->seen_at, "Hall-A-120");
+  const Executor::Activity now = s.executor().activity();
+  EXPECT_EQ(now.current, ids.book_drop);
+  EXPECT_EQ(std::count(now.planned.begin(), now.planned.end(), ids.letter_drop), 0) << "kept out of the schedule";
+  s.step();
+  EXPECT_EQ(s.node(), "Hall-A-117");
+  s.robot().observe("door_open", "A-120-door", 1);
+  s.settle();
+  EXPECT_EQ(s.code_of(ids.letter_drop, "opportunity"), "opportunity taken");
+  EXPECT_FALSE(s.entered("A-120")) << "nothing went to A-120 while its door was closed";
+  ASSERT_NO_FATAL_FAILURE(s.serve("A-120-Desk"));
+  EXPECT_EQ(s.state(ids.letter_drop), "succeeded");
+  EXPECT_FALSE(s.executor().tasks().at(ids.letter_drop).door_wait.has_value());
+  ASSERT_NO_FATAL_FAILURE(s.serve("A-114-Desk"));
+  EXPECT_EQ(s.state(ids.book_drop), "succeeded");
+}
+
+// Still blocked after the restart and never seen open: it fails at its latest start for its door.
+TEST(CourierStory, AfterAKillABlockedLetterFailsForItsDoorAtItsDeadline) {
+  Story s;
+  const Started ids = pick_up_both_and_reach_a120(s);
+  ASSERT_FALSE(ids.letter_drop.empty());
+  ASSERT_FALSE(HasFailure());
+  s.robot().observe("door_open", "A-120-door", 0);
+  s.settle();
+  ASSERT_NO_FATAL_FAILURE(s.kill_and_restart());
+  ASSERT_NO_FATAL_FAILURE(s.serve("A-114-Desk"));
+  s.drive_to("ChargingPoint");
+  s.run_until("08:10");
+  EXPECT_EQ(s.state(ids.letter_drop), "failed");
+  EXPECT_EQ(s.code_of(ids.letter_drop, "failed"), "assumption broken");
+  EXPECT_THAT(s.reason_of(ids.letter_drop, "failed"), HasSubstr("A-120-door seen closed from Hall-A-120"));
+  EXPECT_FALSE(s.entered("A-120"));
+}
+
 }  // namespace
 }  // namespace rondo::exec::testing

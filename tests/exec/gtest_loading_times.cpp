@@ -34,5 +34,39 @@ TEST(LoadingTimes, ConvergeToThePersonsTime) {
   EXPECT_NEAR(to_seconds(t.expected("load", "Desk", minutes(1))), 180, 3);
 }
 
+// A slow person (300 s every time) behind the action monitor (limit 1.5 x the estimate + 30 s, as
+// ExecutorOptions' defaults): a run the monitor stops is a lower bound of the person's time. Learned
+// as stopped runs (censored), the estimate rises past the limit after a few stops and the runs
+// complete; learned as samples of the length they had (the old rule), it creeps up and the person
+// is stopped far more often.
+TEST(LoadingTimes, StoppedRunsRaiseTheEstimateUntilTheSlowPersonCanFinish) {
+  const Duration truth = seconds(300);
+  const auto live = [&](bool censored, int& stopped) {
+    LoadingTimes t;
+    stopped = 0;
+    for (int run = 0; run < 12; ++run) {
+      const Duration limit =
+          std::chrono::duration_cast<Duration>(t.expected("load", "Desk", minutes(1)) * 1.5) + seconds(30);
+      if (truth <= limit) {
+        t.observe("load", "Desk", minutes(1), truth, true, kNow);
+      } else if (censored) {
+        ++stopped;
+        t.observe_stopped("load", "Desk", minutes(1), limit, kNow);
+      } else {
+        ++stopped;
+        t.observe("load", "Desk", minutes(1), limit, true, kNow);
+      }
+    }
+    return to_seconds(t.expected("load", "Desk", minutes(1)));
+  };
+  int stopped_censored = 0, stopped_old = 0;
+  const double censored = live(true, stopped_censored);
+  const double old = live(false, stopped_old);
+  EXPECT_LE(stopped_censored, 3);  // stopped at 120 s, 180 s and 248 s; then the limit is 322 s
+  EXPECT_GE(stopped_old, 2 * stopped_censored);
+  EXPECT_NEAR(censored, 300, 60);
+  EXPECT_LT(old, censored);
+}
+
 }  // namespace
 }  // namespace rondo::exec

@@ -30,12 +30,14 @@ class ScriptedExecutor {
     executor_ = std::make_unique<Executor>(clock_, robot_, map_, store_, zone_, options, std::move(parts));
   }
   // The executive is killed and started again on the same store (Executor::restore): the robot
-  // stops what the dead executive asked of it and stays where it is.
+  // stops what the dead executive asked of it and stays where it is; the clock keeps its time but
+  // none of the dead executive's timers.
   void kill_and_restart() {
     executor_.reset();
     if (robot_.driving()) robot_.finish_edge(EdgeOutcome::kCancelled, seconds(1));
     if (robot_.acting()) robot_.finish_action(ActionOutcome::kCancelled, "the executive died");
     settle();
+    clock_.clear();  // the dead executive's timers die with it
     executor_ = std::make_unique<Executor>(clock_, robot_, map_, store_, zone_, options_);
     ASSERT_TRUE(executor_->restore().ok());
     executor_->start();

@@ -274,6 +274,14 @@ TEST(Sentences, CancellationMatchesTheTasksItNames) {
   EXPECT_TRUE(matches(*cancel_check->cancel, check->tasks[0]));
   EXPECT_FALSE(matches(*cancel_check->cancel, letter->tasks[0]));
   EXPECT_EQ(encode(*cancel->cancel).dump(), R"({"cancel":{"what":"delivery","object":"red letter"}})");
+  // What encode() writes (a queued request's body) decodes back; anything else names the field.
+  for (const Cancellation& c :
+       {*cancel->cancel, *cancel_check->cancel,
+        Cancellation{.what = Cancellation::What::kTask, .object = {}, .activity = {}, .nodes = {}, .id = "t1"}})
+    EXPECT_EQ(decode_cancellation(encode(c)).value(), c);
+  EXPECT_FALSE(decode_cancellation(Json{{"cancel", {{"what", "everything"}}}}).ok());
+  EXPECT_FALSE(decode_cancellation(Json{{"cancel", {{"what", "activity"}, {"activity", "check"}}}}).ok());
+  EXPECT_FALSE(decode_cancellation(Json::array()).ok());
   auto chair = parse_command("bring the office chair from A-110 to A-114", ctx);
   auto cancel_chair = parse_command("cancel the office chair delivery", ctx);
   ASSERT_TRUE(chair.ok() && cancel_chair.ok());

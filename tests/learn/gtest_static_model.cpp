@@ -86,6 +86,18 @@ TEST(OnlineStaticDuration, StartsAtThePriorAndMovesToTheSamples) {
   EXPECT_DOUBLE_EQ(d.quantile_seconds(monday(), 0.5), 300);
 }
 
+TEST(OnlineStaticDuration, AStoppedRunCountsAsItsLengthPlusTheTimeStillExpected) {
+  OnlineStaticDuration d(60, 2);
+  d.observe_stopped(monday(), 90);  // at least 90 s: counted as 90 + the current mean 60
+  EXPECT_DOUBLE_EQ(d.expected_seconds(monday()), (2 * 60 + 150) / 3.0);
+  EXPECT_EQ(d.samples(), 1u);
+  d.observe_stopped(monday(), -1);  // nonsense is ignored
+  EXPECT_EQ(d.samples(), 1u);
+  OnlineStaticDuration as_sample(60, 2);
+  as_sample.observe(monday(), 90, true);
+  EXPECT_GT(d.expected_seconds(monday()), as_sample.expected_seconds(monday()));  // 90 s against 70 s
+}
+
 // The running mean with a prior equals the obviously correct sum over everything seen, and the
 // quantiles are those of the last `window` successes.
 RC_GTEST_PROP(OnlineStaticDuration, IsTheMeanWithItsPriorAndTheQuantilesOfTheWindow, ()) {

@@ -58,6 +58,10 @@ class EventQueue {
   // Removes and returns the earliest event's callback. Precondition: !empty().
   std::function<void()> pop();
   std::size_t size() const { return events_.size(); }
+  void clear() {
+    events_.clear();
+    due_.clear();
+  }
 
  private:
   struct Key {
@@ -99,6 +103,12 @@ class SimClock final : public Clock {
   // Runs every event due at or before `end`, then sets now() to `end`.
   void run_until(Time end);
   std::size_t pending() const { return queue_.size(); }
+  // Drops every pending event and posted callback (a test's kill: the timers of an executive that
+  // died go with it; now() stays).
+  void clear() {
+    queue_.clear();
+    (void)posted_.take();
+  }
 
  private:
   bool run_posted();

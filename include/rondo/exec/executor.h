@@ -62,6 +62,7 @@
 #include "rondo/plan/travel_planner.h"
 #include "rondo/schedule/scheduler.h"
 #include "rondo/schedule/try_schedule.h"
+#include "rondo/store/requests.h"
 #include "rondo/store/store.h"
 
 namespace rondo::exec {
@@ -102,8 +103,13 @@ class Executor final : public RobotListener {
   // Accepts tasks (committed to the store before this returns), then schedules them together.
   // kInvalidInput for a task that cannot be run here (unknown node, no window, duplicate id, an
   // id the store already holds), kStorage when the store cannot write; either way nothing is added.
-  Status add_tasks(std::vector<Task> tasks, std::string_view source);
+  // With `taken` (a request of the store's queue, store/requests.h), the request is marked taken
+  // in the transaction that stores the tasks, or in the one of its `rejected` event.
+  Status add_tasks(std::vector<Task> tasks, std::string_view source, const store::RequestTaken* taken = nullptr);
   Status add_task(Task task, std::string_view source) { return add_tasks({std::move(task)}, source); }
+  // Refuses a queued request that cannot be carried out: a `rejected` request event (code
+  // `invalid request`, about "request N") and the request marked taken, in one transaction.
+  void reject_request(const store::RequestTaken& taken, const std::string& reason);
   // Cancels a task: a queued (or waiting, or dropped-for-now) one ends `cancelled` at once; a
   // running one is stopped through the robot's cancel() when it is interruptible now, else at its
   // next interruptible moment (a `cancel pending` event says so). kNotFound for an unknown task,
@@ -191,7 +197,8 @@ class Executor final : public RobotListener {
   Status runs_here(const Task& task) const;  // its places are on the map
   // Validates, stores (all or nothing) and records tasks; returns the standard ones (on-demand ones
   // are queued).
-  Result<std::vector<TaskId>> insert_tasks(std::vector<Task> tasks, std::string_view source);
+  Result<std::vector<TaskId>> insert_tasks(std::vector<Task> tasks, std::string_view source,
+                                           const store::RequestTaken* taken);
   bool interruptible_now() const;
   bool running_standard() const;  // a standard task navigates or acts
   void preempt_for_on_demand();
@@ -260,6 +267,9 @@ class Executor final : public RobotListener {
   void note_look_alikes();                      // why look-alike jobs do not interleave
   bool blocked(const TaskId& id) const;         // waits for its door: kept out of the schedule
   bool can_wait(const TaskId& id) const;        // may be blocked by a door seen closed
+  // Blocks the task until `wait.door` is seen open (stored; timers for its retry and its end).
+  void wait_for_door(const TaskId& id, const DoorWait& wait);
+  void unblock(const TaskId& id);
   void door_seen_closed(const Observation& seen);
   void door_seen_open(const Observation& seen);
   // Whether running `id` now (interrupting the running task) or right after the running task

@@ -25,9 +25,19 @@
 #include "rondo/exec/clock.h"
 #include "rondo/exec/outcome.h"
 #include "rondo/store/events.h"
+#include "rondo/store/requests.h"
 #include "rondo/store/store.h"
 
 namespace rondo::exec {
+
+// A door a task waits for (seen closed: the task waits as an opportunity), kept in the task's
+// stored progress so that a restart brings the task back waiting for it.
+struct DoorWait {
+  std::string door;
+  Time since{};         // when it was seen closed
+  std::string seen_at;  // the node the robot saw it from
+  bool operator==(const DoorWait&) const = default;
+};
 
 // What the executor knows of one task.
 struct TaskRecord {
@@ -47,6 +57,8 @@ struct TaskRecord {
   // Progress, kept when the task is preempted or interrupted: a re-run starts after the actions
   // already done (stored as the task's progress, {"actions_done": n}).
   std::size_t actions_done = 0;
+  // Blocked by a door seen closed (stored with the progress, {"blocked": {door, since, seen_at}}).
+  std::optional<DoorWait> door_wait{};
   // The processing time learned from experience (loading and unloading times), when the executor
   // knows better than the task's declared duration.
   std::optional<Duration> learned_duration{};
@@ -73,7 +85,8 @@ class TaskBook {
 
   // Stores the tasks, all or nothing, then records them as queued. kInvalidInput for an empty or
   // repeated id or one already in the book or the store; kStorage when the store cannot write.
-  Status add(std::vector<Task> tasks, std::string_view source);
+  // With `taken`, the queued request they come from is marked taken in the same transaction.
+  Status add(std::vector<Task> tasks, std::string_view source, const store::RequestTaken* taken = nullptr);
 
   // Restore after a restart (exec/executor_restore.cpp): records a task read back from the store
   // as it is, without writing anything (precondition: its id is not in the book yet), and counts
@@ -92,12 +105,20 @@ class TaskBook {
   void transition(const TaskId& id, TaskState state, Outcome outcome, const std::string& reason);
   // Records and stores how many of the task's actions are done.
   void set_progress(const TaskId& id, std::size_t actions_done);
+  // Records and stores the door the task waits for (none: it waits for nothing).
+  void set_door_wait(const TaskId& id, std::optional<DoorWait> wait);
+  // A task's progress as stored ({"actions_done": n, "blocked": {...}}), and read back into `r`
+  // (restore; what it does not understand is left as it was).
+  static Json progress_json(const TaskRecord& r);
+  static void read_progress(const Json& progress, TaskRecord& r);
   // An event of a task that is not a change of its state.
   void note(const TaskId& id, const std::string& event, Outcome outcome, const std::string& reason);
   // Events about the robot, a request (`about`: its id) or the schedule.
   void note_robot(const std::string& event, Outcome outcome, const std::string& reason);
   void note_schedule(const std::string& event, Outcome outcome, const std::string& reason);
-  void note_request(const std::string& about, const std::string& event, Outcome outcome, const std::string& reason);
+  // With `taken`, the queued request is marked taken in the event's transaction.
+  void note_request(const std::string& about, const std::string& event, Outcome outcome, const std::string& reason,
+                    const store::RequestTaken* taken = nullptr);
 
   // How many events were written that are not final states, by event name and code (for the
   // report): {"preempted": {kPreemptedOnDemand: 3}, "dropped for now": {...}, "fault": {...}}.
@@ -108,7 +129,7 @@ class TaskBook {
   store::Store& store() { return store_; }
 
  private:
-  void append(store::Event event);
+  void append(store::Event event, const store::RequestTaken* taken = nullptr);
 
   store::Store& store_;
   const Clock& clock_;

@@ -68,6 +68,8 @@ bool matches(const Cancellation& c, const Task& task);
 
 // {"cancel": {"what": "delivery", "object": "red letter"}} and the like (docs/commands.md).
 Json encode(const Cancellation& c);
+// The reverse of encode(): kInvalidInput naming the field when `j` is not such an object.
+Result<Cancellation> decode_cancellation(const Json& j);
 const char* to_string(Cancellation::What what);
 
 }  // namespace rondo::lang

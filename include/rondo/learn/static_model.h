@@ -68,9 +68,14 @@ class OnlineStaticDuration final : public OnlineDurationModel {
  public:
   OnlineStaticDuration(double prior_seconds, double prior_count, std::size_t window = 200);
   void observe(Time start, double seconds, bool success) override;
+  // A run stopped after `seconds`, before it ended (right-censored: it would have taken longer).
+  // It counts as one run of `seconds` plus the time still expected, taken as the current mean (a
+  // memoryless tail: E[T | T > s] = s + mean), so a stopped run raises the estimate above its
+  // length instead of holding it at a lower bound.
+  void observe_stopped(Time start, double seconds);
   double expected_seconds(Time) const override { return count_ > 0 ? sum_ / count_ : 0.0; }
   double quantile_seconds(Time, double q) const override;
-  std::size_t samples() const { return seen_; }  // successful ones observed
+  std::size_t samples() const { return seen_; }  // successful (and stopped) ones observed
 
  private:
   double sum_;

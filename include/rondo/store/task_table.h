@@ -18,6 +18,7 @@
 #include "rondo/core/document.h"
 #include "rondo/core/result.h"
 #include "rondo/core/time.h"
+#include "rondo/store/requests.h"
 #include "rondo/store/store.h"
 
 namespace rondo::store {
@@ -41,9 +42,11 @@ struct TaskRow {
 Status add_task(Store& store, const TaskRow& task, std::string_view reason = "accepted", std::string_view code = "");
 
 // Accepts several tasks at once, all or nothing: one transaction, one sync. If any id is empty,
-// already stored or repeated in `tasks`, nothing is stored. Errors as add_task's.
+// already stored or repeated in `tasks`, nothing is stored. With `taken`, the queued request the
+// tasks come from is marked taken in the same transaction (requests.h; kConflict when it already
+// is, and nothing is stored). Errors as add_task's.
 Status add_tasks(Store& store, std::span<const TaskRow> tasks, std::string_view reason = "accepted",
-                 std::string_view code = "");
+                 std::string_view code = "", const RequestTaken* taken = nullptr);
 
 // Moves task `id` to `state` at time `at` and appends the event (at, id, state, code, reason), in
 // one transaction. Errors: kNotFound (no such task), kStorage.

@@ -1,0 +1,44 @@
+#include "request_queue.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+
+#include "rondo/core/task_codec.h"
+#include "rondo/store/requests.h"
+#include "rondo/store/robot_state.h"
+#include "rondo/store/store.h"
+
+namespace rondo::app {
+
+Json request_body(const lang::Command& command, const TimeZone& zone) {
+  if (command.cancel) return lang::encode(*command.cancel);
+  return encode(TaskFile{zone, command.tasks, command.routines});
+}
+
+Result<QueuedAt> queue_command(const std::filesystem::path& data, const std::string& sentence,
+                               const lang::Command& command, const TimeZone& zone) {
+  if (!command.routines.empty())
+    return Error::invalid(
+        fmt::format("--data {}: the sentence makes routines, which cannot be queued (add them to the deployment, or "
+                    "through rondo serve's API); --dry-run prints them",
+                    data.string()));
+  const std::filesystem::path file = data / "rondo.sqlite";
+  if (!std::filesystem::is_regular_file(file))
+    return Error::invalid(fmt::format(
+        "--data {}: no rondo store there ({} is missing): give a rondo run --out or rondo serve --data folder",
+        data.string(), file.string()));
+  RONDO_ASSIGN_OR_RETURN(store::Store db, store::Store::open(file, {.mode = store::OpenMode::kMustExist}));
+  RONDO_ASSIGN_OR_RETURN(const auto meta, store::read_meta(db));
+  if (meta.contains("run.finished"))
+    return Error::invalid(
+        fmt::format("--data {}: the run there is finished; nothing would take the request", data.string()));
+  const Time now = std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now());
+  RONDO_ASSIGN_OR_RETURN(
+      const std::int64_t id,
+      store::queue_request(
+          db, {.queued = now, .source = "words", .sentence = sentence, .body = request_body(command, zone)}));
+  return QueuedAt{id, file};
+}
+
+}  // namespace rondo::app
