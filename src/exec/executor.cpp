@@ -61,6 +61,17 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
       opportunities_(std::make_unique<Opportunities>()),
       door_models_(std::make_unique<DoorModels>(zone_)) {
   robot_.set_listener(this);
+  if (options_.forget_finished)
+    book_.forget_finished([this] { clock_.schedule_at(clock_.now(), [this] { sweep_finished(); }); });
+}
+
+// Finished tasks leave memory (the store keeps them), with what the executor kept about them.
+void Executor::sweep_finished() {
+  for (const TaskId& id : book_.sweep()) {
+    opportunities_->unblock(id);
+    std::erase(after_preempt_, id);
+  }
+  deliveries_->forget_settled(book_);
 }
 
 Executor::~Executor() {
@@ -126,11 +137,11 @@ Status Executor::add_tasks(std::vector<Task> tasks, std::string_view source) {
 }
 
 Status Executor::cancel_task(const TaskId& id, const std::string& reason) {
-  if (!book_.contains(id)) return Error::not_found(fmt::format("no task '{}'", id));
-  const TaskRecord& r = book_.at(id);
-  if (is_final(r.state))
+  const std::optional<TaskState> state = book_.state_of(id);
+  if (!state) return Error::not_found(fmt::format("no task '{}'", id));
+  if (is_final(*state))
     return Error{ErrorCode::kConflict,
-                 fmt::format("task {} is already {}: it cannot be cancelled", id, to_string(r.state))};
+                 fmt::format("task {} is already {}: it cannot be cancelled", id, to_string(*state))};
   const std::string why = reason.empty() ? "cancelled" : "cancelled: " + reason;
   if (run_ && run_->id() == id) {
     if (run_->waiting()) {

@@ -22,7 +22,7 @@ void Executor::create_routine_tasks(std::chrono::year_month_day day) {
   const Time now = clock_.now();
   for (const Routine& r : routines_)
     for (Task& t : instances_on(r, day, zone_))
-      if (t.window && t.window->deadline > now && !book_.contains(t.id)) batch.push_back(std::move(t));
+      if (t.window && t.window->deadline > now && !book_.known(t.id)) batch.push_back(std::move(t));
   if (batch.empty()) return;
   if (auto ok = add_tasks(std::move(batch), "routine"); !ok) book_.write_error(ok.error().message);
 }

@@ -97,6 +97,9 @@ bool TaskRun::stop_here() {
 }
 
 void TaskRun::overrun(Outcome outcome, const std::string& reason) {
+  // A monitor of a run that has ended (retired, freed at the next robot callback) is moot; its
+  // task may have left the book already (forget_finished).
+  if (finished_) return;
   if (!interruptible()) {
     if (!overrun_held_)
       ctx_.book.note(id_, "overrun", Outcome::kOverrunHeld,
@@ -109,7 +112,7 @@ void TaskRun::overrun(Outcome outcome, const std::string& reason) {
 
 bool TaskRun::set_robot_interruptible(bool interruptible) {
   robot_interruptible_ = interruptible;
-  if (!interruptible || !this->interruptible()) return false;
+  if (!interruptible || finished_ || !this->interruptible()) return false;
   if (cancel_pending_) {
     stop(Stop::kCancel, Outcome::kCancelled, *std::exchange(cancel_pending_, std::nullopt));
     return true;

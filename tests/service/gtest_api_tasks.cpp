@@ -81,6 +81,41 @@ TEST(ApiTasks, ListFiltersByStateSourceAndWindowAndPages) {
   }
 }
 
+// A finished task leaves the executor's memory (forget_finished, as in rondo serve) and the API
+// reads it from the store: one task, the list, the schedule, the metrics, a cancel or change is
+// 409 and its id stays taken.
+TEST(ApiTasks, AFinishedTaskIsReadFromTheStoreOnceItHasLeftMemory) {
+  LiveService s(fresh_dir("rondo-service-test", "forgotten"));
+  auto cli = s.client();
+  ASSERT_EQ(cli.Post("/api/v1/tasks", s.task_body("f1", minutes(30)), "application/json")->status, 201);
+  ASSERT_EQ(cli.Post("/api/v1/tasks/f1/cancel", R"({"reason": "no longer needed"})", "application/json")->status, 200);
+  ASSERT_TRUE(eventually([&] {
+    bool in_memory = true;
+    s.on_clock([&] { in_memory = s.executor().tasks().contains("f1"); });
+    return !in_memory;
+  }));
+  Json one = body_of(cli.Get("/api/v1/tasks/f1"));
+  EXPECT_EQ(one["state"], "cancelled");
+  EXPECT_EQ(one["code"], "cancelled");
+  EXPECT_NE(one["reason"].get<std::string>().find("no longer needed"), std::string::npos) << one.dump();
+  EXPECT_EQ(one["activity"], "look at the door");
+  EXPECT_TRUE(one["actual"]["end"].is_string()) << one.dump();
+  EXPECT_EQ(one["events"].back()["event"], "cancelled");
+  Json listed = body_of(cli.Get("/api/v1/tasks?state=cancelled"));
+  ASSERT_EQ(listed["total"], 1);
+  EXPECT_EQ(listed["tasks"][0]["id"], "f1");
+  EXPECT_EQ(listed["tasks"][0]["reason"], one["reason"]);
+  Json day = body_of(cli.Get("/api/v1/schedule"));
+  EXPECT_TRUE(std::any_of(day["tasks"].begin(), day["tasks"].end(), [](const Json& t) { return t["id"] == "f1"; }))
+      << day.dump();
+  EXPECT_NE(cli.Get("/metrics")->body.find("rondo_tasks{state=\"cancelled\"} 1"), std::string::npos);
+  EXPECT_EQ(cli.Post("/api/v1/tasks/f1/cancel", "", "application/json")->status, 409);
+  EXPECT_EQ(cli.Patch("/api/v1/tasks/f1", R"({"priority": 1})", "application/json")->status, 409);
+  auto again = cli.Post("/api/v1/tasks", s.task_body("f1"), "application/json");
+  EXPECT_EQ(again->status, 422);
+  EXPECT_EQ(body_of(again)["error"]["code"], "invalid");
+}
+
 TEST(ApiTasks, CancelEndsAQueuedTaskAndAFinalOneIsAConflict) {
   LiveService s(fresh_dir("rondo-service-test", "cancel"));
   auto cli = s.client();

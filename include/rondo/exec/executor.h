@@ -125,6 +125,8 @@ class Executor final : public RobotListener {
   const std::map<TaskId, TaskRecord>& tasks() const { return book_.records(); }
   const std::vector<TaskId>& task_order() const { return book_.order(); }  // in the order added
   const TaskBook& book() const { return book_; }
+  // One task, from memory or (a finished one) from the store; nothing for an unknown id.
+  Result<std::optional<TaskRecord>> task(const TaskId& id) const { return book_.lookup(id, zone_); }
   const ExecutorStats& stats() const { return stats_; }
   const std::vector<NavigationRecord>& navigations() const { return navigations_; }
   // Store writes that failed (the run goes on; the caller reports them).
@@ -208,6 +210,7 @@ class Executor final : public RobotListener {
 
   // running (executor_running.cpp)
   void kick();  // reconsider what to do now
+  void sweep_finished();
   void next();
   void start_run(const TaskId& id, std::optional<Time> wait_until);
   void run_ended(TaskEnd end);
