@@ -12,6 +12,7 @@
 #include "door_models.h"
 #include "loading_times.h"
 #include "opportunities.h"
+#include "scheduling.h"
 #include "rondo/schedule/default_scheduler.h"
 #include "task_run.h"
 
@@ -42,11 +43,11 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
                                  options.online_model ? plan::LearnedEdgeModels::Reading::kOnline
                                                       : plan::LearnedEdgeModels::Reading::kOffline)),
       planner_(std::make_unique<plan::TravelPlanner>(map_, models_,
-                                                    plan::TravelPlannerOptions{.slot_width = options_.slot_width})),
+                                                    plan::TravelPlannerOptions{.slot_width = options_.slot_width, .max_cached_slots = kCachedSlots})),
       travel_(std::make_unique<TravelCache>(map_, models_, *planner_, options_.slot_width)),
       offline_models_(std::make_shared<plan::LearnedEdgeModels>(map, nullptr)),
       offline_planner_(std::make_unique<plan::TravelPlanner>(
-          map_, offline_models_, plan::TravelPlannerOptions{.slot_width = options_.slot_width})),
+          map_, offline_models_, plan::TravelPlannerOptions{.slot_width = options_.slot_width, .max_cached_slots = kCachedSlots})),
       offline_travel_(std::make_unique<TravelCache>(map_, offline_models_, *offline_planner_, options_.slot_width)),
       scheduler_(parts.scheduler ? std::move(parts.scheduler) : std::make_unique<schedule::DefaultScheduler>()),
       rng_(options.seed),

@@ -1,6 +1,7 @@
 // The executor's daily rhythm: routine tasks created at local midnight for the day ahead, and the
 // nightly refit of the edge models from the traversal log of the last `refit_window`.
 #include <fmt/format.h>
+#include <malloc.h>
 
 #include <chrono>
 
@@ -43,6 +44,9 @@ void Executor::schedule_refit() {
   if (at <= now) at = zone_.at(next_day(day), *options_.refit_at);
   clock_.schedule_at(at, [this] {
     refit();
+    // The night's traversal log and tables are freed: hand the free pages back to the system, so
+    // a long-lived service's resident memory is what it holds, not its largest night so far.
+    ::malloc_trim(0);
     schedule_refit();
   });
 }
