@@ -6,6 +6,7 @@
 
 #include "api.h"
 #include "rondo/core/task_codec.h"
+#include "rondo/store/batch.h"
 #include "rondo/store/events.h"
 #include "rondo/store/robot_state.h"
 #include "rondo/store/task_table.h"
@@ -57,6 +58,8 @@ Reply created(Api& api, const std::vector<TaskId>& ids) {
 // a crash between the two still finds the tasks on a retry: pending + every task stored = answered.
 Reply submit_on_clock(Api& api, std::vector<Task> tasks, const std::string& key, const std::string& print) {
   store::Store& db = api.ctx.store;
+  // The key, the tasks and the answer in one commit (one sync); answered only once it is done.
+  store::Batch batch(db);
   std::vector<TaskId> ids;
   for (const Task& t : tasks) ids.push_back(t.id);
   const std::string meta_key = "idempotency." + key;
@@ -82,11 +85,15 @@ Reply submit_on_clock(Api& api, std::vector<Task> tasks, const std::string& key,
       return error_reply(ok.error());
     }
   }
-  if (Status ok = api.ctx.executor.add_tasks(std::move(tasks), "api"); !ok) return error_reply(ok.error());
+  if (Status ok = api.ctx.executor.add_tasks(std::move(tasks), "api"); !ok) {
+    (void)batch.commit();  // the key as pending, and the refusal's event
+    return error_reply(ok.error());
+  }
   Reply r = created(api, ids);
   if (!key.empty())
     (void)store::set_meta(db, meta_key,
                           Json{{"fingerprint", print}, {"reply", Json{{"status", r.status}, {"body", r.body}}}}.dump());
+  if (Status ok = batch.commit(); !ok) return error_reply(ok.error());
   return r;
 }
 

@@ -1,7 +1,7 @@
 #include "rondo/store/task_table.h"
 
 #include <SQLiteCpp/Statement.h>
-#include <SQLiteCpp/Transaction.h>
+#include "write_tx.h"
 
 #include <fmt/format.h>
 
@@ -62,7 +62,7 @@ Status add_tasks(Store& store, std::span<const TaskRow> tasks, std::string_view 
       tasks.size() == 1 ? fmt::format("adding task '{}'", tasks[0].id) : fmt::format("adding {} tasks", tasks.size());
   return guarded(store, what, [&]() -> Status {
     SQLite::Database& db = connection(store);
-    SQLite::Transaction tx(db, SQLite::TransactionBehavior::IMMEDIATE);
+    WriteTx tx(db);
     SQLite::Statement insert(db,
                              "INSERT INTO tasks (id, state, task_json, created_ms, updated_ms, source, progress_json) "
                              "VALUES (?, ?, ?, ?, ?, ?, ?) ON CONFLICT (id) DO NOTHING");
@@ -96,7 +96,7 @@ Status set_task_state(Store& store, std::string_view id, std::string_view state,
                       std::string_view code) {
   return guarded(store, fmt::format("changing the state of task '{}'", id), [&]() -> Status {
     SQLite::Database& db = connection(store);
-    SQLite::Transaction tx(db, SQLite::TransactionBehavior::IMMEDIATE);
+    WriteTx tx(db);
     SQLite::Statement update(db, "UPDATE tasks SET state = ?, updated_ms = ? WHERE id = ?");
     update.bind(1, std::string(state));
     update.bind(2, to_db(at));
