@@ -101,7 +101,8 @@ void Executor::refresh_learned_durations(const std::vector<TaskId>& ids) {
   }
 }
 
-void Executor::on_action_finished(const ActionResult& result) {
+void Executor::on_action_finished(const ActionResult& reported) {
+  const ActionResult result = confirmed_result(reported);
   retired_runs_.clear();
   retired_steps_.clear();
   stats_.acting += result.duration;

@@ -43,6 +43,11 @@ std::optional<Time> TaskRun::acting_since() const {
   return std::nullopt;
 }
 
+std::optional<std::string> TaskRun::running_action() const {
+  if (current() == act_) return act_->running_action();
+  return std::nullopt;
+}
+
 std::optional<Time> TaskRun::acting_until() const {
   if (current() == act_) return act_->expected_end();
   return std::nullopt;

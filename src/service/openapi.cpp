@@ -87,6 +87,12 @@ Json document() {
       op("Cancel a task (body optional: {reason}).",
          responses({{200, "cancelled, or cancel pending"}, {404, "no such task"}, {409, "already final"}}),
          Json::array({id}), false, true);
+  paths["/api/v1/tasks/{id}/confirm"]["post"] =
+      op("Confirm the load or unload the task is doing now (body optional: {by}): the action ends done.",
+         responses({{200, "confirmed: the action ends as done"},
+                    {404, "no such task"},
+                    {409, "the task is not loading or unloading now"}}),
+         Json::array({id}), false, true);
   paths["/api/v1/robot"]["get"] =
       op("The robot: node, pose, phase, current task, battery, faults.", responses({{200, "the robot"}}));
   paths["/api/v1/map"]["get"] = op("The topological map (docs/map-format.md, as JSON).", responses({{200, "the map"}}));

@@ -171,20 +171,41 @@ Reply one(Api& api, const httplib::Request& req) {
   });
 }
 
+// A body of at most the one text field `name` (none at all is fine): its value into `value`, or
+// the error to answer.
+std::optional<Reply> read_text_field(const httplib::Request& req, const std::string& name, std::string& value) {
+  if (req.body.empty()) return std::nullopt;
+  auto body = parse_body(req);
+  if (!body) return malformed(body.error().message);
+  for (const auto& [k, v] : body->items()) {
+    if (k != name) return error_reply(422, "invalid", fmt::format("request: {}: unknown field", k), k);
+    if (!v.is_string()) return error_reply(422, "invalid", fmt::format("request: {}: expected text", name), name);
+    value = v.get<std::string>();
+  }
+  return std::nullopt;
+}
+
 Reply cancel(Api& api, const httplib::Request& req) {
   const std::string id = req.matches[1];
   std::string reason = "cancelled through the API";
-  if (!req.body.empty()) {
-    auto body = parse_body(req);
-    if (!body) return malformed(body.error().message);
-    for (const auto& [k, v] : body->items()) {
-      if (k != "reason") return error_reply(422, "invalid", fmt::format("request: {}: unknown field", k), k);
-      if (!v.is_string()) return error_reply(422, "invalid", "request: reason: expected text", "reason");
-      reason = v.get<std::string>();
-    }
-  }
+  if (auto bad = read_text_field(req, "reason", reason)) return *bad;
   return api.on_clock([&api, id, reason] {
     if (Status ok = api.ctx.executor.cancel_task(id, reason); !ok) return error_reply(ok.error());
+    auto view = task_view(api, id);
+    if (!view) return error_reply(view.error());
+    Reply r;
+    r.body = std::move(*view);
+    return r;
+  });
+}
+
+Reply confirm(Api& api, const httplib::Request& req) {
+  const std::string id = req.matches[1];
+  std::string by;
+  if (auto bad = read_text_field(req, "by", by)) return *bad;
+  return api.on_clock([&api, id, by] {
+    if (Status ok = api.ctx.executor.confirm_action(id, by.empty() ? "a person, through the API" : by); !ok)
+      return error_reply(ok.error());
     auto view = task_view(api, id);
     if (!view) return error_reply(view.error());
     Reply r;
@@ -249,6 +270,7 @@ void add_task_routes(std::vector<Route>& routes) {
   routes.push_back({"GET", "/api/v1/tasks/{id}", false, one});
   routes.push_back({"PATCH", "/api/v1/tasks/{id}", true, change});
   routes.push_back({"POST", "/api/v1/tasks/{id}/cancel", true, cancel});
+  routes.push_back({"POST", "/api/v1/tasks/{id}/confirm", true, confirm});
 }
 
 }  // namespace rondo::service
