@@ -11,6 +11,7 @@
 #include "rondo/store/observations.h"
 #include "rondo/store/robot_state.h"
 #include "rondo/store/traversal_log.h"
+#include "steps.h"
 #include "task_run.h"
 #include "text.h"
 
@@ -75,6 +76,16 @@ void Executor::learn_from(const ActionResult& result) {
   const store::Observation o{.what = result.name + " time", .where = place, .when = clock_.now(),
                              .value = to_seconds(result.duration), .text = r.task.id};
   if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
+}
+
+std::vector<map::EdgeIndex> Executor::route() {
+  const NavigateStep* navigation = trip_.get();
+  if (run_) navigation = dynamic_cast<const NavigateStep*>(run_->current());
+  if (navigation == nullptr) return {};
+  std::vector<map::EdgeIndex> edges;
+  for (const plan::PolicyStep& s : planner_->policy(navigation->target(), clock_.now()).route(robot_.location()))
+    edges.push_back(s.edge);
+  return edges;
 }
 
 std::vector<LearnedActionTime> Executor::loading_times() const { return loading_->entries(); }

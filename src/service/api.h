@@ -72,6 +72,7 @@ struct Route {
 };
 
 void add_task_routes(std::vector<Route>& routes);
+void add_command_routes(std::vector<Route>& routes);  // commands in words (rondo::lang)
 void add_robot_routes(std::vector<Route>& routes);
 void add_meta_routes(std::vector<Route>& routes);  // health, metrics, OpenAPI
 void add_dashboard_routes(std::vector<Route>& routes);

@@ -28,6 +28,13 @@ Reply robot(Api& api, const httplib::Request&) {
     const auto pose = robot.position();
     Json faults = Json::array();
     if (auto f = robot.fault()) faults.push_back(fault_json(f));
+    Json route = Json::array();  // the edges the running navigation expects to take
+    for (const map::EdgeIndex e : api.ctx.executor.route()) {
+      const map::Edge& edge = api.ctx.map.edge(e);
+      route.push_back(Json{{"edge", edge.id},
+                           {"from", api.ctx.map.node(api.ctx.map.from_index(e)).name},
+                           {"to", api.ctx.map.node(api.ctx.map.to_index(e)).name}});
+    }
     Reply r;
     r.body = Json{{"time", format_time(api.ctx.clock.now())},
                   {"node", api.ctx.map.node(robot.location()).name},
@@ -39,7 +46,8 @@ Reply robot(Api& api, const httplib::Request&) {
                   {"charging", robot.charging()},
                   {"dispatch_paused", a.fault.has_value() || api.ctx.executor.out_of_service()},
                   {"out_of_service", api.ctx.executor.out_of_service()},
-                  {"faults", std::move(faults)}};
+                  {"faults", std::move(faults)},
+                  {"route", std::move(route)}};
     return r;
   });
 }

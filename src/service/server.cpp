@@ -123,6 +123,7 @@ Server::Server(ServiceContext context, ServerOptions options)
     : impl_(std::make_unique<Impl>(std::move(context), std::move(options))) {
   add_meta_routes(impl_->routes);
   add_task_routes(impl_->routes);
+  add_command_routes(impl_->routes);
   add_robot_routes(impl_->routes);
   add_dashboard_routes(impl_->routes);
   for (const Route& r : impl_->routes) impl_->add(r);

@@ -139,6 +139,9 @@ class Executor final : public RobotListener {
   const plan::LearnedEdgeModels& models() const { return *models_; }
   const TravelCache& travel_cache() const { return *travel_; }
   ExecutorPhase phase() const;
+  // The running navigation's route from where the robot is (a task's or the executor's own trip
+  // to the dock): the edges its policy expects to take now, in order; empty when it is not moving.
+  std::vector<map::EdgeIndex> route();
   // The loading and unloading times learned so far, per action and place.
   std::vector<LearnedActionTime> loading_times() const;
   // The objects on board now (delivery jobs picked up and not yet dropped).
