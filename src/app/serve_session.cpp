@@ -43,7 +43,7 @@ void schedule_people(exec::Clock& clock, exec::Executor& executor, sim::RequestG
   const Time to = zone.at(std::chrono::year_month_day{std::chrono::sys_days{day} + std::chrono::days{1}}, Duration{0});
   for (sim::Request& r : people.between(from, to, rng))
     clock.schedule_at(r.at, [&executor, tasks = r.tasks()]() mutable {
-      if (!executor.book().contains(tasks.front().id)) (void)executor.add_tasks(std::move(tasks), "request");
+      if (!executor.book().known(tasks.front().id)) (void)executor.add_tasks(std::move(tasks), "request");
     });
   clock.schedule_at(
       to, [&clock, &executor, &people, &rng, &zone, to] { schedule_people(clock, executor, people, rng, zone, to); });
@@ -93,6 +93,7 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   options.seed = d.seed;
   // Requests are answered after their commit, not after the reschedule (docs/executor.md).
   options.background_scheduling = true;
+  options.forget_finished = true;  // finished tasks stay only in the store: months of service do not grow
   exec::Executor executor(clock, robot, parts.map, db, d.zone, options);
   // The deployment's routines with the changes made through the API (kept in the store).
   std::vector<std::string> skipped;

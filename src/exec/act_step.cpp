@@ -44,10 +44,12 @@ void ActStep::run_next() {
   // A task without actions is its processing time spent at the place: one action named after it.
   const Action action = task.actions.empty() ? Action{.name = task.activity.empty() ? "task" : task.activity, .args = {}}
                                              : task.actions[index_];
+  running_ = action.name;
   ctx_.robot.run_action(action, r.expected_duration() / static_cast<std::int64_t>(n));
 }
 
 void ActStep::on_action_finished(const ActionResult& r) {
+  running_.reset();
   if (r.outcome == ActionOutcome::kCancelled || halting()) return end({.status = StepEnd::Status::kHalted});
   if (r.outcome == ActionOutcome::kRobotFault) {
     // Not the action's fault: it runs again once the robot is ready.

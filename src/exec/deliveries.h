@@ -25,6 +25,9 @@ class Deliveries {
   struct Job {
     std::optional<TaskId> pickup;
     std::vector<TaskId> drops;  // the job's drop, and any return of its object made later
+    // Of the pickup, kept here since a finished pickup leaves the task book's memory.
+    std::string pickup_place{};
+    std::optional<Delivery> picked{};
   };
 
   // Records a delivery task (others are ignored); its job is open until close().
@@ -36,6 +39,9 @@ class Deliveries {
   // The objects on board now, in job order.
   std::vector<OnBoard> on_board(const TaskBook& book) const;
   bool is_on_board(const TaskBook& book, const std::string& job) const;
+  // Forgets the settled jobs (closed, nothing on board) whose tasks have all left the book's
+  // memory (TaskBook::forget_finished).
+  void forget_settled(const TaskBook& book);
 
  private:
   std::map<std::string, Job> jobs_;

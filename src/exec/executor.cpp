@@ -12,6 +12,7 @@
 #include "door_models.h"
 #include "loading_times.h"
 #include "opportunities.h"
+#include "scheduling.h"
 #include "rondo/schedule/default_scheduler.h"
 #include "task_run.h"
 
@@ -42,11 +43,11 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
                                  options.online_model ? plan::LearnedEdgeModels::Reading::kOnline
                                                       : plan::LearnedEdgeModels::Reading::kOffline)),
       planner_(std::make_unique<plan::TravelPlanner>(map_, models_,
-                                                    plan::TravelPlannerOptions{.slot_width = options_.slot_width})),
+                                                    plan::TravelPlannerOptions{.slot_width = options_.slot_width, .max_cached_slots = kCachedSlots})),
       travel_(std::make_unique<TravelCache>(map_, models_, *planner_, options_.slot_width)),
       offline_models_(std::make_shared<plan::LearnedEdgeModels>(map, nullptr)),
       offline_planner_(std::make_unique<plan::TravelPlanner>(
-          map_, offline_models_, plan::TravelPlannerOptions{.slot_width = options_.slot_width})),
+          map_, offline_models_, plan::TravelPlannerOptions{.slot_width = options_.slot_width, .max_cached_slots = kCachedSlots})),
       offline_travel_(std::make_unique<TravelCache>(map_, offline_models_, *offline_planner_, options_.slot_width)),
       scheduler_(parts.scheduler ? std::move(parts.scheduler) : std::make_unique<schedule::DefaultScheduler>()),
       rng_(options.seed),
@@ -61,6 +62,17 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
       opportunities_(std::make_unique<Opportunities>()),
       door_models_(std::make_unique<DoorModels>(zone_)) {
   robot_.set_listener(this);
+  if (options_.forget_finished)
+    book_.forget_finished([this] { clock_.schedule_at(clock_.now(), [this] { sweep_finished(); }); });
+}
+
+// Finished tasks leave memory (the store keeps them), with what the executor kept about them.
+void Executor::sweep_finished() {
+  for (const TaskId& id : book_.sweep()) {
+    opportunities_->unblock(id);
+    std::erase(after_preempt_, id);
+  }
+  deliveries_->forget_settled(book_);
 }
 
 Executor::~Executor() {
@@ -133,11 +145,11 @@ void Executor::reject_request(const store::RequestTaken& taken, const std::strin
 }
 
 Status Executor::cancel_task(const TaskId& id, const std::string& reason) {
-  if (!book_.contains(id)) return Error::not_found(fmt::format("no task '{}'", id));
-  const TaskRecord& r = book_.at(id);
-  if (is_final(r.state))
+  const std::optional<TaskState> state = book_.state_of(id);
+  if (!state) return Error::not_found(fmt::format("no task '{}'", id));
+  if (is_final(*state))
     return Error{ErrorCode::kConflict,
-                 fmt::format("task {} is already {}: it cannot be cancelled", id, to_string(r.state))};
+                 fmt::format("task {} is already {}: it cannot be cancelled", id, to_string(*state))};
   const std::string why = reason.empty() ? "cancelled" : "cancelled: " + reason;
   if (run_ && run_->id() == id) {
     if (run_->waiting()) {

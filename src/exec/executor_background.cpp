@@ -9,6 +9,7 @@
 
 #include "background_scheduler.h"
 #include "rondo/exec/executor.h"
+#include "rondo/store/batch.h"
 #include "scheduling.h"
 #include "task_run.h"
 
@@ -32,6 +33,9 @@ struct Executor::Background {
   std::vector<std::string> whys;
   std::uint64_t generation = 0;  // problems built
   std::optional<InFlight> in_flight;
+  // The models handed to the worker, shared by every problem until they change (a copy of every
+  // edge's online state for each reschedule cost the clock's thread more than the rest of it).
+  std::shared_ptr<const plan::LearnedEdgeModels> models;
   std::shared_ptr<bool> alive = std::make_shared<bool>(true);  // for callbacks posted to the clock
 
   ~Background() { *alive = false; }
@@ -101,9 +105,9 @@ void Executor::launch_background() {
                                       .current = current_task(),
                                       .waiting = run_ && run_->waiting()};
   ++bg.generation;
-  bg.worker->submit({.generation = bg.generation,
-                     .problem = std::move(call->problem),
-                     .models = std::make_shared<const plan::LearnedEdgeModels>(*models_)});
+  if (!bg.models || bg.models->version() != models_->version())
+    bg.models = std::make_shared<const plan::LearnedEdgeModels>(*models_);
+  bg.worker->submit({.generation = bg.generation, .problem = std::move(call->problem), .models = bg.models});
 }
 
 void Executor::background_book_changed() {
@@ -138,7 +142,13 @@ void Executor::background_answered(ScheduleAnswer answer) {
     bg.wanted = true;
     return;
   }
-  finish_schedule(f.ids, std::move(f.new_ids), answer.result, f.why);
+  {
+    // Every event of the answer (a "scheduled" per moved task, drops) in one commit: requests
+    // waiting for the clock's thread wait for one sync, not one per task.
+    store::Batch batch(store_);
+    finish_schedule(f.ids, std::move(f.new_ids), answer.result, f.why);
+    if (Status ok = batch.commit(); !ok) book_.write_error(ok.error().message);
+  }
   kick();
 }
 

@@ -1,6 +1,7 @@
 // The executor's daily rhythm: routine tasks created at local midnight for the day ahead, and the
 // nightly refit of the edge models from the traversal log of the last `refit_window`.
 #include <fmt/format.h>
+#include <malloc.h>
 
 #include <chrono>
 
@@ -22,7 +23,7 @@ void Executor::create_routine_tasks(std::chrono::year_month_day day) {
   const Time now = clock_.now();
   for (const Routine& r : routines_)
     for (Task& t : instances_on(r, day, zone_))
-      if (t.window && t.window->deadline > now && !book_.contains(t.id)) batch.push_back(std::move(t));
+      if (t.window && t.window->deadline > now && !book_.known(t.id)) batch.push_back(std::move(t));
   if (batch.empty()) return;
   if (auto ok = add_tasks(std::move(batch), "routine"); !ok) book_.write_error(ok.error().message);
 }
@@ -43,6 +44,9 @@ void Executor::schedule_refit() {
   if (at <= now) at = zone_.at(next_day(day), *options_.refit_at);
   clock_.schedule_at(at, [this] {
     refit();
+    // The night's traversal log and tables are freed: hand the free pages back to the system, so
+    // a long-lived service's resident memory is what it holds, not its largest night so far.
+    ::malloc_trim(0);
     schedule_refit();
   });
 }

@@ -41,10 +41,11 @@ void Executor::cancel_job_of(const TaskId& id, const std::string& why) {
   const Task& t = book_.at(id).task;
   if (!t.delivery || deliveries_->is_on_board(book_, t.delivery->job)) return;
   const Deliveries::Job* job = deliveries_->job(t.delivery->job);
+  if (job == nullptr) return;  // settled and forgotten
   std::vector<TaskId> others = job->drops;
   if (job->pickup) others.push_back(*job->pickup);
   for (const TaskId& other : others)
-    if (other != id && !is_final(book_.at(other).state))
+    if (other != id && !book_.finished(other))
       (void)cancel_task(other, fmt::format("with the rest of its delivery ({})", why));
 }
 
@@ -54,15 +55,15 @@ std::vector<TaskId> Executor::settle_jobs() {
   for (const std::string& name : open) {
     const Deliveries::Job& job = *deliveries_->job(name);
     const bool on = deliveries_->is_on_board(book_, name);
-    const bool pickup_live = job.pickup && !is_final(book_.at(*job.pickup).state);
+    const bool pickup_live = job.pickup && !book_.finished(*job.pickup);
     std::vector<TaskId> pending;
     for (const TaskId& d : job.drops)
-      if (!is_final(book_.at(d).state)) pending.push_back(d);
+      if (!book_.finished(d)) pending.push_back(d);
     if (!on && !pickup_live) {  // delivered, or nothing to deliver any more
-      const std::string why =
-          job.pickup ? fmt::format("its pickup {} {}: nothing to deliver", *job.pickup,
-                                   to_string(book_.at(*job.pickup).state))
-                     : std::string("its job has no pickup and nothing of it is on board");
+      const std::string why = job.pickup
+                                  ? fmt::format("its pickup {} {}: nothing to deliver", *job.pickup,
+                                                to_string(book_.state_of(*job.pickup).value_or(TaskState::kFailed)))
+                                  : std::string("its job has no pickup and nothing of it is on board");
       for (const TaskId& d : pending) {
         if (run_ && run_->id() == d) continue;  // a drop that runs ends by itself
         if (run_ && run_->waiting() && run_->id() == d) end_wait();
@@ -76,7 +77,15 @@ std::vector<TaskId> Executor::settle_jobs() {
     }
     if (!on || !pending.empty()) continue;
     // On board, and no drop of it is pending: take it back (again, up to kMaxReturns times).
-    const TaskRecord& last = book_.at(job.drops.back());
+    // The last drop is final, so it may have left memory: read back from the store then.
+    auto found = book_.lookup(job.drops.back(), zone_);
+    if (!found || !*found) {
+      book_.write_error(found ? fmt::format("delivery {}: its drop {} is gone", name, job.drops.back())
+                              : found.error().message);
+      deliveries_->close(name);
+      continue;
+    }
+    const TaskRecord& last = **found;
     const Delivery& what = *last.task.delivery;
     if (job.drops.size() > kMaxReturns) {
       book_.note(last.task.id, "stays on board", Outcome::kReturnPlanned,
@@ -87,8 +96,8 @@ std::vector<TaskId> Executor::settle_jobs() {
     Task back;
     const TaskId& own = job.drops.front();
     back.id = own + "-return";
-    for (int n = 2; book_.contains(back.id); ++n) back.id = fmt::format("{}-return{}", own, n);
-    back.start_node = options_.return_to.empty() ? book_.at(*job.pickup).task.start_node : options_.return_to;
+    for (int n = 2; book_.known(back.id); ++n) back.id = fmt::format("{}-return{}", own, n);
+    back.start_node = options_.return_to.empty() ? job.pickup_place : options_.return_to;
     back.activity = fmt::format("take the {} back to {}", what.object, back.start_node);
     const Time now = clock_.now();
     back.window = TimeWindow{now, now + std::max(options_.return_within, last.task.duration)};

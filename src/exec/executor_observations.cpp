@@ -97,12 +97,14 @@ void Executor::place_retry(const TaskId& id, const std::string& door, Time lates
 
 void Executor::retry_blocked(const TaskId& id, std::uint64_t serial) {
   const Blocked* b = opportunities_->find(id);
-  if (b == nullptr || b->serial != serial || book_.at(id).state != TaskState::kQueued) return;
+  const TaskRecord* r = book_.find(id);
+  if (b == nullptr || b->serial != serial || r == nullptr || r->state != TaskState::kQueued) return;
   const std::string door = b->door;
   // The tasks waiting with it (the other half of its job) go back with it.
   std::vector<TaskId> ids{id};
   for (const TaskId& other : opportunities_->waiting_for(door))
-    if (other != id && linked(book_.at(other).task, book_.at(id).task)) ids.push_back(other);
+    if (const TaskRecord* o = book_.find(other); other != id && o != nullptr && linked(o->task, r->task))
+      ids.push_back(other);
   for (const TaskId& t : ids) unblock(t);
   ++assumption_stats_.retries;
   reschedule(ids, fmt::format("retry of {}: {} likely open", joined(ids), door));
@@ -310,7 +312,7 @@ void Executor::door_seen_open(const Observation& seen) {
   door_models_->observe(seen.where, seen.when, true);
   std::vector<TaskId> waiting;
   for (const TaskId& id : opportunities_->waiting_for(seen.where)) {
-    if (is_final(book_.at(id).state)) {
+    if (book_.finished(id)) {
       unblock(id);
       continue;
     }
@@ -327,11 +329,10 @@ void Executor::door_seen_open(const Observation& seen) {
   for (const TaskId& id : waiting) {
     unblock(id);
     const Task& t = book_.at(id).task;
-    bool behind = std::any_of(t.after.begin(), t.after.end(),
-                              [&](const TaskId& a) { return !is_final(book_.at(a).state); });
+    bool behind = std::any_of(t.after.begin(), t.after.end(), [&](const TaskId& a) { return !book_.finished(a); });
     if (t.delivery && t.delivery->role == DeliveryRole::kDrop)
       if (const Deliveries::Job* job = deliveries_->job(t.delivery->job); job && job->pickup)
-        behind = behind || !is_final(book_.at(*job->pickup).state);
+        behind = behind || !book_.finished(*job->pickup);
     std::string why_not;
     if (taken || behind) {
       back.push_back(id);
@@ -364,7 +365,7 @@ void Executor::door_seen_open(const Observation& seen) {
 
 void Executor::blocked_until_deadline(const TaskId& id, std::uint64_t serial) {
   const Blocked* b = opportunities_->find(id);
-  if (b == nullptr || b->serial != serial || book_.at(id).state != TaskState::kQueued) return;
+  if (b == nullptr || b->serial != serial || book_.finished(id) || book_.at(id).state != TaskState::kQueued) return;
   const std::string reason =
       fmt::format("{} seen closed from {} at {} and not seen open since: its deadline {} can no longer be met", b->door,
                   b->seen_at, zone_.format_clock(b->since), zone_.format_clock(book_.at(id).task.window->deadline));

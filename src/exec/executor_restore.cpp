@@ -19,40 +19,6 @@ namespace {
 
 constexpr const char* kInterruptedReason = "interrupted: the executive restarted while it ran";
 
-Result<Task> decode_stored(const store::TaskRow& row, const TimeZone& zone) {
-  RONDO_ASSIGN_OR_RETURN(
-      Document doc, Document::parse(row.task.dump(), DocumentFormat::kJson, fmt::format("stored task {}", row.id)));
-  return decode_task(doc.root(), &zone);
-}
-
-Outcome stored_outcome(const std::optional<store::Event>& e) {
-  if (!e) return Outcome::kNone;
-  return parse_outcome(e->code).value_or(Outcome::kNone);
-}
-
-// The task as the book knew it when it was stored.
-Result<TaskRecord> record_of(const store::StoredTask& stored, const TimeZone& zone) {
-  const store::TaskRow& row = stored.row;
-  auto task = decode_stored(row, zone);
-  if (!task) return Error::storage(fmt::format("stored task {}: {}", row.id, task.error().message));
-  if (task->id != row.id)
-    return Error::storage(fmt::format("stored task {}: its JSON names the id '{}'", row.id, task->id));
-  auto state = parse_task_state(row.state);
-  if (!state) return Error::storage(fmt::format("stored task {}: {}", row.id, state.error().message));
-  TaskRecord r{.task = std::move(*task),
-               .state = *state,
-               .outcome = stored_outcome(stored.last_transition),
-               .reason = stored.last_transition ? stored.last_transition->reason : std::string(),
-               .source = row.source,
-               .added = row.created};
-  if (is_final(r.state)) r.ended = stored.last_transition ? stored.last_transition->time : row.updated;
-  // Its progress: a re-run goes on after the actions already done; a door it waited for.
-  TaskBook::read_progress(row.progress, r);
-  if (r.state == TaskState::kQueued && stored.dropped_for_now)
-    r.dropped_for_now = std::make_pair(stored_outcome(stored.dropped_for_now), stored.dropped_for_now->reason);
-  return r;
-}
-
 }  // namespace
 
 Status Executor::restore() {

@@ -11,6 +11,7 @@
 #include "rondo/store/observations.h"
 #include "rondo/store/robot_state.h"
 #include "rondo/store/traversal_log.h"
+#include "steps.h"
 #include "task_run.h"
 #include "text.h"
 
@@ -80,6 +81,16 @@ void Executor::learn_from(const ActionResult& result) {
   if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
 }
 
+std::vector<map::EdgeIndex> Executor::route() {
+  const NavigateStep* navigation = trip_.get();
+  if (run_) navigation = dynamic_cast<const NavigateStep*>(run_->current());
+  if (navigation == nullptr) return {};
+  std::vector<map::EdgeIndex> edges;
+  for (const plan::PolicyStep& s : planner_->policy(navigation->target(), clock_.now()).route(robot_.location()))
+    edges.push_back(s.edge);
+  return edges;
+}
+
 std::vector<LearnedActionTime> Executor::loading_times() const { return loading_->entries(); }
 
 void Executor::refresh_learned_durations(const std::vector<TaskId>& ids) {
@@ -104,7 +115,8 @@ void Executor::refresh_learned_durations(const std::vector<TaskId>& ids) {
   }
 }
 
-void Executor::on_action_finished(const ActionResult& result) {
+void Executor::on_action_finished(const ActionResult& reported) {
+  const ActionResult result = confirmed_result(reported);
   retired_runs_.clear();
   retired_steps_.clear();
   stats_.acting += result.duration;

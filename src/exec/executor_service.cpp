@@ -24,10 +24,10 @@ Executor::Activity Executor::activity() const {
 }
 
 Status Executor::update_task(const TaskId& id, std::optional<TimeWindow> window, std::optional<int> priority) {
-  if (!book_.contains(id)) return Error::not_found(fmt::format("no task '{}'", id));
+  const std::optional<TaskState> state = book_.state_of(id);
+  if (!state) return Error::not_found(fmt::format("no task '{}'", id));
+  if (is_final(*state)) return Error{ErrorCode::kConflict, fmt::format("task {} is already {}", id, to_string(*state))};
   TaskRecord& record = book_.at(id);
-  if (is_final(record.state))
-    return Error{ErrorCode::kConflict, fmt::format("task {} is already {}", id, to_string(record.state))};
   if (record.state != TaskState::kQueued || current_task() == id)
     return Error{ErrorCode::kConflict,
                  fmt::format("task {} is {}: only a queued task can be changed", id, to_string(record.state))};
@@ -73,7 +73,7 @@ Status Executor::add_routine_now(Routine routine) {
   std::vector<Task> batch;
   const Time now = clock_.now();
   for (Task& t : instances_on(routines_.back(), zone_.local_date(now), zone_))
-    if (t.window && t.window->deadline - t.duration > now && !book_.contains(t.id)) batch.push_back(std::move(t));
+    if (t.window && t.window->deadline - t.duration > now && !book_.known(t.id)) batch.push_back(std::move(t));
   if (batch.empty()) return Status{};
   if (auto ok = add_tasks(std::move(batch), "routine"); !ok) {
     routines_.pop_back();

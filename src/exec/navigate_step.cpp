@@ -80,7 +80,9 @@ std::vector<map::EdgeIndex> NavigateStep::expected_route(map::NodeIndex from) co
 
 void NavigateStep::arrived() {
   monitor_.cancel();
-  if (purpose_ == Purpose::kToStart)
+  // The report's travel-estimate errors (rondo run); a service that forgets finished tasks keeps
+  // none of their navigations either.
+  if (purpose_ == Purpose::kToStart && !ctx_.options.forget_finished)
     ctx_.navigations.push_back({.task = *task_, .start = started_, .expected = expected_,
                                 .offline_expected = offline_expected_, .actual = ctx_.clock.now() - started_,
                                 .arrived = true});

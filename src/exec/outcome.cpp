@@ -6,7 +6,7 @@
 namespace rondo::exec {
 namespace {
 
-constexpr std::array<std::pair<Outcome, std::string_view>, 38> kNames{{
+constexpr std::array<std::pair<Outcome, std::string_view>, 39> kNames{{
     {Outcome::kNone, ""},
     {Outcome::kAdded, "added"},
     {Outcome::kScheduled, "scheduled"},
@@ -45,6 +45,7 @@ constexpr std::array<std::pair<Outcome, std::string_view>, 38> kNames{{
     {Outcome::kOpportunityDeclined, "opportunity declined"},
     {Outcome::kObservation, "observation"},
     {Outcome::kBattery, "battery"},
+    {Outcome::kConfirmed, "confirmed"},
 }};
 
 constexpr std::array<Outcome, kNames.size()> kAll = [] {

@@ -20,6 +20,10 @@
 
 namespace rondo::exec {
 
+// The per-slot travel models (M_t) each planner keeps: two days of 15-minute slots, so a service
+// that runs for months holds the days it plans over, not every slot it ever used.
+inline constexpr std::size_t kCachedSlots = 192;
+
 // The tasks to schedule: the ones already planned first, then the new ones, then the ones offered
 // again after a drop (which may be dropped again but never preempt the running task).
 struct PendingTasks {

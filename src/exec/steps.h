@@ -92,6 +92,8 @@ class ActStep final : public RobotStep {
 
   Time since() const { return since_; }
   Time expected_end() const { return since_ + expected_; }  // of its actions, as planned
+  // The action the robot runs for it now (sent and not answered yet).
+  const std::optional<std::string>& running_action() const { return running_; }
 
  private:
   void go_on() override { run_next(); }
@@ -102,6 +104,7 @@ class ActStep final : public RobotStep {
   Time since_{};
   Duration expected_{0};  // the processing time still to spend when it began
   std::size_t index_ = 0;
+  std::optional<std::string> running_;
 };
 
 }  // namespace rondo::exec

@@ -43,8 +43,47 @@ Status TaskBook::add(std::vector<Task> tasks, std::string_view source, const sto
 
 void TaskBook::restore(TaskRecord record) {
   const TaskId id = record.task.id;
+  const bool final = is_final(record.state);
   records_.emplace(id, std::move(record));
   order_.push_back(id);
+  if (final) finished_now(id);
+}
+
+void TaskBook::finished_now(const TaskId& id) {
+  if (!schedule_sweep_) return;
+  finished_.push_back(id);
+  if (finished_.size() == 1) schedule_sweep_();
+}
+
+std::vector<TaskId> TaskBook::sweep() {
+  std::vector<TaskId> gone;
+  for (const TaskId& id : std::exchange(finished_, {})) {
+    const auto it = records_.find(id);
+    if (it == records_.end() || !is_final(it->second.state)) continue;
+    records_.erase(it);
+    gone.push_back(id);
+  }
+  if (gone.empty()) return gone;
+  const std::set<TaskId> erased(gone.begin(), gone.end());
+  std::erase_if(order_, [&](const TaskId& id) { return erased.contains(id); });
+  return gone;
+}
+
+std::optional<TaskState> TaskBook::state_of(const TaskId& id) const {
+  if (const TaskRecord* r = find(id)) return r->state;
+  auto row = store::get_task(store_, id);
+  if (!row) return std::nullopt;
+  auto state = parse_task_state(row->state);
+  return state ? std::optional<TaskState>(*state) : std::nullopt;
+}
+
+Result<std::optional<TaskRecord>> TaskBook::lookup(const TaskId& id, const TimeZone& zone) const {
+  if (const TaskRecord* r = find(id)) return std::optional<TaskRecord>(*r);
+  RONDO_ASSIGN_OR_RETURN(std::optional<store::StoredTask> stored, store::read_stored_task(store_, id));
+  if (!stored) return std::optional<TaskRecord>{};
+  RONDO_ASSIGN_OR_RETURN(TaskRecord r, record_of(*stored, zone));
+  r.started = stored->started;
+  return std::optional<TaskRecord>(std::move(r));
 }
 
 void TaskBook::restore_counts(const std::vector<store::Event>& events) {
@@ -70,6 +109,7 @@ void TaskBook::transition(const TaskId& id, TaskState state, Outcome outcome, co
   if (is_final(state)) {
     r.ended = clock_.now();
     r.dropped_for_now.reset();
+    finished_now(id);
   } else {
     ++event_counts_[to_string(state)][outcome];
   }
@@ -85,7 +125,9 @@ void TaskBook::set_progress(const TaskId& id, std::size_t actions_done) {
 }
 
 void TaskBook::set_door_wait(const TaskId& id, std::optional<DoorWait> wait) {
-  TaskRecord& r = records_.at(id);
+  const auto it = records_.find(id);
+  if (it == records_.end()) return;  // finished and gone from memory: it waits for nothing
+  TaskRecord& r = it->second;
   if (r.door_wait == wait) return;
   r.door_wait = std::move(wait);
   if (auto ok = store::set_task_progress(store_, id, progress_json(r)); !ok)

@@ -43,6 +43,11 @@ std::optional<Time> TaskRun::acting_since() const {
   return std::nullopt;
 }
 
+std::optional<std::string> TaskRun::running_action() const {
+  if (current() == act_) return act_->running_action();
+  return std::nullopt;
+}
+
 std::optional<Time> TaskRun::acting_until() const {
   if (current() == act_) return act_->expected_end();
   return std::nullopt;
@@ -102,6 +107,9 @@ bool TaskRun::stop_here() {
 }
 
 void TaskRun::overrun(Outcome outcome, const std::string& reason) {
+  // A monitor of a run that has ended (retired, freed at the next robot callback) is moot; its
+  // task may have left the book already (forget_finished).
+  if (finished_) return;
   if (!interruptible()) {
     if (!overrun_held_)
       ctx_.book.note(id_, "overrun", Outcome::kOverrunHeld,
@@ -114,7 +122,7 @@ void TaskRun::overrun(Outcome outcome, const std::string& reason) {
 
 bool TaskRun::set_robot_interruptible(bool interruptible) {
   robot_interruptible_ = interruptible;
-  if (!interruptible || !this->interruptible()) return false;
+  if (!interruptible || finished_ || !this->interruptible()) return false;
   if (cancel_pending_) {
     stop(Stop::kCancel, Outcome::kCancelled, *std::exchange(cancel_pending_, std::nullopt));
     return true;

@@ -37,6 +37,8 @@ class TaskRun {
   // Since when it acts at its place, and when its actions are expected to end, while it does.
   std::optional<Time> acting_since() const;
   std::optional<Time> acting_until() const;
+  // The action the robot runs for it now, while it acts.
+  std::optional<std::string> running_action() const;
   // The task allows it, and the robot says it may be interrupted now.
   bool interruptible() const { return task().interruptible && robot_interruptible_; }
   Step* current() const { return index_ < steps_.size() ? steps_[index_].get() : nullptr; }

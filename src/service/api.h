@@ -4,6 +4,9 @@
 #include <httplib.h>
 
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <mutex>
@@ -50,12 +53,42 @@ class RequestMetrics {
   std::map<std::string, Route> routes_;
 };
 
+// Wakes the event streams when something may have been committed: the clock's thread tells after
+// every request it carried out, so a stream sends a request's events at once rather than at its
+// next look (the executor's own events are still found by looking every stream_poll). Thread-safe.
+class News {
+ public:
+  std::uint64_t count() const {
+    std::lock_guard lock(mutex_);
+    return count_;
+  }
+  void tell() {
+    {
+      std::lock_guard lock(mutex_);
+      ++count_;
+    }
+    changed_.notify_all();
+  }
+  // Until something is told after `seen` (a count()), or `timeout` passed.
+  template <class Rep, class Period>
+  void wait(std::uint64_t seen, std::chrono::duration<Rep, Period> timeout) const {
+    std::unique_lock lock(mutex_);
+    changed_.wait_for(lock, timeout, [&] { return count_ != seen; });
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  mutable std::condition_variable changed_;
+  std::uint64_t count_ = 0;
+};
+
 struct Api {
   ServiceContext ctx;
   ServerOptions options;
   RequestMetrics metrics;
   std::atomic<bool> stopping{false};
   std::atomic<int> streams{0};
+  News news;
 
   // Runs `work` on the clock's thread and waits for its reply (503 when it does not come within
   // the answer timeout, e.g. while shutting down).
@@ -72,6 +105,7 @@ struct Route {
 };
 
 void add_task_routes(std::vector<Route>& routes);
+void add_command_routes(std::vector<Route>& routes);  // commands in words (rondo::lang)
 void add_robot_routes(std::vector<Route>& routes);
 void add_meta_routes(std::vector<Route>& routes);  // health, metrics, OpenAPI
 void add_dashboard_routes(std::vector<Route>& routes);

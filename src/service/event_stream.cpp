@@ -1,7 +1,8 @@
 // GET /api/v1/events: the event log as server-sent events. Each event's id is its sequence number
 // in the log, so a client that reconnects with Last-Event-ID (or ?after=) gets exactly the events
 // after the last one it saw. The stream reads through a read-only store connection of its own,
-// never the executor's, and looks for new events every stream_poll.
+// never the executor's, and looks for new events when the clock's thread has carried out a request (Api::news), else
+// every stream_poll.
 #include <fmt/format.h>
 
 #include <chrono>
@@ -83,6 +84,7 @@ void event_stream(Api& api, const httplib::Request& req, httplib::Response& res)
       "text/event-stream",
       [&api, stream](std::size_t, httplib::DataSink& sink) {
         while (!api.stopping && sink.is_writable()) {
+          const std::uint64_t seen = api.news.count();
           auto events = store::read_events(stream->store, stream->last, kBatch);
           if (!events) return false;
           if (!events->empty()) {
@@ -100,7 +102,7 @@ void event_stream(Api& api, const httplib::Request& req, httplib::Response& res)
             stream->last_write = std::chrono::steady_clock::now();
             return true;
           }
-          std::this_thread::sleep_for(api.options.stream_poll);  // waiting for news, not for a test
+          api.news.wait(seen, api.options.stream_poll);  // waiting for news, not for a test
         }
         sink.done();
         return true;

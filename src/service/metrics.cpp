@@ -5,6 +5,7 @@
 #include <array>
 
 #include "api.h"
+#include "rondo/store/task_table.h"
 
 namespace rondo::service {
 namespace {
@@ -61,7 +62,9 @@ Reply metrics_reply(Api& api) {
     for (TaskState s : {TaskState::kQueued, TaskState::kWaiting, TaskState::kNavigating, TaskState::kActing,
                         TaskState::kSucceeded, TaskState::kFailed, TaskState::kCancelled, TaskState::kDropped})
       by_state[to_string(s)] = 0;
-    for (const auto& [id, r] : api.ctx.executor.tasks()) ++by_state[to_string(r.state)];
+    // The store's states (the executor keeps only the tasks not finished in memory).
+    if (auto stored = store::count_tasks_by_state(api.ctx.store))
+      for (const auto& [state, n] : *stored) by_state[state] = static_cast<int>(n);
     const exec::ExecutorStats& st = api.ctx.executor.stats();
     const exec::Robot& robot = api.ctx.robot;
     std::string out =

@@ -87,8 +87,23 @@ Json document() {
       op("Cancel a task (body optional: {reason}).",
          responses({{200, "cancelled, or cancel pending"}, {404, "no such task"}, {409, "already final"}}),
          Json::array({id}), false, true);
+  paths["/api/v1/commands"]["post"] =
+      op("A command in words, {text} (docs/commands.md): its tasks are submitted (201), or the tasks a cancellation "
+         "names are cancelled (200).",
+         responses({{201, "the tasks added"},
+                    {200, "the tasks cancelled"},
+                    {400, "malformed JSON"},
+                    {422, "the sentence is not understood: the word or place, field text"}}),
+         Json::array(), true, true);
+  paths["/api/v1/tasks/{id}/confirm"]["post"] =
+      op("Confirm the load or unload the task is doing now (body optional: {by}): the action ends done.",
+         responses({{200, "confirmed: the action ends as done"},
+                    {404, "no such task"},
+                    {409, "the task is not loading or unloading now"}}),
+         Json::array({id}), false, true);
   paths["/api/v1/robot"]["get"] =
-      op("The robot: node, pose, phase, current task, battery, faults.", responses({{200, "the robot"}}));
+      op("The robot: node, pose, phase, current task, battery, faults, and the route of its running navigation.",
+         responses({{200, "the robot"}}));
   paths["/api/v1/map"]["get"] = op("The topological map (docs/map-format.md, as JSON).", responses({{200, "the map"}}));
   paths["/api/v1/schedule"]["get"] =
       op("One local day's schedule, planned against actual.", responses({{200, "the day"}, {422, "a bad date"}}),

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <limits>
 
 #include "api.h"
 #include "rondo/core/task_codec.h"
@@ -10,6 +11,7 @@
 #include "rondo/plan/learned_edge_models.h"
 #include "rondo/service/stored_routines.h"
 #include "rondo/store/robot_state.h"
+#include "rondo/store/task_table.h"
 
 namespace rondo::service {
 namespace {
@@ -26,6 +28,13 @@ Reply robot(Api& api, const httplib::Request&) {
     const auto pose = robot.position();
     Json faults = Json::array();
     if (auto f = robot.fault()) faults.push_back(fault_json(f));
+    Json route = Json::array();  // the edges the running navigation expects to take
+    for (const map::EdgeIndex e : api.ctx.executor.route()) {
+      const map::Edge& edge = api.ctx.map.edge(e);
+      route.push_back(Json{{"edge", edge.id},
+                           {"from", api.ctx.map.node(api.ctx.map.from_index(e)).name},
+                           {"to", api.ctx.map.node(api.ctx.map.to_index(e)).name}});
+    }
     Reply r;
     r.body = Json{{"time", format_time(api.ctx.clock.now())},
                   {"node", api.ctx.map.node(robot.location()).name},
@@ -37,7 +46,8 @@ Reply robot(Api& api, const httplib::Request&) {
                   {"charging", robot.charging()},
                   {"dispatch_paused", a.fault.has_value() || api.ctx.executor.out_of_service()},
                   {"out_of_service", api.ctx.executor.out_of_service()},
-                  {"faults", std::move(faults)}};
+                  {"faults", std::move(faults)},
+                  {"route", std::move(route)}};
     return r;
   });
 }
@@ -72,12 +82,19 @@ Reply schedule(Api& api, const httplib::Request& req) {
     const Time from = api.ctx.zone.at(*day, Duration{0});
     const Time to = api.ctx.zone.at(next_day(*day), Duration{0});
     const exec::Executor::Activity a = api.ctx.executor.activity();
+    // The day's tasks from the store (the executor keeps only the tasks not finished in memory):
+    // those whose window overlaps the day, and those without a window added that day.
+    auto page = store::find_tasks(
+        api.ctx.store,
+        {.from = from, .to = to, .windowless_by_added = true, .limit = std::numeric_limits<long>::max()});
+    if (!page) return error_reply(page.error());
     Json tasks = Json::array();
-    for (const TaskId& id : api.ctx.executor.task_order()) {
-      const exec::TaskRecord& t = api.ctx.executor.tasks().at(id);
-      const auto in_day = [&](std::optional<Time> x) { return x && *x >= from && *x < to; };
-      const bool window_in = t.task.window && t.task.window->deadline > from && t.task.window->release < to;
-      if (!window_in && !in_day(t.planned_start) && !in_day(t.started) && !in_day(t.added)) continue;
+    for (const store::TaskRow& row : page->rows) {
+      auto found = api.ctx.executor.task(row.id);
+      if (!found) return error_reply(found.error());
+      if (!*found) continue;
+      const exec::TaskRecord& t = **found;
+      const TaskId& id = row.id;
       tasks.push_back(Json{{"id", id},
                            {"activity", t.task.activity},
                            {"start_node", t.task.start_node},

@@ -54,7 +54,7 @@ Reply Api::on_clock(std::function<Reply()> work) {
   auto promise = std::make_shared<std::promise<Reply>>();
   auto stage = std::make_shared<std::atomic<int>>(kPending);
   std::future<Reply> answer = promise->get_future();
-  ctx.clock.post([promise, stage, work = std::move(work)] {
+  ctx.clock.post([this, promise, stage, work = std::move(work)] {
     int expected = kPending;
     if (!stage->compare_exchange_strong(expected, kStarted)) return;  // withdrawn: the client has its 503
     try {
@@ -62,6 +62,7 @@ Reply Api::on_clock(std::function<Reply()> work) {
     } catch (const std::exception& e) {
       promise->set_value(error_reply(500, "internal", fmt::format("internal error: {}", e.what())));
     }
+    news.tell();  // its commits, if any, are done: the event streams look now
   });
   if (answer.wait_for(options.answer_timeout) != std::future_status::ready) {
     int expected = kPending;
@@ -72,7 +73,7 @@ Reply Api::on_clock(std::function<Reply()> work) {
 }
 
 struct Server::Impl {
-  Impl(ServiceContext c, ServerOptions o) : api{std::move(c), std::move(o), {}, {false}, {0}} {}
+  Impl(ServiceContext c, ServerOptions o) : api{std::move(c), std::move(o), {}, {false}, {0}, {}} {}
   Api api;
   httplib::Server http;
   std::vector<Route> routes;
@@ -123,6 +124,7 @@ Server::Server(ServiceContext context, ServerOptions options)
     : impl_(std::make_unique<Impl>(std::move(context), std::move(options))) {
   add_meta_routes(impl_->routes);
   add_task_routes(impl_->routes);
+  add_command_routes(impl_->routes);
   add_robot_routes(impl_->routes);
   add_dashboard_routes(impl_->routes);
   for (const Route& r : impl_->routes) impl_->add(r);

@@ -6,6 +6,7 @@
 
 #include "api.h"
 #include "rondo/core/task_codec.h"
+#include "rondo/store/batch.h"
 #include "rondo/store/events.h"
 #include "rondo/store/robot_state.h"
 #include "rondo/store/task_table.h"
@@ -36,10 +37,17 @@ Reply malformed(const std::string& what) {
   return error_reply(400, "malformed", what);
 }
 
+// A task as the API shows it, from the executor's memory or (a finished one) the store.
+Result<Json> task_view(Api& api, const TaskId& id) {
+  RONDO_ASSIGN_OR_RETURN(std::optional<exec::TaskRecord> r, api.ctx.executor.task(id));
+  if (!r) return Error::not_found(fmt::format("no task '{}'", id));
+  return task_json(*r);
+}
+
 Reply created(Api& api, const std::vector<TaskId>& ids) {
   Json tasks = Json::array();
   for (const TaskId& id : ids)
-    if (api.ctx.executor.tasks().contains(id)) tasks.push_back(task_json(api.ctx.executor.tasks().at(id)));
+    if (auto view = task_view(api, id)) tasks.push_back(std::move(*view));
   Reply r;
   r.status = 201;
   r.body = Json{{"tasks", std::move(tasks)}};
@@ -50,6 +58,8 @@ Reply created(Api& api, const std::vector<TaskId>& ids) {
 // a crash between the two still finds the tasks on a retry: pending + every task stored = answered.
 Reply submit_on_clock(Api& api, std::vector<Task> tasks, const std::string& key, const std::string& print) {
   store::Store& db = api.ctx.store;
+  // The key, the tasks and the answer in one commit (one sync); answered only once it is done.
+  store::Batch batch(db);
   std::vector<TaskId> ids;
   for (const Task& t : tasks) ids.push_back(t.id);
   const std::string meta_key = "idempotency." + key;
@@ -68,19 +78,22 @@ Reply submit_on_clock(Api& api, std::vector<Task> tasks, const std::string& key,
         return r;
       }
       // Pending: the first attempt stopped between its two writes.
-      const bool all_stored = std::all_of(ids.begin(), ids.end(), [&](const TaskId& id) {
-        return api.ctx.executor.tasks().contains(id) || store::get_task(db, id).ok();
-      });
+      const bool all_stored =
+          std::all_of(ids.begin(), ids.end(), [&](const TaskId& id) { return api.ctx.executor.book().known(id); });
       if (all_stored) return created(api, ids);
     } else if (auto ok = store::set_meta(db, meta_key, Json{{"fingerprint", print}}.dump()); !ok) {
       return error_reply(ok.error());
     }
   }
-  if (Status ok = api.ctx.executor.add_tasks(std::move(tasks), "api"); !ok) return error_reply(ok.error());
+  if (Status ok = api.ctx.executor.add_tasks(std::move(tasks), "api"); !ok) {
+    (void)batch.commit();  // the key as pending, and the refusal's event
+    return error_reply(ok.error());
+  }
   Reply r = created(api, ids);
   if (!key.empty())
     (void)store::set_meta(db, meta_key,
                           Json{{"fingerprint", print}, {"reply", Json{{"status", r.status}, {"body", r.body}}}}.dump());
+  if (Status ok = batch.commit(); !ok) return error_reply(ok.error());
   return r;
 }
 
@@ -102,12 +115,6 @@ Reply submit(Api& api, const httplib::Request& req) {
   });
 }
 
-bool window_overlaps(const exec::TaskRecord& r, std::optional<Time> from, std::optional<Time> to) {
-  if (!from && !to) return true;
-  if (!r.task.window) return false;
-  return (!from || r.task.window->deadline > *from) && (!to || r.task.window->release < *to);
-}
-
 Reply list(Api& api, const httplib::Request& req) {
   std::optional<TaskState> state;
   if (req.has_param("state")) {
@@ -125,18 +132,25 @@ Reply list(Api& api, const httplib::Request& req) {
   auto offset = query_int(req, "offset", 0, std::numeric_limits<int>::max());
   if (!offset) return error_reply(422, "invalid", offset.error().message, "offset");
   const long lim = limit->value_or(100), off = offset->value_or(0);
-  return api.on_clock([&api, state, source, from = *from, to = *to, lim, off] {
+  // The store holds every task (the executor only those not finished) with its current state.
+  const store::TaskFilter filter{.state = state ? std::string(to_string(*state)) : std::string(),
+                                 .source = source,
+                                 .from = *from,
+                                 .to = *to,
+                                 .limit = lim,
+                                 .offset = off};
+  return api.on_clock([&api, filter] {
+    auto page = store::find_tasks(api.ctx.store, filter);
+    if (!page) return error_reply(page.error());
     Json tasks = Json::array();
-    long matched = 0;
-    for (const TaskId& id : api.ctx.executor.task_order()) {
-      const exec::TaskRecord& r = api.ctx.executor.tasks().at(id);
-      if ((state && r.state != *state) || (!source.empty() && r.source != source) || !window_overlaps(r, from, to))
-        continue;
-      if (matched >= off && matched < off + lim) tasks.push_back(task_json(r));
-      ++matched;
+    for (const store::TaskRow& row : page->rows) {
+      auto view = task_view(api, row.id);
+      if (!view) return error_reply(view.error());
+      tasks.push_back(std::move(*view));
     }
     Reply reply;
-    reply.body = Json{{"total", matched}, {"offset", off}, {"limit", lim}, {"tasks", std::move(tasks)}};
+    reply.body =
+        Json{{"total", page->total}, {"offset", filter.offset}, {"limit", filter.limit}, {"tasks", std::move(tasks)}};
     return reply;
   });
 }
@@ -148,39 +162,54 @@ Reply one(Api& api, const httplib::Request& req) {
     if (!events) return error_reply(events.error());
     Json history = Json::array();
     for (const store::Event& e : *events) history.push_back(event_json(e));
+    auto view = task_view(api, id);
+    if (!view) return error_reply(view.error());
     Reply reply;
-    if (api.ctx.executor.tasks().contains(id)) {
-      reply.body = task_json(api.ctx.executor.tasks().at(id));
-    } else {
-      auto stored = store::get_task(api.ctx.store, id);
-      if (!stored) return error_reply(404, "not_found", fmt::format("no task '{}'", id));
-      reply.body = Json{{"id", stored->id},
-                        {"state", stored->state},
-                        {"source", stored->source},
-                        {"added", format_time(stored->created)},
-                        {"task", stored->task}};
-    }
+    reply.body = std::move(*view);
     reply.body["events"] = std::move(history);
     return reply;
   });
 }
 
+// A body of at most the one text field `name` (none at all is fine): its value into `value`, or
+// the error to answer.
+std::optional<Reply> read_text_field(const httplib::Request& req, const std::string& name, std::string& value) {
+  if (req.body.empty()) return std::nullopt;
+  auto body = parse_body(req);
+  if (!body) return malformed(body.error().message);
+  for (const auto& [k, v] : body->items()) {
+    if (k != name) return error_reply(422, "invalid", fmt::format("request: {}: unknown field", k), k);
+    if (!v.is_string()) return error_reply(422, "invalid", fmt::format("request: {}: expected text", name), name);
+    value = v.get<std::string>();
+  }
+  return std::nullopt;
+}
+
 Reply cancel(Api& api, const httplib::Request& req) {
   const std::string id = req.matches[1];
   std::string reason = "cancelled through the API";
-  if (!req.body.empty()) {
-    auto body = parse_body(req);
-    if (!body) return malformed(body.error().message);
-    for (const auto& [k, v] : body->items()) {
-      if (k != "reason") return error_reply(422, "invalid", fmt::format("request: {}: unknown field", k), k);
-      if (!v.is_string()) return error_reply(422, "invalid", "request: reason: expected text", "reason");
-      reason = v.get<std::string>();
-    }
-  }
+  if (auto bad = read_text_field(req, "reason", reason)) return *bad;
   return api.on_clock([&api, id, reason] {
     if (Status ok = api.ctx.executor.cancel_task(id, reason); !ok) return error_reply(ok.error());
+    auto view = task_view(api, id);
+    if (!view) return error_reply(view.error());
     Reply r;
-    r.body = task_json(api.ctx.executor.tasks().at(id));
+    r.body = std::move(*view);
+    return r;
+  });
+}
+
+Reply confirm(Api& api, const httplib::Request& req) {
+  const std::string id = req.matches[1];
+  std::string by;
+  if (auto bad = read_text_field(req, "by", by)) return *bad;
+  return api.on_clock([&api, id, by] {
+    if (Status ok = api.ctx.executor.confirm_action(id, by.empty() ? "a person, through the API" : by); !ok)
+      return error_reply(ok.error());
+    auto view = task_view(api, id);
+    if (!view) return error_reply(view.error());
+    Reply r;
+    r.body = std::move(*view);
     return r;
   });
 }
@@ -225,8 +254,10 @@ Reply change(Api& api, const httplib::Request& req) {
         r.body["error"]["field"] = "window";
       return r;
     }
+    auto view = task_view(api, id);
+    if (!view) return error_reply(view.error());
     Reply r;
-    r.body = task_json(api.ctx.executor.tasks().at(id));
+    r.body = std::move(*view);
     return r;
   });
 }
@@ -239,6 +270,7 @@ void add_task_routes(std::vector<Route>& routes) {
   routes.push_back({"GET", "/api/v1/tasks/{id}", false, one});
   routes.push_back({"PATCH", "/api/v1/tasks/{id}", true, change});
   routes.push_back({"POST", "/api/v1/tasks/{id}/cancel", true, cancel});
+  routes.push_back({"POST", "/api/v1/tasks/{id}/confirm", true, confirm});
 }
 
 }  // namespace rondo::service

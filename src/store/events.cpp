@@ -1,7 +1,7 @@
 #include "rondo/store/events.h"
 
 #include <SQLiteCpp/Statement.h>
-#include <SQLiteCpp/Transaction.h>
+#include "write_tx.h"
 
 #include <fmt/format.h>
 
@@ -83,7 +83,7 @@ Result<std::int64_t> append_event(Store& store, const Event& event) {
   }
   return guarded(store, "appending an event", [&]() -> Result<std::int64_t> {
     SQLite::Database& db = connection(store);
-    SQLite::Transaction tx(db, SQLite::TransactionBehavior::IMMEDIATE);
+    WriteTx tx(db);
     if (event.subject == Subject::kTask && !task_exists(db, event.task_id)) {
       return Error::not_found(
           fmt::format("{}: no task '{}' for event '{}'", store.file().string(), event.task_id, event.event));

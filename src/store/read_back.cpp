@@ -35,6 +35,28 @@ Result<std::vector<TaskRow>> tasks_in_insertion_order(const Store& store) {
   return out;
 }
 
+// One of a task's events, in append order: its last transition and its drop for now.
+void fold(StoredTask& t, const Event& e) {
+  if (e.code == "added") ++t.added_events;
+  if (e.event == "queued") t.started.reset();
+  if (!t.started && (e.event == "waiting" || e.event == "navigating" || e.event == "acting")) t.started = e.time;
+  if (e.event == t.row.state) {
+    t.last_transition = e;
+    t.dropped_for_now.reset();  // a change of state since the drop
+  } else if (e.event == kDroppedForNowEvent) {
+    t.dropped_for_now = e;
+  } else if (e.event == kReOfferedEvent) {
+    t.dropped_for_now.reset();
+  }
+}
+
+// A drop older than the change that put the task in its state is over (fold() takes events in
+// append order, so only a state event named differently from the current state can precede it).
+void settle(StoredTask& t) {
+  if (t.dropped_for_now && t.last_transition && t.dropped_for_now->seq < t.last_transition->seq)
+    t.dropped_for_now.reset();
+}
+
 }  // namespace
 
 std::optional<Time> StoredRun::latest() const {
@@ -64,30 +86,49 @@ Result<StoredRun> read_back(const Store& store, std::string_view robot) {
   run.tasks.reserve(rows.size());
   for (TaskRow& r : rows) {
     index.emplace(r.id, run.tasks.size());
-    run.tasks.push_back(StoredTask{
-        .row = std::move(r), .last_transition = std::nullopt, .dropped_for_now = std::nullopt, .added_events = 0});
+    run.tasks.push_back(StoredTask{.row = std::move(r),
+                                   .last_transition = std::nullopt,
+                                   .dropped_for_now = std::nullopt,
+                                   .added_events = 0,
+                                   .started = std::nullopt});
   }
   for (const Event& e : run.events) {
     if (e.subject != Subject::kTask) continue;
     const auto it = index.find(e.task_id);
     if (it == index.end()) continue;  // the schema's foreign key makes this impossible
-    StoredTask& t = run.tasks[it->second];
-    if (e.code == "added") ++t.added_events;
-    if (e.event == t.row.state) {
-      t.last_transition = e;
-      t.dropped_for_now.reset();  // a change of state since the drop
-    } else if (e.event == kDroppedForNowEvent) {
-      t.dropped_for_now = e;
-    } else if (e.event == kReOfferedEvent) {
-      t.dropped_for_now.reset();
-    }
+    fold(run.tasks[it->second], e);
   }
-  // A drop older than the change that put the task in its state is over (the loop keeps events in
-  // append order, so only a state event named differently from the current state can precede it).
-  for (StoredTask& t : run.tasks)
-    if (t.dropped_for_now && t.last_transition && t.dropped_for_now->seq < t.last_transition->seq)
-      t.dropped_for_now.reset();
+  for (StoredTask& t : run.tasks) settle(t);
   return run;
+}
+
+Result<std::vector<StoredTask>> read_stored_tasks(const Store& store, std::vector<TaskRow> rows) {
+  std::vector<StoredTask> out;
+  out.reserve(rows.size());
+  for (TaskRow& r : rows) {
+    RONDO_ASSIGN_OR_RETURN(const std::vector<Event> events, read_events_of(store, r.id));
+    StoredTask t{.row = std::move(r),
+                 .last_transition = std::nullopt,
+                 .dropped_for_now = std::nullopt,
+                 .added_events = 0,
+                 .started = std::nullopt};
+    for (const Event& e : events) fold(t, e);
+    settle(t);
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+Result<std::optional<StoredTask>> read_stored_task(const Store& store, std::string_view id) {
+  auto row = get_task(store, id);
+  if (!row) {
+    if (row.error().code == ErrorCode::kNotFound) return std::optional<StoredTask>{};
+    return row.error();
+  }
+  std::vector<TaskRow> rows;
+  rows.push_back(std::move(*row));
+  RONDO_ASSIGN_OR_RETURN(std::vector<StoredTask> tasks, read_stored_tasks(store, std::move(rows)));
+  return std::optional<StoredTask>(std::move(tasks.front()));
 }
 
 }  // namespace rondo::store

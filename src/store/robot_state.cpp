@@ -1,7 +1,7 @@
 #include "rondo/store/robot_state.h"
 
 #include <SQLiteCpp/Statement.h>
-#include <SQLiteCpp/Transaction.h>
+#include "write_tx.h"
 
 #include <fmt/format.h>
 
@@ -104,7 +104,7 @@ Result<std::optional<std::string>> get_meta(const Store& store, std::string_view
 
 Status set_meta(Store& store, const std::vector<std::pair<std::string, std::string>>& entries) {
   return guarded(store, "setting the store's identity", [&]() -> Status {
-    SQLite::Transaction tx(connection(store), SQLite::TransactionBehavior::IMMEDIATE);
+    WriteTx tx(connection(store));
     SQLite::Statement put(
         connection(store),
         "INSERT INTO meta (key, value) VALUES (?, ?) ON CONFLICT (key) DO UPDATE SET value = excluded.value");

@@ -1,12 +1,15 @@
 #include "rondo/store/task_table.h"
 
 #include <SQLiteCpp/Statement.h>
-#include <SQLiteCpp/Transaction.h>
+#include "write_tx.h"
 
 #include <fmt/format.h>
 
+#include <limits>
+
 #include "event_rows.h"
 #include "request_rows.h"
+#include "rondo/core/time.h"
 #include "sqlite_error.h"
 
 namespace rondo::store {
@@ -61,7 +64,7 @@ Status add_tasks(Store& store, std::span<const TaskRow> tasks, std::string_view 
       tasks.size() == 1 ? fmt::format("adding task '{}'", tasks[0].id) : fmt::format("adding {} tasks", tasks.size());
   return guarded(store, what, [&]() -> Status {
     SQLite::Database& db = connection(store);
-    SQLite::Transaction tx(db, SQLite::TransactionBehavior::IMMEDIATE);
+    WriteTx tx(db);
     SQLite::Statement insert(db,
                              "INSERT INTO tasks (id, state, task_json, created_ms, updated_ms, source, progress_json) "
                              "VALUES (?, ?, ?, ?, ?, ?, ?) ON CONFLICT (id) DO NOTHING");
@@ -96,7 +99,7 @@ Status set_task_state(Store& store, std::string_view id, std::string_view state,
                       std::string_view code) {
   return guarded(store, fmt::format("changing the state of task '{}'", id), [&]() -> Status {
     SQLite::Database& db = connection(store);
-    SQLite::Transaction tx(db, SQLite::TransactionBehavior::IMMEDIATE);
+    WriteTx tx(db);
     SQLite::Statement update(db, "UPDATE tasks SET state = ?, updated_ms = ? WHERE id = ?");
     update.bind(1, std::string(state));
     update.bind(2, to_db(at));
@@ -156,6 +159,52 @@ Result<std::vector<TaskRow>> list_tasks_in_state(const Store& store, std::string
     SQLite::Statement query(connection(store), std::string(kSelectTask) + " WHERE state = ? ORDER BY created_ms, id");
     query.bind(1, std::string(state));
     return read_tasks(store, query);
+  });
+}
+
+Result<TaskPage> find_tasks(const Store& store, const TaskFilter& filter) {
+  return guarded(store, "finding tasks", [&]() -> Result<TaskPage> {
+    // SQLite's julianday() reads the codec's times ("2026-11-23T08:45:00Z", with or without
+    // milliseconds), so the window is compared as a time, not as text.
+    std::string where = " WHERE (?1 = '' OR state = ?1) AND (?2 = '' OR source = ?2)";
+    std::string window = "1";
+    if (filter.from) window += " AND julianday(json_extract(task_json, '$.window.deadline')) > julianday(?3)";
+    if (filter.to) window += " AND julianday(json_extract(task_json, '$.window.release')) < julianday(?4)";
+    if (filter.from || filter.to) {
+      if (filter.windowless_by_added)
+        window = fmt::format(
+            "({}) OR (json_extract(task_json, '$.window') IS NULL AND created_ms >= ?7 AND created_ms < ?8)", window);
+      where += " AND (" + window + ")";
+    }
+    const auto bind = [&](SQLite::Statement& q) {
+      q.bind(1, filter.state);
+      q.bind(2, filter.source);
+      if (filter.from) q.bind(3, format_time(*filter.from));
+      if (filter.to) q.bind(4, format_time(*filter.to));
+      if (filter.windowless_by_added) {
+        q.bind(7, filter.from ? to_db(*filter.from) : std::numeric_limits<std::int64_t>::min());
+        q.bind(8, filter.to ? to_db(*filter.to) : std::numeric_limits<std::int64_t>::max());
+      }
+    };
+    TaskPage page;
+    SQLite::Statement count(connection(store), "SELECT COUNT(*) FROM tasks" + where);
+    bind(count);
+    if (count.executeStep()) page.total = count.getColumn(0).getInt64();
+    SQLite::Statement query(connection(store), std::string(kSelectTask) + where + " ORDER BY rowid LIMIT ?5 OFFSET ?6");
+    bind(query);
+    query.bind(5, static_cast<std::int64_t>(filter.limit));
+    query.bind(6, static_cast<std::int64_t>(filter.offset));
+    RONDO_ASSIGN_OR_RETURN(page.rows, read_tasks(store, query));
+    return page;
+  });
+}
+
+Result<std::map<std::string, long>> count_tasks_by_state(const Store& store) {
+  return guarded(store, "counting tasks by state", [&]() -> Result<std::map<std::string, long>> {
+    SQLite::Statement q(connection(store), "SELECT state, COUNT(*) FROM tasks GROUP BY state");
+    std::map<std::string, long> out;
+    while (q.executeStep()) out[q.getColumn(0).getString()] = q.getColumn(1).getInt64();
+    return out;
   });
 }
 

@@ -1,7 +1,7 @@
 #include "rondo/store/traversal_log.h"
 
 #include <SQLiteCpp/Statement.h>
-#include <SQLiteCpp/Transaction.h>
+#include "write_tx.h"
 
 #include <algorithm>
 #include <string>
@@ -59,7 +59,7 @@ Result<bool> add_traversal(Store& store, const Traversal& traversal) {
 Result<InsertCounts> add_traversals(Store& store, std::span<const Traversal> traversals, const BatchOptions& options) {
   return guarded(store, "adding traversals", [&]() -> Result<InsertCounts> {
     SQLite::Database& db = connection(store);
-    SQLite::Transaction tx(db, SQLite::TransactionBehavior::IMMEDIATE);
+    WriteTx tx(db);
     SQLite::Statement statement(db, kInsert);
     const std::size_t every = std::max<std::size_t>(options.progress_every, 1);
     InsertCounts counts;

@@ -1,6 +1,7 @@
 // Delivery jobs in the executor (MISSION.md §5), on the scripted robot: precedence, interleaving,
 // look-alike objects, what is on board, a failed pickup, cancelling a job, and an object taken
-// back when its drop does not happen.
+// back when its drop does not happen. Each runs twice: with every task kept in memory (rondo run)
+// and with finished tasks leaving it for the store (rondo serve's forget_finished), the same.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -26,6 +27,11 @@ Task half(const std::string& id, const std::string& job, DeliveryRole role, cons
 class Courier : public ScriptedExecutor {
  public:
   using ScriptedExecutor::ScriptedExecutor;
+  Courier(ExecutorOptions options, bool forget) : ScriptedExecutor(with_forget(options, forget)) {}
+  static ExecutorOptions with_forget(ExecutorOptions o, bool forget) {
+    o.forget_finished = forget;
+    return o;
+  }
   // Both halves of a job, open all morning.
   void job(const std::string& name, const std::string& from, const std::string& to, const std::string& object,
            const std::string& looks = "") {
@@ -38,6 +44,8 @@ class Courier : public ScriptedExecutor {
                     .ok());
   }
   Time planned(const std::string& id) { return executor().tasks().at(id).planned_start.value(); }
+  // From memory, or from the store once it has left memory.
+  TaskRecord record(const std::string& id) { return executor().task(id).value().value(); }
   // Drives to `node` and answers its one action.
   void serve(const std::string& node, ActionOutcome outcome = ActionOutcome::kSucceeded) {
     ASSERT_NO_FATAL_FAILURE(drive_to(node));
@@ -48,8 +56,12 @@ class Courier : public ScriptedExecutor {
   }
 };
 
-TEST(Deliveries, PickupsComeBeforeTheirDropsAndInterleaveWhenThatIsFaster) {
-  Courier c;
+class Deliveries : public ::testing::TestWithParam<bool> {};
+INSTANTIATE_TEST_SUITE_P(KeptAndForgotten, Deliveries, ::testing::Bool(),
+                         [](const ::testing::TestParamInfo<bool>& p) { return p.param ? "Forgotten" : "Kept"; });
+
+TEST_P(Deliveries, PickupsComeBeforeTheirDropsAndInterleaveWhenThatIsFaster) {
+  Courier c({}, GetParam());
   ASSERT_NO_FATAL_FAILURE(c.job("letter", "Office", "Kitchen", "letter"));
   ASSERT_NO_FATAL_FAILURE(c.job("book", "Lab", "Kitchen", "book"));
   c.executor().start();
@@ -61,8 +73,8 @@ TEST(Deliveries, PickupsComeBeforeTheirDropsAndInterleaveWhenThatIsFaster) {
   EXPECT_LT(last_pickup, first_drop);
 }
 
-TEST(Deliveries, TwoObjectsThatLookTheSameAreNeverOnBoardTogether) {
-  Courier c;
+TEST_P(Deliveries, TwoObjectsThatLookTheSameAreNeverOnBoardTogether) {
+  Courier c({}, GetParam());
   ASSERT_NO_FATAL_FAILURE(c.job("a", "Office", "Kitchen", "red letter", "red letter"));
   ASSERT_NO_FATAL_FAILURE(c.job("b", "Lab", "Kitchen", "red letter", "red letter"));
   c.executor().start();
@@ -71,13 +83,14 @@ TEST(Deliveries, TwoObjectsThatLookTheSameAreNeverOnBoardTogether) {
   EXPECT_LT(c.planned(first + "-drop"), c.planned(second + "-pickup"));
 }
 
-TEST(Deliveries, WhatIsOnBoardFollowsThePickupAndTheDrop) {
-  Courier c;
+TEST_P(Deliveries, WhatIsOnBoardFollowsThePickupAndTheDrop) {
+  Courier c({}, GetParam());
   ASSERT_NO_FATAL_FAILURE(c.job("letter", "Office", "Kitchen", "letter"));
   c.executor().start();
   EXPECT_TRUE(c.executor().on_board().empty());
   ASSERT_NO_FATAL_FAILURE(c.serve("Office"));
   EXPECT_EQ(c.state("letter-pickup"), "succeeded");
+  EXPECT_EQ(c.executor().tasks().contains("letter-pickup"), !GetParam());  // forgotten: only in the store
   ASSERT_EQ(c.executor().on_board().size(), 1u);
   EXPECT_EQ(c.executor().on_board()[0].object, "letter");
   ASSERT_NO_FATAL_FAILURE(c.serve("Kitchen"));
@@ -85,30 +98,30 @@ TEST(Deliveries, WhatIsOnBoardFollowsThePickupAndTheDrop) {
   EXPECT_TRUE(c.executor().on_board().empty());
 }
 
-TEST(Deliveries, AFailedPickupFailsItsDrop) {
-  Courier c;
+TEST_P(Deliveries, AFailedPickupFailsItsDrop) {
+  Courier c({}, GetParam());
   ASSERT_NO_FATAL_FAILURE(c.job("letter", "Office", "Kitchen", "letter"));
   c.executor().start();
   ASSERT_NO_FATAL_FAILURE(c.serve("Office", ActionOutcome::kFailed));
   EXPECT_EQ(c.state("letter-pickup"), "failed");
   EXPECT_EQ(c.state("letter-drop"), "failed");
   EXPECT_EQ(last_event_field(c.store(), "letter-drop", "failed", &store::Event::code), "pickup failed");
-  EXPECT_THAT(c.executor().tasks().at("letter-drop").reason, HasSubstr("letter-pickup failed"));
+  EXPECT_THAT(c.record("letter-drop").reason, HasSubstr("letter-pickup failed"));
 }
 
-TEST(Deliveries, CancellingAJobBeforeItsPickupCancelsBothHalves) {
-  Courier c;
+TEST_P(Deliveries, CancellingAJobBeforeItsPickupCancelsBothHalves) {
+  Courier c({}, GetParam());
   ASSERT_NO_FATAL_FAILURE(c.job("letter", "Office", "Kitchen", "letter"));
   c.executor().start();
   ASSERT_TRUE(c.executor().cancel_task("letter-drop", "not needed").ok());
   c.settle();
   EXPECT_EQ(c.state("letter-drop"), "cancelled");
   EXPECT_EQ(c.state("letter-pickup"), "cancelled");
-  EXPECT_THAT(c.executor().tasks().at("letter-pickup").reason, HasSubstr("with the rest of its delivery"));
+  EXPECT_THAT(c.record("letter-pickup").reason, HasSubstr("with the rest of its delivery"));
 }
 
-TEST(Deliveries, AnObjectOnBoardWhoseDropIsCancelledIsTakenBack) {
-  Courier c;
+TEST_P(Deliveries, AnObjectOnBoardWhoseDropIsCancelledIsTakenBack) {
+  Courier c({}, GetParam());
   ASSERT_NO_FATAL_FAILURE(c.job("letter", "Office", "Kitchen", "letter"));
   c.executor().start();
   ASSERT_NO_FATAL_FAILURE(c.serve("Office"));
@@ -116,7 +129,7 @@ TEST(Deliveries, AnObjectOnBoardWhoseDropIsCancelledIsTakenBack) {
   c.settle();
   EXPECT_EQ(c.state("letter-drop"), "cancelled");
   ASSERT_TRUE(c.executor().tasks().contains("letter-drop-return"));
-  const TaskRecord& back = c.executor().tasks().at("letter-drop-return");
+  const TaskRecord back = c.record("letter-drop-return");
   EXPECT_EQ(back.task.start_node, "Office");  // its pickup place
   EXPECT_EQ(back.source, "executor");
   EXPECT_EQ(last_event_field(c.store(), "letter-drop", "return planned", &store::Event::code), "return planned");
@@ -126,10 +139,10 @@ TEST(Deliveries, AnObjectOnBoardWhoseDropIsCancelledIsTakenBack) {
   EXPECT_TRUE(c.executor().on_board().empty());
 }
 
-TEST(Deliveries, CapacityKeepsTheLoadOnBoardWithinTheLimit) {
+TEST_P(Deliveries, CapacityKeepsTheLoadOnBoardWithinTheLimit) {
   ExecutorOptions one;
   one.capacity = 1;
-  Courier c(one);
+  Courier c(one, GetParam());
   ASSERT_NO_FATAL_FAILURE(c.job("letter", "Office", "Kitchen", "letter"));
   ASSERT_NO_FATAL_FAILURE(c.job("book", "Lab", "Kitchen", "book"));
   c.executor().start();

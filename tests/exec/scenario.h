@@ -9,6 +9,8 @@
 // Map: Dock -- Hall -- Office, Hall -- Kitchen, Hall -- Lab; every edge 10 m (20 s at 0.5 m/s).
 #pragma once
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -61,7 +63,8 @@ inline map::TopoMap scenario_map() {
 inline std::filesystem::path fresh_db_path() {
   static std::atomic<int> counter{0};
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "scenario";
+  std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "scenario";
+  std::replace(name.begin(), name.end(), '/', '_');  // parameterised tests: Suite/Test/Param
   auto dir = std::filesystem::temp_directory_path() / "rondo-exec-tests";
   std::filesystem::create_directories(dir);
   auto file = dir / (name + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".sqlite");

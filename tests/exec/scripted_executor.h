@@ -64,7 +64,8 @@ class ScriptedExecutor {
       settle();
     }
   }
-  std::string state(const std::string& id) const { return to_string(executor_->tasks().at(id).state); }
+  // From memory, or from the store for a finished task that has left it (forget_finished).
+  std::string state(const std::string& id) const { return to_string(executor_->book().state_of(id).value()); }
   std::string code_of(const std::string& id, const std::string& event) const {
     return last_event_field(store_, id, event, &store::Event::code);
   }

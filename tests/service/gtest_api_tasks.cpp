@@ -81,6 +81,75 @@ TEST(ApiTasks, ListFiltersByStateSourceAndWindowAndPages) {
   }
 }
 
+// A finished task leaves the executor's memory (forget_finished, as in rondo serve) and the API
+// reads it from the store: one task, the list, the schedule, the metrics, a cancel or change is
+// 409 and its id stays taken.
+TEST(ApiTasks, AFinishedTaskIsReadFromTheStoreOnceItHasLeftMemory) {
+  LiveService s(fresh_dir("rondo-service-test", "forgotten"));
+  auto cli = s.client();
+  ASSERT_EQ(cli.Post("/api/v1/tasks", s.task_body("f1", minutes(30)), "application/json")->status, 201);
+  ASSERT_EQ(cli.Post("/api/v1/tasks/f1/cancel", R"({"reason": "no longer needed"})", "application/json")->status, 200);
+  ASSERT_TRUE(eventually([&] {
+    bool in_memory = true;
+    s.on_clock([&] { in_memory = s.executor().tasks().contains("f1"); });
+    return !in_memory;
+  }));
+  Json one = body_of(cli.Get("/api/v1/tasks/f1"));
+  EXPECT_EQ(one["state"], "cancelled");
+  EXPECT_EQ(one["code"], "cancelled");
+  EXPECT_NE(one["reason"].get<std::string>().find("no longer needed"), std::string::npos) << one.dump();
+  EXPECT_EQ(one["activity"], "look at the door");
+  EXPECT_TRUE(one["actual"]["end"].is_string()) << one.dump();
+  EXPECT_EQ(one["events"].back()["event"], "cancelled");
+  Json listed = body_of(cli.Get("/api/v1/tasks?state=cancelled"));
+  ASSERT_EQ(listed["total"], 1);
+  EXPECT_EQ(listed["tasks"][0]["id"], "f1");
+  EXPECT_EQ(listed["tasks"][0]["reason"], one["reason"]);
+  Json day = body_of(cli.Get("/api/v1/schedule"));
+  EXPECT_TRUE(std::any_of(day["tasks"].begin(), day["tasks"].end(), [](const Json& t) { return t["id"] == "f1"; }))
+      << day.dump();
+  EXPECT_NE(cli.Get("/metrics")->body.find("rondo_tasks{state=\"cancelled\"} 1"), std::string::npos);
+  EXPECT_EQ(cli.Post("/api/v1/tasks/f1/cancel", "", "application/json")->status, 409);
+  EXPECT_EQ(cli.Patch("/api/v1/tasks/f1", R"({"priority": 1})", "application/json")->status, 409);
+  auto again = cli.Post("/api/v1/tasks", s.task_body("f1"), "application/json");
+  EXPECT_EQ(again->status, 422);
+  EXPECT_EQ(body_of(again)["error"]["code"], "invalid");
+}
+
+// A load confirmed through the API ends the simulated robot's action before the simulated person
+// would have (4 hours), as done; a task that is not loading is a conflict.
+TEST(ApiTasks, ConfirmEndsTheRunningLoadAsDone) {
+  LiveService s(fresh_dir("rondo-service-test", "confirm"), {.speed = 600});
+  auto cli = s.client();
+  const std::string here = body_of(cli.Get("/api/v1/robot"))["node"];
+  const Time now = s.clock().now();
+  const std::string body = fmt::format(
+      R"({{"tasks": [{{"id": "ld", "activity": "take the parcel", "start_node": "{}", "priority": 9,
+          "window": {{"release": "{}", "deadline": "{}"}}, "duration": "4h",
+          "actions": [{{"name": "load", "args": {{"object": "parcel"}}}}]}}]}})",
+      here, format_time(now), format_time(now + hours(12)));
+  ASSERT_EQ(cli.Post("/api/v1/tasks", body, "application/json")->status, 201);
+  ASSERT_EQ(cli.Post("/api/v1/tasks", s.task_body("later", hours(20)), "application/json")->status, 201);
+  auto early = cli.Post("/api/v1/tasks/later/confirm", "", "application/json");
+  EXPECT_EQ(early->status, 409);
+  EXPECT_EQ(body_of(early)["error"]["code"], "conflict");
+  EXPECT_EQ(cli.Post("/api/v1/tasks/nobody/confirm", "", "application/json")->status, 404);
+  EXPECT_EQ(cli.Post("/api/v1/tasks/ld/confirm", R"({"who": "me"})", "application/json")->status, 422);
+  ASSERT_TRUE(eventually([&] { return body_of(cli.Get("/api/v1/tasks/ld"))["state"] == "acting"; }, seconds(120)));
+  auto ok = cli.Post("/api/v1/tasks/ld/confirm", R"({"by": "Sam at the front desk"})", "application/json");
+  ASSERT_EQ(ok->status, 200) << ok->body;
+  ASSERT_TRUE(eventually([&] { return body_of(cli.Get("/api/v1/tasks/ld"))["state"] == "succeeded"; }));
+  Json done = body_of(cli.Get("/api/v1/tasks/ld"));
+  const Json& events = done["events"];
+  EXPECT_TRUE(std::any_of(events.begin(), events.end(), [](const Json& e) {
+    return e["event"] == "confirmed" && e["reason"] == "load confirmed by Sam at the front desk";
+  })) << events.dump();
+  // Well before the 4 hours the simulated person takes.
+  const Time acted = parse_time(done["actual"]["end"].get<std::string>()).value();
+  EXPECT_LT(acted - parse_time(done["actual"]["start"].get<std::string>()).value(), hours(2)) << done.dump();
+  EXPECT_EQ(cli.Post("/api/v1/tasks/ld/confirm", "", "application/json")->status, 409);
+}
+
 TEST(ApiTasks, CancelEndsAQueuedTaskAndAFinalOneIsAConflict) {
   LiveService s(fresh_dir("rondo-service-test", "cancel"));
   auto cli = s.client();

@@ -31,6 +31,7 @@ LiveService::LiveService(const std::filesystem::path& data, LiveOptions o)
                                            sim::SimRobotOptions{.start = parts_.dock, .dock = parts_.dock, .seed = 3});
   exec::ExecutorOptions eo;
   eo.dock = parts_.dock;
+  eo.forget_finished = true;  // as rondo serve: finished tasks are read from the store
   executor_ = std::make_unique<exec::Executor>(clock_, *robot_, parts_.map, store_, TimeZone::utc(), eo);
   executor_->start();
   server_ = std::make_unique<service::Server>(service::ServiceContext{.clock = clock_,

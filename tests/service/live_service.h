@@ -45,6 +45,7 @@ class LiveService {
   exec::SystemClock& clock() { return clock_; }
   const map::TopoMap& map() const { return parts_.map; }
   service::Server& server() { return *server_; }
+  exec::Executor& executor() { return *executor_; }  // read it only on the clock's thread (on_clock)
   // Runs `f` on the clock's thread and waits (for reading the executor in a test).
   void on_clock(const std::function<void()>& f);
 

@@ -115,6 +115,11 @@ class Executor final : public RobotListener {
   // next interruptible moment (a `cancel pending` event says so). kNotFound for an unknown task,
   // kConflict for one already in a final state.
   Status cancel_task(const TaskId& id, const std::string& reason);
+  // A person confirms the load or unload that task `id` is doing now (`by`: who or how, for the
+  // log): the robot's action is ended (Robot::cancel()) and counts as done, before the simulated
+  // or real person's own confirmation. A "confirmed" event. kNotFound for an unknown task,
+  // kConflict when it is not loading or unloading now (executor_confirm.cpp).
+  Status confirm_action(const TaskId& id, const std::string& by);
   // Routines become tasks every day at local midnight (and at start() for the current day).
   void add_routines(std::vector<Routine> routines);
   // Rebuilds the book from the store after a restart (executor_restore.cpp): call it after
@@ -131,6 +136,8 @@ class Executor final : public RobotListener {
   const std::map<TaskId, TaskRecord>& tasks() const { return book_.records(); }
   const std::vector<TaskId>& task_order() const { return book_.order(); }  // in the order added
   const TaskBook& book() const { return book_; }
+  // One task, from memory or (a finished one) from the store; nothing for an unknown id.
+  Result<std::optional<TaskRecord>> task(const TaskId& id) const { return book_.lookup(id, zone_); }
   const ExecutorStats& stats() const { return stats_; }
   const std::vector<NavigationRecord>& navigations() const { return navigations_; }
   // Store writes that failed (the run goes on; the caller reports them).
@@ -138,6 +145,9 @@ class Executor final : public RobotListener {
   const plan::LearnedEdgeModels& models() const { return *models_; }
   const TravelCache& travel_cache() const { return *travel_; }
   ExecutorPhase phase() const;
+  // The running navigation's route from where the robot is (a task's or the executor's own trip
+  // to the dock): the edges its policy expects to take now, in order; empty when it is not moving.
+  std::vector<map::EdgeIndex> route();
   // The loading and unloading times learned so far, per action and place.
   std::vector<LearnedActionTime> loading_times() const;
   // The objects on board now (delivery jobs picked up and not yet dropped).
@@ -215,6 +225,8 @@ class Executor final : public RobotListener {
 
   // running (executor_running.cpp)
   void kick();  // reconsider what to do now
+  void sweep_finished();
+  ActionResult confirmed_result(const ActionResult& reported);  // executor_confirm.cpp
   void next();
   void start_run(const TaskId& id, std::optional<Time> wait_until);
   void run_ended(TaskEnd end);
@@ -321,6 +333,7 @@ class Executor final : public RobotListener {
   std::unique_ptr<NavigateStep> trip_;  // the executor's own trip to the dock
   std::vector<std::unique_ptr<Step>> retired_steps_;  // ended in a callback still on the stack:
   std::vector<std::unique_ptr<TaskRun>> retired_runs_;  //   freed at the next robot callback
+  std::optional<TaskId> confirmed_;                     // its running action was confirmed: its cancel counts as done
   std::vector<TaskId> after_preempt_;   // new tasks to schedule once the preempted task is out
   TimerId look_again_ = 0;              // idle: look again at the queues then
   std::optional<RobotFault> fault_;

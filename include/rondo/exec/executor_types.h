@@ -50,6 +50,10 @@ struct ExecutorOptions {
   // one per `background_interval` of wall time, each given `background_budget` of wall time on top
   // of `scheduler_polls`. Off: every change reschedules at once, deterministically (`rondo run`).
   bool background_scheduling = false;
+  // Finished tasks leave memory and stay only in the store (`rondo serve`: a service that runs for
+  // months does not grow; TaskBook::forget_finished). Off: every task stays in memory, for the
+  // report of `rondo run`.
+  bool forget_finished = false;
   Duration background_interval = milliseconds(100);
   Duration background_budget = seconds(2);
 };

@@ -36,7 +36,7 @@ inline constexpr Duration kUnreachable = hours(24 * 365);
 // changed (a refit). The lower bounds re-read only the changed edges' weekly minima, and are
 // recomputed when one of those minima moved. So an online update of one edge leaves the entries
 // it does not touch, and every answer equals what a fresh cache would give. Entries for slots more
-// than a week before the latest one filled are dropped (departures move forward with the clock), so
+// than a day before the latest one filled are dropped (departures move forward with the clock), so
 // the cache stays the same size however long the robot has lived.
 class TravelCache {
  public:

@@ -51,6 +51,7 @@ enum class Outcome {
   kOpportunityDeclined,       // its condition was seen, but taking it would break another deadline
   kObservation,               // the robot saw something that matters
   kBattery,                   // a battery reading
+  kConfirmed,                 // a person confirmed a load or unload (through the API)
 };
 
 // The readable name, e.g. "navigation overrun"; "" for kNone.

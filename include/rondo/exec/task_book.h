@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -22,9 +23,11 @@
 
 #include "rondo/core/result.h"
 #include "rondo/core/task.h"
+#include "rondo/core/timezone.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/outcome.h"
 #include "rondo/store/events.h"
+#include "rondo/store/read_back.h"
 #include "rondo/store/requests.h"
 #include "rondo/store/store.h"
 
@@ -84,8 +87,9 @@ class TaskBook {
   TaskBook(store::Store& store, const Clock& clock) : store_(store), clock_(clock) {}
 
   // Stores the tasks, all or nothing, then records them as queued. kInvalidInput for an empty or
-  // repeated id or one already in the book or the store; kStorage when the store cannot write.
-  // With `taken`, the queued request they come from is marked taken in the same transaction.
+  // repeated id or one already in the book or the store (which also holds the finished tasks that
+  // have left the book); kStorage when the store cannot write. With `taken`, the queued request
+  // they come from is marked taken in the same transaction.
   Status add(std::vector<Task> tasks, std::string_view source, const store::RequestTaken* taken = nullptr);
 
   // Restore after a restart (exec/executor_restore.cpp): records a task read back from the store
@@ -95,7 +99,33 @@ class TaskBook {
   void restore(TaskRecord record);
   void restore_counts(const std::vector<store::Event>& events);
 
+  // With forget_finished (rondo serve), a task that reaches a final state leaves the book: the
+  // first one since the last sweep() calls `schedule_sweep` (the executor posts a sweep() on its
+  // clock, so whatever runs now still finds the record), and sweep() erases them. They stay in the
+  // store: state_of(), known() and lookup() read it. Without it (rondo run, whose report covers
+  // every task) finished tasks stay.
+  void forget_finished(std::function<void()> schedule_sweep) { schedule_sweep_ = std::move(schedule_sweep); }
+  // Erases the finished tasks from memory; returns their ids.
+  std::vector<TaskId> sweep();
+
+  // In memory: every task not final, and the finished ones not swept (or all, without forgetting).
   bool contains(const TaskId& id) const { return records_.contains(id); }
+  const TaskRecord* find(const TaskId& id) const {
+    const auto it = records_.find(id);
+    return it == records_.end() ? nullptr : &it->second;
+  }
+  // Whether a task the executor was given is over: in a final state, or gone from memory.
+  bool finished(const TaskId& id) const {
+    const TaskRecord* r = find(id);
+    return r == nullptr || is_final(r->state);
+  }
+  // A task's state from memory, else from the store; nothing for a task the store has not either.
+  std::optional<TaskState> state_of(const TaskId& id) const;
+  // In memory or in the store.
+  bool known(const TaskId& id) const { return contains(id) || state_of(id).has_value(); }
+  // A copy of the task's record from memory, else rebuilt from the store (task, state, outcome and
+  // reason, source, added, ended); nothing for an unknown task. Errors: kStorage.
+  Result<std::optional<TaskRecord>> lookup(const TaskId& id, const TimeZone& zone) const;
   const TaskRecord& at(const TaskId& id) const { return records_.at(id); }
   TaskRecord& at(const TaskId& id) { return records_.at(id); }
   const std::map<TaskId, TaskRecord>& records() const { return records_; }
@@ -130,6 +160,7 @@ class TaskBook {
 
  private:
   void append(store::Event event, const store::RequestTaken* taken = nullptr);
+  void finished_now(const TaskId& id);
 
   store::Store& store_;
   const Clock& clock_;
@@ -137,6 +168,12 @@ class TaskBook {
   std::vector<TaskId> order_;
   std::map<std::string, std::map<Outcome, int>> event_counts_;
   std::vector<std::string> write_errors_;
+  std::function<void()> schedule_sweep_;
+  std::vector<TaskId> finished_;  // final since the last sweep (only with forget_finished)
 };
+
+// The record of a stored task, as the book knew it when it was stored (restore and lookup()).
+// Errors: kStorage (stored JSON that no longer decodes).
+Result<TaskRecord> record_of(const store::StoredTask& stored, const TimeZone& zone);
 
 }  // namespace rondo::exec

@@ -36,6 +36,8 @@ struct StoredTask {
   // no later "re-offered"): the task waits to be offered to the scheduler again.
   std::optional<Event> dropped_for_now;
   int added_events = 0;  // events with code "added": one for a task stored once
+  // When its latest run began: its first waiting, navigating or acting since it was last queued.
+  std::optional<Time> started{};
 };
 
 struct StoredRun {
@@ -53,5 +55,11 @@ struct StoredRun {
 
 // Errors: kStorage (including a task whose stored JSON no longer parses).
 Result<StoredRun> read_back(const Store& store, std::string_view robot);
+
+// Stored tasks with their last transition and drop for now, read from each one's events (for a
+// task the executor no longer holds: a finished one). Errors: kStorage.
+Result<std::vector<StoredTask>> read_stored_tasks(const Store& store, std::vector<TaskRow> rows);
+// One stored task; nothing when the store has no such task. Errors: kStorage.
+Result<std::optional<StoredTask>> read_stored_task(const Store& store, std::string_view id);
 
 }  // namespace rondo::store

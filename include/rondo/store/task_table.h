@@ -10,6 +10,8 @@
 //   Result<TaskRow> back = get_task(db, "t1");           // state "navigating", updated later
 #pragma once
 
+#include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -67,5 +69,22 @@ Result<TaskRow> get_task(const Store& store, std::string_view id);
 Result<std::vector<TaskRow>> list_tasks(const Store& store);
 // The tasks whose current state is `state`, in the order they were accepted.
 Result<std::vector<TaskRow>> list_tasks_in_state(const Store& store, std::string_view state);
+
+// A page of the stored tasks, in the order they were accepted (rowid order, also within a batch),
+// that pass every filter given: their state, their source, a window overlapping [from, to).
+struct TaskFilter {
+  std::string state{}, source{};     // empty: any
+  std::optional<Time> from{}, to{};  // a task without a window overlaps nothing once either is set
+  bool windowless_by_added = false;  // ... unless this is set and it was added within [from, to)
+  long limit = 100, offset = 0;
+};
+struct TaskPage {
+  long total = 0;  // how many passed the filters, on every page
+  std::vector<TaskRow> rows;
+};
+Result<TaskPage> find_tasks(const Store& store, const TaskFilter& filter);
+
+// How many stored tasks are in each state.
+Result<std::map<std::string, long>> count_tasks_by_state(const Store& store);
 
 }  // namespace rondo::store

@@ -181,6 +181,24 @@ function drawMap() {
     line.append(el("svg:title", {}, `${e.from} to ${e.to}: gets through ${Math.round(p * 100)} % of the time now`));
     svg.append(line);
   }
+  // The route the robot is taking now: its path drawn over the edges, thick and dark.
+  const route = view.robot && view.robot.route ? view.robot.route : [];
+  for (const step of route) {
+    const a = at.get(step.from), b = at.get(step.to);
+    const line = el('svg:line', {
+      class: 'route',
+      x1: px(a.x),
+      y1: py(a.y),
+      x2: px(b.x),
+      y2: py(b.y),
+      stroke: '#1d3557',
+      'stroke-width': 6,
+      'stroke-opacity': 0.55,
+      'stroke-linecap': 'round'
+    });
+    line.append(el('svg:title', {}, `the robot's way now: ${step.from} to ${step.to}`));
+    svg.append(line);
+  }
   const target = view.robot && view.robot.current_task ? (view.tasks.find((t) => t.id === view.robot.current_task) || {}).start_node : null;
   for (const n of m.nodes) {
     const c = el("svg:circle", { cx: px(n.pose.x), cy: py(n.pose.y), r: n.name === target ? 7 : 3.5,
@@ -257,6 +275,25 @@ function setUpForm() {
       for (const input of document.querySelectorAll("#add-form input[type=datetime-local]")) delete input.dataset.edited;
     } catch (err) {
       result.textContent = "Not added: " + err.message;
+    }
+    refreshSoon();
+  });
+}
+
+// A command in words ("check WayPoint2 before 15:00", "cancel the check of WayPoint2"): the
+// service reads it (POST /api/v1/commands) and says which word it did not understand.
+function setUpSentence() {
+  $('#say-form').addEventListener('submit', async (ev) => {
+    ev.preventDefault();
+    const text = new FormData(ev.target).get('text');
+    const result = $('#say-result');
+    try {
+      const r = await api('POST', '/api/v1/commands', {text});
+      result.textContent = r.tasks ? `Added: ${r.tasks.map(taskName).join(', ')}.` :
+                                     `Cancelled ${r.cancelled.length} task${r.cancelled.length === 1 ? '' : 's'}.`;
+      showProblem('');
+    } catch (err) {
+      result.textContent = 'Not understood: ' + err.message;
     }
     refreshSoon();
   });
@@ -355,6 +392,7 @@ async function start() {
     await refreshRobot();
     await refreshEdges();
     setUpForm();
+    setUpSentence();
     const edges = $("#edge-select");
     for (const e of view.map.edges) edges.append(el("option", { value: e.id }, `${e.from} to ${e.to}`));
     edges.addEventListener("change", () => drawRhythm().catch((err) => showProblem(err.message)));

@@ -1,0 +1,62 @@
+// POST /api/v1/commands: a command in words (docs/commands.md, rondo::lang), e.g. {"text": "check
+// WayPoint2 before 15:00"}: its tasks are submitted as POST /api/v1/tasks would (201), a
+// cancellation cancels the tasks it names that are not finished (200). A sentence outside the
+// grammar or a place that is not on the map is 422 naming the word, with the field "text". The
+// places are the map's node names; "now" and local times are the service's clock in the
+// deployment's zone.
+#include <fmt/format.h>
+
+#include "api.h"
+#include "rondo/lang/command.h"
+
+namespace rondo::service {
+namespace {
+
+Reply command(Api& api, const httplib::Request& req) {
+  Json body = Json::parse(req.body, nullptr, false);
+  if (body.is_discarded() || !body.is_object()) return error_reply(400, "malformed", "the body is not a JSON object");
+  for (const auto& [k, v] : body.items())
+    if (k != "text") return error_reply(422, "invalid", fmt::format("request: {}: unknown field (text)", k), k);
+  if (!body.contains("text") || !body["text"].is_string())
+    return error_reply(422, "invalid", "request: text: expected the command as text", "text");
+  return api.on_clock([&api, text = body["text"].get<std::string>()] {
+    const lang::Places places = lang::Places::from_map(api.ctx.map);
+    auto parsed = lang::parse_command(text, {.places = &places, .zone = api.ctx.zone, .now = api.ctx.clock.now()});
+    if (!parsed) return error_reply(422, "invalid", "text: " + parsed.error().message, "text");
+    if (!parsed->routines.empty())
+      return error_reply(422, "invalid", "text: a repeated command makes routines: add them through /api/v1/routines",
+                         "text");
+    Reply r;
+    if (parsed->cancel) {
+      std::vector<TaskId> ids;
+      for (const auto& [id, record] : api.ctx.executor.tasks())
+        if (!is_final(record.state) && lang::matches(*parsed->cancel, record.task)) ids.push_back(id);
+      Json cancelled = Json::array();
+      for (const TaskId& id : ids)
+        if (api.ctx.executor.cancel_task(id, "cancelled in words: " + text)) cancelled.push_back(id);
+      r.body = Json{{"cancelled", std::move(cancelled)}};
+      return r;
+    }
+    std::vector<TaskId> ids;
+    for (const Task& t : parsed->tasks) ids.push_back(t.id);
+    if (Status ok = api.ctx.executor.add_tasks(std::move(parsed->tasks), "api"); !ok) {
+      Reply e = error_reply(ok.error());
+      e.body["error"]["field"] = "text";
+      return e;
+    }
+    Json tasks = Json::array();
+    for (const TaskId& id : ids)
+      if (auto found = api.ctx.executor.task(id); found && *found) tasks.push_back(task_json(**found));
+    r.status = 201;
+    r.body = Json{{"tasks", std::move(tasks)}};
+    return r;
+  });
+}
+
+}  // namespace
+
+void add_command_routes(std::vector<Route>& routes) {
+  routes.push_back({"POST", "/api/v1/commands", true, command});
+}
+
+}  // namespace rondo::service

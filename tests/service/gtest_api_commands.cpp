@@ -1,0 +1,48 @@
+// Commands in words through the API (POST /api/v1/commands): a sentence's tasks are submitted, a
+// cancellation cancels what it names, and a word that is not understood is named in a 422.
+#include <gtest/gtest.h>
+
+#include "live_service.h"
+#include "test_files.h"
+
+namespace rondo::test {
+namespace {
+
+TEST(ApiCommands, ASentenceAddsItsTasksAndACancellationEndsThem) {
+  LiveService s(fresh_dir("rondo-service-test", "commands"));
+  auto cli = s.client();
+  auto added = cli.Post("/api/v1/commands", R"({"text": "check WayPoint3 tomorrow"})", "application/json");
+  ASSERT_TRUE(added);
+  ASSERT_EQ(added->status, 201) << added->body;
+  Json j = body_of(added);
+  ASSERT_EQ(j["tasks"].size(), 1u);
+  EXPECT_EQ(j["tasks"][0]["start_node"], "WayPoint3");
+  EXPECT_EQ(j["tasks"][0]["source"], "api");
+  const std::string id = j["tasks"][0]["id"];
+  EXPECT_EQ(body_of(cli.Get(("/api/v1/tasks/" + id).c_str()))["state"], "queued");
+
+  auto cancelled = cli.Post("/api/v1/commands", R"({"text": "cancel the check of WayPoint3"})", "application/json");
+  ASSERT_EQ(cancelled->status, 200) << cancelled->body;
+  EXPECT_EQ(body_of(cancelled)["cancelled"], Json::array({id}));
+  EXPECT_EQ(body_of(cli.Get(("/api/v1/tasks/" + id).c_str()))["state"], "cancelled");
+}
+
+TEST(ApiCommands, AWordOrPlaceNotUnderstoodIsNamed) {
+  LiveService s(fresh_dir("rondo-service-test", "commands-bad"));
+  auto cli = s.client();
+  auto moon = cli.Post("/api/v1/commands", R"({"text": "check the moon"})", "application/json");
+  ASSERT_EQ(moon->status, 422);
+  Json e = body_of(moon)["error"];
+  EXPECT_EQ(e["field"], "text");
+  EXPECT_NE(e["message"].get<std::string>().find("no place called 'the moon'"), std::string::npos) << e.dump();
+  auto odd = cli.Post("/api/v1/commands", R"({"text": "juggle WayPoint3"})", "application/json");
+  ASSERT_EQ(odd->status, 422);
+  EXPECT_NE(body_of(odd)["error"]["message"].get<std::string>().find("juggle"), std::string::npos)
+      << body_of(odd).dump();
+  EXPECT_EQ(cli.Post("/api/v1/commands", "{", "application/json")->status, 400);
+  EXPECT_EQ(cli.Post("/api/v1/commands", R"({"words": "check WayPoint3"})", "application/json")->status, 422);
+  EXPECT_EQ(cli.Post("/api/v1/commands", R"({"text": 3})", "application/json")->status, 422);
+}
+
+}  // namespace
+}  // namespace rondo::test
