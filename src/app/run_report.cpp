@@ -47,13 +47,18 @@ std::optional<Json> delivery_summary(const exec::Executor& executor) {
     if (r.task.delivery && r.task.delivery->role == DeliveryRole::kDrop) drops[r.task.delivery->job].push_back(&r);
   }
   if (drops.empty()) return std::nullopt;
-  int delivered = 0, pending = 0, returns = 0, returned = 0;
+  int delivered = 0, pending = 0, returns = 0, returned = 0, late = 0;
+  double lateness_s = 0;  // summed over delivered jobs: how far past its deadline the drop ended
   std::map<std::string, std::map<std::string, int>> ended;
   for (const auto& [job, list] : drops) {
     const exec::TaskRecord& own = *list.front();
-    if (own.state == TaskState::kSucceeded)
+    if (own.state == TaskState::kSucceeded) {
       ++delivered;
-    else if (!is_final(own.state))
+      if (own.task.window && own.ended && *own.ended > own.task.window->deadline) {
+        ++late;
+        lateness_s += to_seconds(*own.ended - own.task.window->deadline);
+      }
+    } else if (!is_final(own.state))
       ++pending;
     else
       ++ended[to_string(own.state)][std::string(exec::to_string(own.outcome))];
@@ -62,7 +67,11 @@ std::optional<Json> delivery_summary(const exec::Executor& executor) {
       if (list[i]->state == TaskState::kSucceeded) ++returned;
     }
   }
-  Json j{{"jobs", drops.size()}, {"delivered", delivered}, {"pending", pending}};
+  Json j{{"jobs", drops.size()},
+         {"delivered", delivered},
+         {"pending", pending},
+         {"delivered_late", late},
+         {"mean_lateness_s", delivered > 0 ? std::round(lateness_s / delivered * 10) / 10 : 0.0}};
   for (const char* state : {"failed", "cancelled", "dropped"}) {
     Json codes = Json::object();
     for (const auto& [code, n] : ended[state]) codes[code] = n;

@@ -29,6 +29,8 @@ TEST(OfficeRun, LoadingTimesLearnedOverAFortnightAreCloserToThePeopleThanTheDecl
   ASSERT_TRUE(report.contains("deliveries"));
   EXPECT_GT(report["deliveries"]["jobs"].get<int>(), 20);
   EXPECT_GT(report["deliveries"]["delivered"].get<int>(), 0);
+  EXPECT_LE(report["deliveries"]["delivered_late"].get<int>(), report["deliveries"]["delivered"].get<int>());
+  EXPECT_GE(report["deliveries"]["mean_lateness_s"].get<double>(), 0.0);
   double learned_error = 0, declared_error = 0;
   int places = 0;
   for (const Json& t : report["loading_times"]) {
