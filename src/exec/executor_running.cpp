@@ -126,13 +126,13 @@ void Executor::preempt_for(Outcome outcome, const std::string& reason, std::vect
 
 bool Executor::hold_back(const TaskId& id, map::EdgeIndex edge) {
   constexpr double kLikelyPassable = 0.5;
-  TaskRecord& r = book_.at(id);
+  const TaskRecord& r = book_.at(id);
   const Time now = clock_.now();
   const Time latest = r.task.window->deadline - r.remaining();
   for (Time t = planner_->slot_start(now) + options_.slot_width; t <= latest; t += options_.slot_width) {
     const double p = models_->outcome(edge, t).success_probability;
     if (p < kLikelyPassable) continue;
-    r.not_before = t;
+    book_.set_not_before(id, t);
     book_.note(id, "retry planned", Outcome::kNoRouteNow,
                fmt::format("{} is likely passable again at {} (p = {:.2f}): not scheduled before then",
                            map_.edge(edge).id, zone_.format_clock(t), p));

@@ -124,6 +124,12 @@ void TaskBook::set_progress(const TaskId& id, std::size_t actions_done) {
     write_errors_.push_back(ok.error().message);
 }
 
+void TaskBook::set_not_before(const TaskId& id, Time t) {
+  TaskRecord& r = records_.at(id);
+  r.not_before = t;
+  if (auto ok = store::set_task_progress(store_, id, progress_json(r)); !ok) write_errors_.push_back(ok.error().message);
+}
+
 void TaskBook::set_door_wait(const TaskId& id, std::optional<DoorWait> wait) {
   const auto it = records_.find(id);
   if (it == records_.end()) return;  // finished and gone from memory: it waits for nothing
@@ -136,6 +142,7 @@ void TaskBook::set_door_wait(const TaskId& id, std::optional<DoorWait> wait) {
 
 Json TaskBook::progress_json(const TaskRecord& r) {
   Json j{{"actions_done", r.actions_done}};
+  if (r.not_before) j["not_before_ms"] = r.not_before->time_since_epoch().count();
   if (r.door_wait)
     j["blocked"] = Json{{"door", r.door_wait->door},
                         {"since_ms", r.door_wait->since.time_since_epoch().count()},
@@ -147,6 +154,8 @@ void TaskBook::read_progress(const Json& progress, TaskRecord& r) {
   if (!progress.is_object()) return;
   if (progress.contains("actions_done") && progress["actions_done"].is_number_unsigned())
     r.actions_done = progress["actions_done"].get<std::size_t>();
+  if (progress.contains("not_before_ms") && progress["not_before_ms"].is_number_integer())
+    r.not_before = Time{Duration{progress["not_before_ms"].get<Duration::rep>()}};
   if (!progress.contains("blocked") || !progress["blocked"].is_object()) return;
   const Json& b = progress["blocked"];
   const auto text = [&b](const char* key) { return b.contains(key) && b[key].is_string(); };

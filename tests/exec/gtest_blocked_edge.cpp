@@ -136,5 +136,15 @@ TEST(BlockedEdge, WaitRequeuesTheTaskUntilTheEdgeIsLikelyPassableThenCompletesIt
   EXPECT_EQ(s.drives_of("Hall_Office"), 2u);
 }
 
+TEST(BlockedEdge, AHeldBackTaskKeepsItsRetryTimeOverARestart) {
+  Blocked s(ExecutorOptions::BlockedEdge::kWait);
+  ASSERT_NO_FATAL_FAILURE(s.fail_on_the_way());
+  ASSERT_TRUE(s.executor().tasks().at("A").not_before.has_value());
+  const Time retry = *s.executor().tasks().at("A").not_before;
+  ASSERT_NO_FATAL_FAILURE(s.kill_and_restart());
+  ASSERT_TRUE(s.executor().tasks().at("A").not_before.has_value());
+  EXPECT_EQ(*s.executor().tasks().at("A").not_before, retry);
+}
+
 }  // namespace
 }  // namespace rondo::exec::testing

@@ -137,6 +137,9 @@ class TaskBook {
   void set_progress(const TaskId& id, std::size_t actions_done);
   // Records and stores the door the task waits for (none: it waits for nothing).
   void set_door_wait(const TaskId& id, std::optional<DoorWait> wait);
+  // Held back for a way found blocked (TaskRecord::not_before), stored with its progress so that a
+  // restart keeps it. Precondition: the task is in the book.
+  void set_not_before(const TaskId& id, Time t);
   // A task's progress as stored ({"actions_done": n, "blocked": {...}}), and read back into `r`
   // (restore; what it does not understand is left as it was).
   static Json progress_json(const TaskRecord& r);
