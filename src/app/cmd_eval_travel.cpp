@@ -9,6 +9,7 @@
 #include <string>
 
 #include "commands.h"
+#include "rondo/core/timezone.h"
 #include "rondo/core/traversal.h"
 #include "rondo/map/map_loader.h"
 #include "rondo/plan/travel_evaluation.h"
@@ -20,6 +21,7 @@ struct EvalTravelArgs {
   std::string witham_dir;
   std::string split = "2014-09-02T16:24:00Z";
   std::string map_file = "examples/witham/map.yaml";
+  std::string zone = "Europe/London";  // Witham Wharf is in Lincoln, UK (as `rondo eval edges`)
   bool json = false;
 };
 
@@ -44,12 +46,16 @@ plan::TravelEvaluationOptions witham_windows(std::span<const Traversal> log, Tim
 void run_eval_travel(const EvalTravelArgs& args, CommandContext& ctx) {
   auto split = parse_time(args.split);
   if (!split) return (void)fail(ctx, split.error().with_context("--split"));
+  auto zone = TimeZone::named(args.zone);
+  if (!zone) return (void)fail(ctx, zone.error().with_context("--zone"));
   auto m = map::load_map(args.map_file);
   if (!m) return (void)fail(ctx, m.error().with_context("--map"));
   auto log = read_witham_logs(args.witham_dir);
   if (!log) return (void)fail(ctx, log.error());
   if (log->empty()) return (void)fail(ctx, Error::invalid("--witham " + args.witham_dir + ": no attempts"));
-  auto result = plan::evaluate_travel(*m, *log, witham_windows(*log, *split));
+  plan::TravelEvaluationOptions options = witham_windows(*log, *split);
+  options.models.episode.episode.zone = *zone;  // the episode models' time-of-day bins
+  auto result = plan::evaluate_travel(*m, *log, options);
   if (!result) return (void)fail(ctx, result.error());
   if (args.json) {
     ctx.out << plan::travel_evaluation_to_json(*result).dump(2) << '\n';
@@ -68,6 +74,8 @@ void add_eval_travel_command(CLI::App* eval, CommandContext& ctx) {
   travel->add_option("--split", args->split, "Train before this time, test from it (ISO 8601 with zone)")
       ->capture_default_str();
   travel->add_option("--map", args->map_file, "The map of the logged edges (poses give the distance prior)")
+      ->capture_default_str();
+  travel->add_option("--zone", args->zone, "IANA time zone of the log (the time-of-day bins)")
       ->capture_default_str();
   travel->add_flag("--json", args->json, "Print JSON instead of a table");
   travel->callback([args, &ctx] { run_eval_travel(*args, ctx); });

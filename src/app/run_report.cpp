@@ -133,9 +133,11 @@ Json event_summary(const exec::Executor& executor) {
               {"rejected_requests", by_code("rejected")}};
 }
 
-Json travel_table(const map::TopoMap& map, std::span<const Traversal> log, Time start, int days) {
+Json travel_table(const map::TopoMap& map, std::span<const Traversal> log, Time start, int days,
+                  const TimeZone& zone) {
   const Duration week = hours(24 * 7);
   plan::TravelEvaluationOptions o;
+  o.models.episode.episode.zone = zone;
   if (days >= 21) {
     // The protocol: the estimates of week 3 from models trained on no data, week 1, weeks 1-2.
     o.trainings = {{"none", start, start}, {"week1", start, start + week}, {"weeks1-2", start, start + 2 * week}};

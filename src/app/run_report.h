@@ -31,8 +31,9 @@ Json task_summary(const exec::Executor& executor);
 
 // Table I on the run's own log: models trained on no data, week 1 and weeks 1–2, scored on the
 // journeys of week 3 (a run of 14–20 days: no data and week 1, scored on week 2). A "note" in
-// place of the table when the run is shorter than 14 days.
-Json travel_table(const map::TopoMap& map, std::span<const Traversal> log, Time start, int days);
+// place of the table when the run is shorter than 14 days. Time of day is local time in `zone`.
+Json travel_table(const map::TopoMap& map, std::span<const Traversal> log, Time start, int days,
+                  const TimeZone& zone);
 
 // The estimates the executor used (NavigationRecord::expected) and the snapshot's alone, scored
 // on the same journeys in Table I's columns; report.json's "live_estimates".

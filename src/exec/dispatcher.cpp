@@ -8,11 +8,20 @@
 
 namespace rondo::exec {
 
+std::optional<TaskId> Dispatcher::ready_on_demand(Time now) const {
+  for (const TaskId& id : on_demand) {
+    const TaskRecord& r = book_.at(id);
+    if (!r.not_before || *r.not_before <= now) return id;
+  }
+  return std::nullopt;
+}
+
 Decision Dispatcher::next(map::NodeIndex here, Time now) {
-  if (!on_demand.empty()) {  // on-demand tasks go first, in the order they came
-    Decision d{.kind = Decision::Kind::kRun, .task = on_demand.front()};
-    on_demand.pop_front();
-    return d;
+  // On-demand tasks go first, in the order they came, but for one held back for a blocked way
+  // until its retry time (the executor looks again then).
+  if (const std::optional<TaskId> id = ready_on_demand(now)) {
+    std::erase(on_demand, *id);
+    return {.kind = Decision::Kind::kRun, .task = *id};
   }
   if (planned.empty()) return {.kind = here == options_.dock ? Decision::Kind::kStay : Decision::Kind::kDock};
   const TaskId id = planned.front();
@@ -35,10 +44,10 @@ Decision Dispatcher::next(map::NodeIndex here, Time now) {
                                   zone_.format_clock(task.window->deadline))};
   }
   Time depart = r.release() - travel;
-  // Held back for a blocked way: the travel now counts that way's failures, so leave by the travel
-  // expected at the retry time instead.
-  if (r.not_before && *r.not_before > now)
-    depart = std::max(depart, *r.not_before - travel_.travel(here, *map_.find_node(task.start_node), *r.not_before));
+  // Held back for a blocked way: the robot does not set out before the retry time. The travel
+  // estimated now still counts that way's failures, and leaving early by the travel expected
+  // then would reach the way before it is likely open again.
+  if (r.not_before && *r.not_before > now) depart = std::max(depart, *r.not_before);
   if (now < depart && depart - now > options_.dock_when_waiting_over) {  // a long wait: on the charger
     if (here != options_.dock) return {.kind = Decision::Kind::kDock};
     return {.kind = Decision::Kind::kIdleUntil, .until = depart};

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <deque>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,8 @@ class Dispatcher {
 
   // The next thing to do from `here` at `now`. A decision about a task takes it off its queue.
   Decision next(map::NodeIndex here, Time now);
+  // The first on-demand task not held back for a blocked way at `now` (TaskRecord::not_before).
+  std::optional<TaskId> ready_on_demand(Time now) const;
   // Takes a task off every queue.
   void forget(const TaskId& id);
 

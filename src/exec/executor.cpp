@@ -128,16 +128,20 @@ Status Executor::add_tasks(std::vector<Task> tasks, std::string_view source, con
   std::vector<TaskId> standard = std::move(*inserted);
   if (!started_) return Status{};  // start() schedules everything added before it
   if (!standard.empty()) reschedule(std::move(standard), "new tasks");
-  if (!dispatcher_->on_demand.empty() && running_standard()) {
-    if (interruptible_now()) {
-      preempt_for_on_demand();
-      return Status{};
-    }
-    book_.note(dispatcher_->on_demand.front(), "waiting", Outcome::kRunsAfterCurrent,
-               fmt::format("the running task {} cannot be interrupted now; runs right after it", run_->id()));
-  }
-  kick();
+  if (!give_way_to_on_demand()) kick();
   return Status{};
+}
+
+bool Executor::give_way_to_on_demand() {
+  const std::optional<TaskId> ready = dispatcher_->ready_on_demand(clock_.now());
+  if (!ready || !running_standard()) return false;
+  if (interruptible_now()) {
+    preempt_for_on_demand(*ready);
+    return true;
+  }
+  book_.note(*ready, "waiting", Outcome::kRunsAfterCurrent,
+             fmt::format("the running task {} cannot be interrupted now; runs right after it", run_->id()));
+  return false;
 }
 
 void Executor::reject_request(const store::RequestTaken& taken, const std::string& reason) {
@@ -207,9 +211,8 @@ bool Executor::running_standard() const {
   return run_ && !run_->waiting() && run_->task().kind == TaskKind::kStandard;
 }
 
-void Executor::preempt_for_on_demand() {
-  preempt_for(Outcome::kPreemptedOnDemand,
-              fmt::format("preempted by an on-demand task: {}", dispatcher_->on_demand.front()), {});
+void Executor::preempt_for_on_demand(const TaskId& id) {
+  preempt_for(Outcome::kPreemptedOnDemand, fmt::format("preempted by an on-demand task: {}", id), {});
 }
 
 ExecutorPhase Executor::phase() const {

@@ -71,6 +71,7 @@ Status Executor::restore() {
     }
     if (on_demand) {
       dispatcher_->on_demand.push_back(id);
+      if (r.not_before && *r.not_before > now) clock_.schedule_at(*r.not_before, [this] { on_demand_due(); });
     } else if (r.door_wait && r.task.window) {
       // Blocked by a door seen closed: it waits for the door again, with its retry and its end.
       const DoorWait wait = *r.door_wait;

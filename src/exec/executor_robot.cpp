@@ -130,7 +130,8 @@ void Executor::on_action_finished(const ActionResult& reported) {
 
 void Executor::on_interruptible_changed(bool interruptible) {
   if (!run_ || run_->set_robot_interruptible(interruptible) || !interruptible) return;
-  if (!dispatcher_->on_demand.empty() && running_standard() && interruptible_now()) preempt_for_on_demand();
+  if (!running_standard() || !interruptible_now()) return;
+  if (const std::optional<TaskId> ready = dispatcher_->ready_on_demand(clock_.now())) preempt_for_on_demand(*ready);
 }
 
 void Executor::log_battery() {

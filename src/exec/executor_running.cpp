@@ -64,10 +64,17 @@ void Executor::run_ended(TaskEnd e) {
   const TaskRecord& r = book_.at(id);
   if (r.started) stats_.busy += clock_.now() - *r.started;
   std::vector<TaskId> again = std::exchange(after_preempt_, {});
+  const bool on_demand = r.task.kind == TaskKind::kOnDemand;
   if (e.requeue && e.edge && !hold_back(id, *e.edge)) {
     e.requeue = false;
     e.state = TaskState::kFailed;
-    e.reason += "; the way is not likely passable again before its latest start";
+    e.reason += on_demand ? "; the way is not likely passable again within its patience"
+                          : "; the way is not likely passable again before its latest start";
+  }
+  if (e.requeue && on_demand && e.edge) {
+    hold_on_demand(id, e.outcome, e.reason);
+    if (!again.empty()) reschedule(std::move(again), "after holding " + id);
+    return next();
   }
   if (e.requeue) {
     // Preempted: the task keeps its id and goes back to the queue, to be scheduled again.
@@ -128,7 +135,8 @@ bool Executor::hold_back(const TaskId& id, map::EdgeIndex edge) {
   constexpr double kLikelyPassable = 0.5;
   const TaskRecord& r = book_.at(id);
   const Time now = clock_.now();
-  const Time latest = r.task.window->deadline - r.remaining();
+  const Time latest =
+      r.task.window ? r.task.window->deadline - r.remaining() : r.added + options_.on_demand_patience;
   for (Time t = planner_->slot_start(now) + options_.slot_width; t <= latest; t += options_.slot_width) {
     const double p = models_->outcome(edge, t).success_probability;
     if (p < kLikelyPassable) continue;
@@ -139,6 +147,16 @@ bool Executor::hold_back(const TaskId& id, map::EdgeIndex edge) {
     return true;
   }
   return false;
+}
+
+void Executor::hold_on_demand(const TaskId& id, Outcome outcome, const std::string& reason) {
+  book_.transition(id, TaskState::kQueued, outcome, reason + "; back in the on-demand queue");
+  dispatcher_->on_demand.push_front(id);  // it came before the others waiting
+  clock_.schedule_at(*book_.at(id).not_before, [this] { on_demand_due(); });
+}
+
+void Executor::on_demand_due() {
+  if (!give_way_to_on_demand()) kick();
 }
 
 void Executor::requeue_preempted(const TaskId& id, Outcome outcome, const std::string& reason) {

@@ -30,7 +30,8 @@ std::pair<map::NodeIndex, Time> Executor::free_at() const {
     here = task.end_node.empty() ? start : *map_.find_node(task.end_node);
   };
   if (run_ && !run_->waiting()) run(book_.at(run_->id()), run_->acting_until());
-  for (const TaskId& id : dispatcher_->on_demand) run(book_.at(id), std::nullopt);
+  for (const TaskId& id : dispatcher_->on_demand)  // one held back for a blocked way comes later
+    if (!book_.at(id).not_before || *book_.at(id).not_before <= now) run(book_.at(id), std::nullopt);
   return {here, t};
 }
 

@@ -67,9 +67,7 @@ void TaskRun::step_ended(StepEnd e) {
       return next_step();
     case StepEnd::Status::kFailed:
       return finish({.requeue = false, .state = TaskState::kFailed, .outcome = e.outcome, .reason = e.reason});
-    case StepEnd::Status::kBlocked:  // a task with a window waits; one without has nothing to wait in
-      if (task().kind != TaskKind::kStandard || !task().window)
-        return finish({.requeue = false, .state = TaskState::kFailed, .outcome = e.outcome, .reason = e.reason});
+    case StepEnd::Status::kBlocked:  // the executor decides whether it waits (Executor::hold_back)
       return finish(
           {.requeue = true, .state = TaskState::kQueued, .outcome = e.outcome, .reason = e.reason, .edge = e.edge});
     case StepEnd::Status::kHalted:

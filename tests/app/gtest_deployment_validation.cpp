@@ -205,6 +205,15 @@ TEST(RunCommand, BlockedEdgeIsAnExecutorKeyAndTheReportHasItsWeeks) {
     std::filesystem::remove_all(dir);
   }
   {
+    const auto dir = fresh_dir("on-demand-patience-bad");
+    const auto deployment = edited_example(dir, "deployment.yaml", refit, refit + "\n  on_demand_patience: -1h");
+    const auto r = test::run_cli({"run", deployment.string(), "--days", "1", "--out", (dir / "run").string()});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_THAT(r.err,
+                HasSubstr("deployment.yaml:" + std::to_string(line_of(slurp(deployment), "on_demand_patience"))));
+    std::filesystem::remove_all(dir);
+  }
+  {
     const auto dir = fresh_dir("blocked-edge-wait");
     const auto deployment = edited_example(dir, "deployment.yaml", refit, refit + "\n  blocked_edge: wait");
     const auto r = test::run_cli({"run", deployment.string(), "--days", "9", "--out", (dir / "run").string()});

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -58,11 +59,12 @@ std::shared_ptr<plan::LearnedEdgeModels> models_where_hall_office_stays_closed(c
 }
 
 struct Blocked : ScriptedExecutor {
-  explicit Blocked(ExecutorOptions::BlockedEdge policy)
-      : ScriptedExecutor(options_with(policy), scenario_map(), parts()) {}
-  static ExecutorOptions options_with(ExecutorOptions::BlockedEdge policy) {
+  explicit Blocked(ExecutorOptions::BlockedEdge policy, Duration on_demand_patience = hours(4))
+      : ScriptedExecutor(options_with(policy, on_demand_patience), scenario_map(), parts()) {}
+  static ExecutorOptions options_with(ExecutorOptions::BlockedEdge policy, Duration on_demand_patience) {
     ExecutorOptions o;
     o.blocked_edge = policy;
+    o.on_demand_patience = on_demand_patience;
     return o;
   }
   static ExecutorParts parts() {
@@ -71,9 +73,11 @@ struct Blocked : ScriptedExecutor {
     p.models = models_where_hall_office_stays_closed(map, TimeZone::named("Europe/London").value());
     return p;
   }
-  // Starts task A at the Office (window 08:00-12:00), drives to the Hall and fails Hall_Office.
-  void fail_on_the_way() {
-    ASSERT_TRUE(executor().add_task(task("A", "Office", at("08:00"), at("12:00"), minutes(5)), "test").ok());
+  // Starts a task at the Office (by default A, window 08:00-12:00), drives to the Hall and fails
+  // Hall_Office.
+  void fail_on_the_way(std::optional<Task> t = std::nullopt) {
+    if (!t) t = task("A", "Office", at("08:00"), at("12:00"), minutes(5));
+    ASSERT_TRUE(executor().add_task(*t, "test").ok());
     executor().start();
     ASSERT_NO_FATAL_FAILURE(drive_to("Hall"));
     settle();
@@ -85,6 +89,25 @@ struct Blocked : ScriptedExecutor {
   }
   Time now() const { return clock_.now(); }
   void wait_for(Duration d) { clock_.run_until(clock_.now() + d); }
+  // Answers the robot's calls (every edge and action succeeds) until `id` succeeds; each drive
+  // through Hall_Office must start at `not_before` or later.
+  void run_to_success(const std::string& id, Time not_before) {
+    for (int guard = 0; guard < 2000 && state(id) != "succeeded"; ++guard) {
+      settle();
+      if (robot().driving()) {
+        if (robot().calls.back() == "drive Hall_Office +0") {
+          EXPECT_GE(now(), not_before);
+        }
+        wait_for(seconds(20));
+        robot().finish_edge(EdgeOutcome::kSucceeded, seconds(20));
+      } else if (robot().acting()) {
+        robot().finish_action(ActionOutcome::kSucceeded, "");
+      } else {
+        wait_for(seconds(20));
+      }
+    }
+    EXPECT_EQ(state(id), "succeeded");
+  }
   std::size_t drives_of(const std::string& edge) const {
     return static_cast<std::size_t>(std::count(robot_.calls.begin(), robot_.calls.end(), "drive " + edge + " +0"));
   }
@@ -117,23 +140,42 @@ TEST(BlockedEdge, WaitRequeuesTheTaskUntilTheEdgeIsLikelyPassableThenCompletesIt
   EXPECT_EQ(s.code_of("A", "retry planned"), "no route now");
   EXPECT_EQ(s.drives_of("Hall_Office"), 1u);
   // Nothing drives through the closed edge before the retry time; then the task is done.
-  const Time retry = *s.executor().tasks().at("A").not_before;
-  for (int guard = 0; guard < 2000 && s.state("A") != "succeeded"; ++guard) {
-    s.settle();
-    if (s.robot().driving()) {
-      if (s.robot().calls.back() == "drive Hall_Office +0") {
-        EXPECT_GE(s.now(), retry - seconds(60));
-      }
-      s.wait_for(seconds(20));
-      s.robot().finish_edge(EdgeOutcome::kSucceeded, seconds(20));
-    } else if (s.robot().acting()) {
-      s.robot().finish_action(ActionOutcome::kSucceeded, "");
-    } else {
-      s.wait_for(seconds(20));
-    }
-  }
-  EXPECT_EQ(s.state("A"), "succeeded");
+  ASSERT_NO_FATAL_FAILURE(s.run_to_success("A", *s.executor().tasks().at("A").not_before));
   EXPECT_EQ(s.drives_of("Hall_Office"), 2u);
+}
+
+TEST(BlockedEdge, WaitHoldsAnOnDemandTaskForTheWayWithinItsPatienceThenRunsIt) {
+  Blocked s(ExecutorOptions::BlockedEdge::kWait);
+  ASSERT_NO_FATAL_FAILURE(s.fail_on_the_way(on_demand("B", "Office", minutes(5))));
+  EXPECT_EQ(s.state("B"), "queued");
+  EXPECT_EQ(s.code_of("B", "queued"), "no route now");
+  EXPECT_THAT(s.reason_of("B", "queued"), HasSubstr("back in the on-demand queue"));
+  ASSERT_TRUE(s.executor().tasks().at("B").not_before.has_value());
+  const Time retry = *s.executor().tasks().at("B").not_before;
+  EXPECT_GT(retry, s.now());
+  EXPECT_LE(retry, s.executor().tasks().at("B").added + hours(4));
+  // A standard task that comes meanwhile runs while B waits; B takes the robot at its retry time.
+  ASSERT_TRUE(s.executor().add_task(task("K", "Kitchen", s.now(), s.now() + hours(3), minutes(2)), "test").ok());
+  ASSERT_NO_FATAL_FAILURE(s.run_to_success("B", retry));
+  EXPECT_EQ(s.state("K"), "succeeded");
+  EXPECT_EQ(s.drives_of("Hall_Office"), 2u);
+}
+
+TEST(BlockedEdge, AnOnDemandTaskWithNoPatienceFailsAtOnce) {
+  Blocked s(ExecutorOptions::BlockedEdge::kWait, Duration{0});
+  ASSERT_NO_FATAL_FAILURE(s.fail_on_the_way(on_demand("B", "Office", minutes(5))));
+  EXPECT_EQ(s.state("B"), "failed");
+  EXPECT_EQ(s.code_of("B", "failed"), "no route now");
+  EXPECT_THAT(s.reason_of("B", "failed"), HasSubstr("within its patience"));
+}
+
+TEST(BlockedEdge, AHeldOnDemandTaskIsStillDueAfterARestart) {
+  Blocked s(ExecutorOptions::BlockedEdge::kWait);
+  ASSERT_NO_FATAL_FAILURE(s.fail_on_the_way(on_demand("B", "Office", minutes(5))));
+  ASSERT_TRUE(s.executor().tasks().at("B").not_before.has_value());
+  const Time retry = *s.executor().tasks().at("B").not_before;
+  ASSERT_NO_FATAL_FAILURE(s.kill_and_restart());
+  ASSERT_NO_FATAL_FAILURE(s.run_to_success("B", retry));
 }
 
 TEST(BlockedEdge, AHeldBackTaskKeepsItsRetryTimeOverARestart) {

@@ -61,6 +61,9 @@ TEST(EvalTravelCommand, BadInputsExitTwo) {
   const auto late = run_cli({"eval", "travel", "--witham", "../shared/data/witham_wharf", "--split", "2030-01-01T00:00:00Z"});
   EXPECT_EQ(late.exit_code, 2);
   EXPECT_NE(late.err.find("no journey"), std::string::npos) << late.err;
+  const auto zone = run_cli({"eval", "travel", "--witham", "../shared/data/witham_wharf", "--zone", "Mars/Olympus"});
+  EXPECT_EQ(zone.exit_code, 2);
+  EXPECT_NE(zone.err.find("--zone"), std::string::npos) << zone.err;
 }
 
 }  // namespace

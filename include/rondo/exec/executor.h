@@ -211,7 +211,10 @@ class Executor final : public RobotListener {
                                            const store::RequestTaken* taken);
   bool interruptible_now() const;
   bool running_standard() const;  // a standard task navigates or acts
-  void preempt_for_on_demand();
+  void preempt_for_on_demand(const TaskId& id);
+  // An on-demand task is ready (none held back for a blocked way) and the running standard task
+  // can give way to it now: it is preempted. Not interruptible now: noted, it runs right after.
+  bool give_way_to_on_demand();
 
   // the robot (executor_robot.cpp)
   void log_battery();
@@ -238,8 +241,12 @@ class Executor final : public RobotListener {
   void requeue_preempted(const TaskId& id, Outcome outcome, const std::string& reason);
   // A way the task needs was found blocked (ExecutorOptions::BlockedEdge::kWait): it is not
   // scheduled before the edge is likely passable again; false when that is not before its latest
-  // start (the caller fails it).
+  // start, or for an on-demand task not within `on_demand_patience` of its request (the caller
+  // fails it).
   bool hold_back(const TaskId& id, map::EdgeIndex edge);
+  // A held on-demand task goes back to the front of its queue and is due at its retry time.
+  void hold_on_demand(const TaskId& id, Outcome outcome, const std::string& reason);
+  void on_demand_due();  // a held on-demand task may run now: as if it had just come in
   // Frees the run or the trip later: it ended in a callback of its own, still on the stack.
   void retire_run();
   void retire_trip();

@@ -27,6 +27,9 @@ struct ExecutorOptions {
   // (docs/executor.md, "A way found blocked").
   enum class BlockedEdge { kRetry, kGiveUp, kWait };
   BlockedEdge blocked_edge = BlockedEdge::kWait;
+  // kWait for an on-demand task (no window): it waits for the way while that is likely passable
+  // again within this long of its request, and fails ("no route now") otherwise; zero: at once.
+  Duration on_demand_patience = hours(4);
   std::optional<Duration> refit_at = hours(2);  // local time of day; nothing = never refit
   // The nightly refit reads the traversals that started within this long before it (nothing: the
   // whole log), so a night costs the same however long the robot has lived (docs/executor.md).

@@ -145,6 +145,9 @@ async function main() {
       };
       from.value = shift(from.value, 6);
       to.value = shift(to.value, 8);
+      // As typing does: the form stops following the service's clock, which would otherwise put
+      // the window back to "now" on its next refresh, before the click below on a slow machine.
+      for (const input of [from, to]) input.dispatchEvent(new Event("input", { bubbles: true }));
     });
     await page.$eval("#add-form input[name=activity]", (e, v) => { e.value = v; }, later);
     await page.click("#add-form button[type=submit]");
