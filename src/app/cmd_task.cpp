@@ -144,7 +144,7 @@ void add(const AddOptions& o, CommandContext& ctx) {
       fail(ctx, q.error());
       return;
     }
-    ctx.err << fmt::format("rondo task add: queued as request {} in {}\n", q->id, q->file.string());
+    ctx.err << fmt::format("rondo task add: queued as request {} in {}: {}\n", q->id, q->file.string(), q->what);
   }
   if (o.json) {
     ctx.out << request_body(*command, zone).dump(2) << '\n';

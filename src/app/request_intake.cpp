@@ -1,6 +1,7 @@
 #include "request_intake.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <string>
@@ -8,6 +9,7 @@
 
 #include "rondo/core/task_codec.h"
 #include "rondo/lang/command.h"
+#include "rondo/service/stored_routines.h"
 #include "rondo/store/requests.h"
 
 namespace rondo::app {
@@ -48,11 +50,38 @@ void take_cancel(exec::Executor& executor, store::Store& db, Time now, const sto
     errors.push_back(ok.error().message);
 }
 
-void take_tasks(exec::Executor& executor, Time now, const store::RequestRow& r) {
+// Routines are added to the executor as POST /api/v1/routines adds them, and kept in the store
+// (service/stored_routines.h) in the transaction that marks the request taken.
+void take_routines(exec::Executor& executor, store::Store& db, Time now, const store::RequestRow& r, TaskFile file,
+                   std::vector<std::string>& errors) {
+  if (!file.tasks.empty()) return reject(executor, now, r, "it holds both tasks and routines");
+  // A routine's times of day are local: in another zone than the deployment's they would not mean
+  // what was said.
+  if (!file.zone || file.zone->name() != executor.zone().name())
+    return reject(executor, now, r,
+                  fmt::format("its times are in {}, the deployment's in {}", file.zone ? file.zone->name() : "no zone",
+                              executor.zone().name()));
+  std::vector<std::string> names;
+  for (const Routine& routine : file.routines) names.push_back(routine.name);
+  auto kept = service::stored_with_added(db, file.routines);
+  if (!kept) {
+    errors.push_back(kept.error().message);  // left waiting: read again next time
+    return;
+  }
+  const std::string outcome = fmt::format("added {} routine(s): {}", names.size(), fmt::join(names, ", "));
+  const store::RequestTaken taken{r.id, now, outcome, {{service::kStoredRoutinesKey, *kept}}};
+  // A refusal (a name already taken, a node not on the map) is written and marked by the executor.
+  if (auto ok =
+          executor.add_routines_now(std::move(file.routines), taken, fmt::format("'{}': {}", r.sentence, outcome));
+      !ok && ok.error().code != ErrorCode::kInvalidInput)
+    errors.push_back(ok.error().message);
+}
+
+void take_tasks(exec::Executor& executor, store::Store& db, Time now, const store::RequestRow& r,
+                std::vector<std::string>& errors) {
   auto file = parse_task_file(r.body.dump(), DocumentFormat::kJson, about(r));
   if (!file) return reject(executor, now, r, file.error().message);
-  if (!file->routines.empty())
-    return reject(executor, now, r, "routines cannot be queued (add them to the deployment or through the API)");
+  if (!file->routines.empty()) return take_routines(executor, db, now, r, std::move(*file), errors);
   if (file->tasks.empty()) return reject(executor, now, r, "it holds no task");
   const std::size_t n = file->tasks.size();
   const store::RequestTaken taken{r.id, now, fmt::format("added {} task(s)", n)};
@@ -70,7 +99,7 @@ Result<int> RequestIntake::take_waiting() {
     if (r.body.contains("cancel"))
       take_cancel(executor_, store_, now, r, errors);
     else
-      take_tasks(executor_, now, r);
+      take_tasks(executor_, store_, now, r, errors);
   }
   if (!errors.empty()) return Error::storage(errors.front());
   return static_cast<int>(waiting.size());

@@ -1,9 +1,12 @@
 // The running executive's side of the request queue (store/requests.h): the requests that
 // `rondo task add SENTENCE --data DIR` queued in the deployment's store are taken into the
 // executor, each exactly once. Tasks are added with the request marked taken in the transaction
-// that stores them; a cancellation is applied to the tasks it names, then marked taken (applying
-// it again after a kill finds them cancelled already); a request that cannot be carried out is
-// marked taken with a `rejected` request event (code `invalid request`) that says why.
+// that stores them; routines are added as POST /api/v1/routines adds them, the request marked taken
+// in the transaction that keeps them in the store (service/stored_routines.h) for a restart; a
+// cancellation is applied to the tasks it names, then marked taken (applying it again after a kill
+// finds them cancelled already); a request that cannot be carried out (a routine name already
+// taken, a node not on the map) is marked taken with a `rejected` request event (code
+// `invalid request`) that says why.
 //
 //   RequestIntake intake(clock, executor, db);
 //   intake.take_waiting();          // a simulated run or a restart: once, at start

@@ -1,8 +1,10 @@
 #include "request_queue.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <chrono>
+#include <vector>
 
 #include "rondo/core/task_codec.h"
 #include "rondo/store/requests.h"
@@ -18,11 +20,6 @@ Json request_body(const lang::Command& command, const TimeZone& zone) {
 
 Result<QueuedAt> queue_command(const std::filesystem::path& data, const std::string& sentence,
                                const lang::Command& command, const TimeZone& zone) {
-  if (!command.routines.empty())
-    return Error::invalid(
-        fmt::format("--data {}: the sentence makes routines, which cannot be queued (add them to the deployment, or "
-                    "through rondo serve's API); --dry-run prints them",
-                    data.string()));
   const std::filesystem::path file = data / "rondo.sqlite";
   if (!std::filesystem::is_regular_file(file))
     return Error::invalid(fmt::format(
@@ -38,7 +35,16 @@ Result<QueuedAt> queue_command(const std::filesystem::path& data, const std::str
       const std::int64_t id,
       store::queue_request(
           db, {.queued = now, .source = "words", .sentence = sentence, .body = request_body(command, zone)}));
-  return QueuedAt{id, file};
+  return QueuedAt{id, file, queued_what(command)};
+}
+
+std::string queued_what(const lang::Command& command) {
+  if (command.cancel) return "a cancellation";
+  std::vector<std::string> names;
+  for (const Task& t : command.tasks) names.push_back(t.id);
+  for (const Routine& r : command.routines) names.push_back(r.name);
+  return fmt::format("{} {}(s): {}", names.size(), command.routines.empty() ? "task" : "routine",
+                     fmt::join(names, ", "));
 }
 
 }  // namespace rondo::app

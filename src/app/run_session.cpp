@@ -18,6 +18,7 @@
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
 #include "rondo/map/map_geometry.h"
+#include "rondo/service/stored_routines.h"
 #include "rondo/sim/request_generator.h"
 #include "rondo/sim/rng.h"
 #include "rondo/sim/sim_world.h"
@@ -156,7 +157,13 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
     listener = request.wrap_listener(executor);
     robot.set_listener(listener.get());
   }
-  executor.add_routines(s.parts.plan.routines);
+  // The deployment's routines, with those that queued requests added (kept in the store).
+  std::vector<std::string> skipped;
+  RONDO_ASSIGN_OR_RETURN(std::vector<Routine> routines,
+                         service::routines_to_run(db, s.parts.plan.routines, map, d.zone, &skipped));
+  for (const std::string& why : skipped)
+    progress_to << fmt::format("rondo run: a routine a request added is not run: {}\n", why);
+  executor.add_routines(std::move(routines));
   if (resumed) RONDO_RETURN_IF_ERROR(executor.restore());
   // The deployment's one-off tasks, unless a previous start already stored them.
   std::vector<Task> one_off;

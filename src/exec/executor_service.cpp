@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <set>
 
 #include "dispatcher.h"
 #include "rondo/core/task_codec.h"
@@ -79,6 +80,43 @@ Status Executor::add_routine_now(Routine routine) {
     routines_.pop_back();
     return ok;
   }
+  kick();
+  return Status{};
+}
+
+Status Executor::add_routines_now(std::vector<Routine> routines, const store::RequestTaken& taken,
+                                  const std::string& why) {
+  std::set<std::string> names;
+  for (const Routine& r : routines_) names.insert(r.name);
+  Status bad;
+  if (routines.empty()) bad = Error::invalid("it holds no routine");
+  for (const Routine& routine : routines) {
+    if (!bad) break;
+    if (!names.insert(routine.name).second)
+      bad = Error::invalid(fmt::format("routine '{}': the name is already taken", routine.name));
+    for (const std::string* node : {&routine.task.start_node, &routine.task.end_node})
+      if (bad && !node->empty() && !map_.find_node(*node))
+        bad = Error::invalid(fmt::format("routine '{}': node '{}' is not on the map", routine.name, *node));
+  }
+  if (!bad) {
+    const store::RequestTaken refused{taken.id, taken.at, "rejected: " + bad.error().message};
+    book_.note_request(fmt::format("request {}", taken.id), "rejected", Outcome::kInvalidRequest, bad.error().message,
+                       &refused);
+    return bad;
+  }
+  // Marked taken with what keeps the routines: a kill after this finds them at the restart.
+  RONDO_RETURN_IF_ERROR(book_.take_request(taken, "routines added", Outcome::kNone, why));
+  const std::size_t first = routines_.size();
+  for (Routine& r : routines) routines_.push_back(std::move(r));
+  if (!started_) return Status{};  // start() adds today's instances
+  std::vector<Task> batch;
+  const Time now = clock_.now();
+  for (std::size_t i = first; i < routines_.size(); ++i)
+    for (Task& t : instances_on(routines_[i], zone_.local_date(now), zone_))
+      if (t.window && t.window->deadline - t.duration > now && !book_.known(t.id)) batch.push_back(std::move(t));
+  if (batch.empty()) return Status{};
+  // A refusal here is in the event log; the routines stay (they are kept), and make tomorrow's.
+  if (auto ok = add_tasks(std::move(batch), "routine"); !ok) book_.write_error(ok.error().message);
   kick();
   return Status{};
 }

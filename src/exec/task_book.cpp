@@ -197,6 +197,19 @@ void TaskBook::note_request(const std::string& about, const std::string& event, 
          taken);
 }
 
+Status TaskBook::take_request(const store::RequestTaken& taken, const std::string& event, Outcome outcome,
+                              const std::string& reason) {
+  const store::Event e{.time = clock_.now(),
+                       .subject = store::Subject::kRequest,
+                       .about = fmt::format("request {}", taken.id),
+                       .event = event,
+                       .code = std::string(to_string(outcome)),
+                       .reason = reason};
+  RONDO_RETURN_IF_ERROR(store::take_request(store_, taken, &e));
+  if (auto code = parse_outcome(e.code)) ++event_counts_[e.event][*code];
+  return {};
+}
+
 void TaskBook::append(store::Event event, const store::RequestTaken* taken) {
   if (auto code = parse_outcome(event.code)) ++event_counts_[event.event][*code];
   if (taken) {

@@ -12,7 +12,7 @@
 namespace rondo::service {
 namespace {
 
-constexpr const char* kKey = "serve.routines";
+constexpr const char* kKey = kStoredRoutinesKey;
 
 // A stored routine's name, or empty when it has none.
 std::string name_of(const Json& routine) {
@@ -21,7 +21,7 @@ std::string name_of(const Json& routine) {
   return it != routine.end() && it->is_string() ? it->get<std::string>() : std::string{};
 }
 
-Result<Json> load(store::Store& store) {
+Result<Json> load(const store::Store& store) {
   RONDO_ASSIGN_OR_RETURN(const std::optional<std::string> text, store::get_meta(store, kKey));
   if (!text) return Json{{"added", Json::array()}, {"removed", Json::array()}};
   Json j = Json::parse(*text, nullptr, false);
@@ -39,10 +39,17 @@ void erase_added(Json& j, const std::string& name) {
 }  // namespace
 
 Status remember_added_routine(store::Store& store, const Routine& routine) {
+  RONDO_ASSIGN_OR_RETURN(const std::string value, stored_with_added(store, {routine}));
+  return store::set_meta(store, kKey, value);
+}
+
+Result<std::string> stored_with_added(const store::Store& store, const std::vector<Routine>& routines) {
   RONDO_ASSIGN_OR_RETURN(Json j, load(store));
-  erase_added(j, routine.name);
-  j["added"].push_back(encode(routine));
-  return store::set_meta(store, kKey, j.dump());
+  for (const Routine& routine : routines) {
+    erase_added(j, routine.name);
+    j["added"].push_back(encode(routine));
+  }
+  return j.dump();
 }
 
 Status remember_removed_routine(store::Store& store, const std::string& name) {

@@ -43,7 +43,16 @@ Status mark_request_taken(SQLite::Database& db, const std::filesystem::path& fil
   update.bind(1, to_db(taken.at));
   update.bind(2, taken.outcome.empty() ? std::string("taken") : taken.outcome);
   update.bind(3, taken.id);
-  if (update.exec() == 1) return {};
+  if (update.exec() == 1) {
+    for (const auto& [key, value] : taken.meta) {
+      SQLite::Statement set(
+          db, "INSERT INTO meta (key, value) VALUES (?, ?) ON CONFLICT (key) DO UPDATE SET value = excluded.value");
+      set.bind(1, key);
+      set.bind(2, value);
+      set.exec();
+    }
+    return {};
+  }
   SQLite::Statement exists(db, "SELECT 1 FROM requests WHERE id = ?");
   exists.bind(1, taken.id);
   if (!exists.executeStep()) return Error::not_found(fmt::format("{}: no request {}", file.string(), taken.id));

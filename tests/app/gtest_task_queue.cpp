@@ -1,11 +1,19 @@
 // `rondo task add SENTENCE --data DIR`: the request is queued in the folder's store (what --json
 // prints), --dry-run queues nothing, bad input is exit code 2 naming the problem, and a simulated
 // run on the folder takes every queued request at its start: tasks added, a cancellation applied,
-// a request it cannot carry out rejected in the event log with its reason.
+// routines added and kept over a restart, a request it cannot carry out rejected in the event log
+// with its reason; a killed run, resumed, takes nothing twice.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
 #include <filesystem>
+#include <map>
+#include <thread>
 
 #include "cli_runner.h"
 #include "rondo/core/document.h"
@@ -81,9 +89,6 @@ TEST(TaskQueue, BadInputIsExitCode2NamingTheProblemAndQueuesNothing) {
   EXPECT_THAT(missing.err, HasSubstr("no rondo store there"));
   EXPECT_FALSE(std::filesystem::exists(none / "rondo.sqlite"));
   const auto dir = folder_with_store("bad");
-  auto routine = run_cli(add("check the emergency exits every 2 hours", dir));
-  EXPECT_EQ(routine.exit_code, 2);
-  EXPECT_THAT(routine.err, HasSubstr("makes routines, which cannot be queued"));
   auto words = run_cli(add("deliver the red letter from A-111 to A-121", dir));
   EXPECT_EQ(words.exit_code, 2);
   EXPECT_THAT(words.err, HasSubstr("no place called 'A-121'"));
@@ -132,6 +137,110 @@ TEST(TaskQueue, ASimulatedRunTakesTheQueuedRequestsAtItsStart) {
     EXPECT_THAT(e.about, HasSubstr("request "));
   }
   EXPECT_EQ(rejected, 2);
+}
+
+TEST(TaskQueue, ARoutineIsQueuedAndTheOutputSaysWhat) {
+  const auto dir = folder_with_store("routine-queued");
+  auto r = run_cli(add("check the emergency exits every 2 hours", dir, {"--json"}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("queued as request 1 in"));
+  EXPECT_THAT(r.err, HasSubstr(": 2 routine(s): check-exit-west, check-exit-east"));
+  auto t = run_cli(add("check office A-123 between 20:00 and 20:15", dir));
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_THAT(t.err, HasSubstr("queued as request 2 in"));
+  EXPECT_THAT(t.err, HasSubstr(": 1 task(s): check-a-123@2026-11-23T10:00"));
+  const auto rows = requests_in(dir);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].body, Json::parse(r.out));  // what --json prints: a task file with the routines
+  EXPECT_EQ(rows[0].body["routines"].size(), 2u);
+}
+
+// The store's time of its latest event, once it has one.
+std::optional<Time> stored_until(const std::filesystem::path& out) {
+  if (!std::filesystem::exists(out / "rondo.sqlite")) return std::nullopt;
+  auto db = store::Store::open(out / "rondo.sqlite", {.mode = store::OpenMode::kReadOnly});
+  if (!db) return std::nullopt;
+  auto end = store::log_end(*db);
+  if (!end || end->seq == 0) return std::nullopt;
+  return end->time;
+}
+
+// Runs `args` in a child process and kills it (SIGKILL) once its store is past `past`; false when
+// it ended first.
+bool run_and_kill_past(const std::vector<std::string>& args, const std::filesystem::path& out, Time past) {
+  const pid_t child = ::fork();
+  if (child < 0) return false;
+  if (child == 0) {
+    (void)run_cli(args);
+    ::_exit(0);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  int status = 0;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (::waitpid(child, &status, WNOHANG) == child) return false;
+    if (const auto t = stored_until(out); t && *t > past) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));  // polling for a condition, not a fixed wait
+  }
+  ::kill(child, SIGKILL);
+  return ::waitpid(child, &status, 0) == child && WIFSIGNALED(status);
+}
+
+TEST(TaskQueue, ARoutineQueuedInWordsIsTakenOnceAndKeptOverARestart) {
+  const auto dir = folder_with_store("routine-restart");
+  const std::vector<std::string> run{"run", "examples/office/deployment.yaml", "--days", "3", "--out", dir.string()};
+  // Taken at the first start: a routine of the sentence's own, and one the deployment has already.
+  ASSERT_EQ(run_cli(add("check office A-123 every 3 hours between 10:00 and 17:00", dir)).exit_code, 0);
+  ASSERT_EQ(run_cli(add("check the emergency exits every 2 hours", dir)).exit_code, 0);
+  ASSERT_TRUE(run_and_kill_past(run, dir, parse_time("2026-11-24T06:00:00Z").value()))
+      << "the run ended before it could be killed";
+  // Queued while it is down: taken when it starts again. The first one again is a duplicate.
+  ASSERT_EQ(run_cli(add("check the library every 4 hours", dir)).exit_code, 0);
+  ASSERT_EQ(run_cli(add("check office A-123 every 3 hours between 10:00 and 17:00", dir)).exit_code, 0);
+  const auto first = requests_in(dir);
+  ASSERT_EQ(first.size(), 4u);
+  ASSERT_TRUE(first[0].taken.has_value());
+  EXPECT_FALSE(first[2].taken.has_value());
+  auto resumed = run_cli(run);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_THAT(resumed.err, HasSubstr("resumed the run"));
+
+  const auto rows = requests_in(dir);
+  ASSERT_EQ(rows.size(), 4u);
+  for (const auto& r : rows) EXPECT_TRUE(r.taken.has_value()) << r.id;
+  EXPECT_EQ(rows[0].outcome, "added 1 routine(s): check-a-123");
+  EXPECT_EQ(rows[0].taken, first[0].taken);  // not taken again at the restart
+  EXPECT_EQ(rows[1].outcome, "rejected: routine 'check-exit-west': the name is already taken");
+  EXPECT_EQ(rows[2].outcome, "added 1 routine(s): check-a-110");
+  EXPECT_EQ(rows[3].outcome, "rejected: routine 'check-a-123': the name is already taken");
+
+  auto db = store::Store::open(dir / "rondo.sqlite", {.mode = store::OpenMode::kReadOnly});
+  ASSERT_TRUE(db.ok());
+  // The routine taken in the first life makes its tasks on the first day and, kept in the store,
+  // after the restart; the one taken at the restart from then on.
+  for (const char* id : {"check-a-123@2026-11-23T10:00", "check-a-123@2026-11-23T16:00", "check-a-123@2026-11-25T10:00",
+                         "check-a-110@2026-11-25T00:00", "check-a-110@2026-11-25T20:00"}) {
+    auto task = store::get_task(*db, id);
+    ASSERT_TRUE(task.ok()) << id;
+    EXPECT_EQ(task->source, "routine") << id;
+  }
+  EXPECT_FALSE(store::get_task(*db, "check-a-110@2026-11-23T12:00").ok());  // taken on the second day
+  auto events = store::read_events(*db);
+  ASSERT_TRUE(events.ok());
+  std::map<std::string, int> added;  // request events, by name
+  std::map<std::string, int> task_added;
+  for (const store::Event& e : *events) {
+    if (e.subject == store::Subject::kRequest) ++added[e.event + " " + e.about];
+    if (e.subject == store::Subject::kTask && e.code == "added") ++task_added[e.task_id];
+  }
+  EXPECT_EQ(added["routines added request 1"], 1);
+  EXPECT_EQ(added["rejected request 2"], 1);
+  EXPECT_EQ(added["routines added request 3"], 1);
+  EXPECT_EQ(added["rejected request 4"], 1);
+  for (const auto& [id, n] : task_added) EXPECT_EQ(n, 1) << id;
+  auto kept = store::get_meta(*db, "serve.routines");
+  ASSERT_TRUE(kept.ok() && kept->has_value());
+  EXPECT_THAT(**kept, HasSubstr("check-a-123"));
+  EXPECT_THAT(**kept, HasSubstr("check-a-110"));
 }
 
 }  // namespace

@@ -1,9 +1,11 @@
 // The request queue (store/requests.h): queued in order, taken exactly once, taken in the same
-// transaction as the tasks it adds (a refused batch leaves it waiting), and with its event.
+// transaction as the tasks it adds (a refused batch leaves it waiting), and with its event and
+// the meta entries that keep what it added (routines).
 #include <gtest/gtest.h>
 
 #include "rondo/store/events.h"
 #include "rondo/store/requests.h"
+#include "rondo/store/robot_state.h"
 #include "rondo/store/task_table.h"
 #include "temp_db.h"
 
@@ -63,6 +65,21 @@ TEST(Requests, TakenInTheTransactionThatStoresItsTasks) {
   const std::vector<TaskRow> again = {row("t3")};
   EXPECT_EQ(add_tasks(*db, again, "added", "added", &taken).error().code, ErrorCode::kConflict);
   EXPECT_FALSE(get_task(*db, "t3").ok());
+}
+
+TEST(Requests, TakenWithItsMetaEntriesInOneTransaction) {
+  TempDb tmp;
+  auto db = Store::open(tmp.path());
+  ASSERT_TRUE(db.ok());
+  ASSERT_TRUE(queue_request(*db, request("a routine")).ok());
+  const Event e{.time = kT0, .subject = Subject::kRequest, .about = "request 1", .event = "routines added"};
+  ASSERT_TRUE(take_request(*db, {1, kT0, "added 1 routine(s)", {{"k", "first"}}}, &e).ok());
+  EXPECT_EQ(get_meta(*db, "k")->value_or(""), "first");
+  // Taken already: neither the meta entry nor the event is written again.
+  EXPECT_EQ(take_request(*db, {1, kT0, "again", {{"k", "second"}}}, &e).error().code, ErrorCode::kConflict);
+  EXPECT_EQ(get_meta(*db, "k")->value_or(""), "first");
+  EXPECT_EQ(read_events(*db)->size(), 1u);
+  EXPECT_EQ(list_requests(*db)->front().outcome, "added 1 routine(s)");
 }
 
 }  // namespace

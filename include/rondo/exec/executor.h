@@ -190,6 +190,14 @@ class Executor final : public RobotListener {
   // Adds a routine while running: today's instances that can still be met are added at once.
   // kInvalidInput for a name already taken or a node not on the map.
   Status add_routine_now(Routine routine);
+  // Adds routines a queued request asks for (store/requests.h), all or none: kInvalidInput for a name
+  // already taken (or twice in `routines`) or a node not on the map, and the request is marked taken
+  // with a `rejected` request event (code `invalid request`) that says why. Otherwise the request
+  // is marked taken (with `taken.meta`: what keeps the routines over a restart) in one transaction
+  // with a request event `routines added` whose reason is `why`, and today's instances that can still
+  // be met are added (before start(), start() adds them). The store's error when the request cannot be
+  // marked (kConflict: taken already); nothing is added then.
+  Status add_routines_now(std::vector<Routine> routines, const store::RequestTaken& taken, const std::string& why);
   // Forgets a routine: no more instances from the next day on (today's stay). kNotFound if unknown.
   Status remove_routine(const std::string& name);
   // Out of service (true) or back (false), with a robot event `out of service` / `back in service`.

@@ -152,6 +152,10 @@ class TaskBook {
   // With `taken`, the queued request is marked taken in the event's transaction.
   void note_request(const std::string& about, const std::string& event, Outcome outcome, const std::string& reason,
                     const store::RequestTaken* taken = nullptr);
+  // The request's event and its mark (with its meta entries) in one transaction; the store's error,
+  // with nothing written, when it cannot be taken (kConflict: taken already).
+  Status take_request(const store::RequestTaken& taken, const std::string& event, Outcome outcome,
+                      const std::string& reason);
 
   // How many events were written that are not final states, by event name and code (for the
   // report): {"preempted": {kPreemptedOnDemand: 3}, "dropped for now": {...}, "fault": {...}}.

@@ -1,6 +1,7 @@
-// The routines changed through the API, kept in the store so that they survive a restart
-// (`rondo serve`): the store's meta key "serve.routines" holds {"added": [routine, ...],
-// "removed": [name, ...]}, the routines in the task-file JSON of docs/task-format.md.
+// The routines changed through the API or added by a queued request (`rondo task add --data`),
+// kept in the store so that they survive a restart (`rondo serve`, and a resumed `rondo run`): the
+// store's meta key "serve.routines" holds {"added": [routine, ...], "removed": [name, ...]}, the
+// routines in the task-file JSON of docs/task-format.md.
 //
 //   RONDO_RETURN_IF_ERROR(remember_added_routine(db, routine));   // after the executor took it
 //   auto routines = routines_to_run(db, deployment_routines, map, zone);  // at start
@@ -25,9 +26,16 @@ namespace rondo::service {
 // POST /api/v1/pause and /resume, read at start.
 inline constexpr const char* kOutOfServiceKey = "serve.out_of_service";
 
+// The meta key of the stored changes.
+inline constexpr const char* kStoredRoutinesKey = "serve.routines";
+
 // Each is one committed write. kStorage when the store cannot write.
 Status remember_added_routine(store::Store& store, const Routine& routine);
 Status remember_removed_routine(store::Store& store, const std::string& name);
+// The value of kStoredRoutinesKey once `routines` are added, for a caller that writes it in a
+// transaction of its own (a queued request is marked taken with it). kStorage, kInvalidInput as
+// routines_to_run.
+Result<std::string> stored_with_added(const store::Store& store, const std::vector<Routine>& routines);
 
 // The routines to run: `deployment` with the stored changes applied. An added routine that no
 // longer fits the map (the deployment was edited) is left out, named in `skipped` with why.

@@ -1,9 +1,10 @@
 // The queue of requests: what another process (`rondo task add SENTENCE --data DIR`) asks the
 // running executive to do, written in one transaction and taken by the executive exactly once.
 // A request's body is what `rondo task add --json` prints: a task file ({"timezone", "tasks",
-// "routines"}) or a cancellation ({"cancel": {...}}). Taking a request marks it with the time and
-// its outcome in the same transaction that stores its tasks (task_table.h's add_tasks) or the
-// event that says why it was refused, so a kill never takes a request twice or loses it.
+// "routines"}: tasks or routines) or a cancellation ({"cancel": {...}}). Taking a request marks it
+// with the time and its outcome in the same transaction that stores its tasks (task_table.h's
+// add_tasks), or the event that says what came of it (with the meta entries that keep its routines),
+// so a kill never takes a request twice or loses it.
 //
 //   Result<std::int64_t> id = queue_request(db, {.queued = now, .source = "words", .sentence = s, .body = j});
 //   for (const RequestRow& r : *waiting_requests(db)) ...        // not taken yet, oldest first
@@ -14,6 +15,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rondo/core/document.h"
@@ -39,6 +41,9 @@ struct RequestTaken {
   std::int64_t id = 0;
   Time at{};
   std::string outcome;  // non-empty
+  // Meta entries (robot_state.h) set in the same transaction: what taking it keeps (the routines
+  // a request added, for a restart).
+  std::vector<std::pair<std::string, std::string>> meta{};
 };
 
 // Queues a request (one committed transaction) and returns its id. Errors: kInvalidInput (a body
