@@ -88,21 +88,21 @@ Status Executor::add_routines_now(std::vector<Routine> routines, const store::Re
                                   const std::string& why) {
   std::set<std::string> names;
   for (const Routine& r : routines_) names.insert(r.name);
-  Status bad;
-  if (routines.empty()) bad = Error::invalid("it holds no routine");
+  Status valid;
+  if (routines.empty()) valid = Error::invalid("it holds no routine");
   for (const Routine& routine : routines) {
-    if (!bad) break;
+    if (!valid) break;
     if (!names.insert(routine.name).second)
-      bad = Error::invalid(fmt::format("routine '{}': the name is already taken", routine.name));
+      valid = Error::invalid(fmt::format("routine '{}': the name is already taken", routine.name));
     for (const std::string* node : {&routine.task.start_node, &routine.task.end_node})
-      if (bad && !node->empty() && !map_.find_node(*node))
-        bad = Error::invalid(fmt::format("routine '{}': node '{}' is not on the map", routine.name, *node));
+      if (valid && !node->empty() && !map_.find_node(*node))
+        valid = Error::invalid(fmt::format("routine '{}': node '{}' is not on the map", routine.name, *node));
   }
-  if (!bad) {
-    const store::RequestTaken refused{taken.id, taken.at, "rejected: " + bad.error().message};
-    book_.note_request(fmt::format("request {}", taken.id), "rejected", Outcome::kInvalidRequest, bad.error().message,
+  if (!valid) {
+    const store::RequestTaken refused{taken.id, taken.at, "rejected: " + valid.error().message};
+    book_.note_request(fmt::format("request {}", taken.id), "rejected", Outcome::kInvalidRequest, valid.error().message,
                        &refused);
-    return bad;
+    return valid;
   }
   // Marked taken with what keeps the routines: a kill after this finds them at the restart.
   RONDO_RETURN_IF_ERROR(book_.take_request(taken, "routines added", Outcome::kNone, why));
