@@ -78,7 +78,13 @@ function fromLocalInput(value) {
   return wall - zoneOffset(wall - zoneOffset(wall));
 }
 function taskName(task) { return task.activity || task.id; }
-function serviceNow() { return view.schedule ? Date.parse(view.schedule.now) : Date.now(); }
+// The service's clock as last read: the robot's line (every 2 s) or the schedule (on events),
+// whichever is newer. Only events refresh the schedule, and a quiet night has none: the form's
+// window must not stay at the time of the last one.
+function serviceNow() {
+  const read = [view.schedule && view.schedule.now, view.robot && view.robot.time].filter(Boolean).map(Date.parse);
+  return read.length ? Math.max(...read) : Date.now();
+}
 function showProblem(message) {
   const p = $("#problem");
   p.hidden = !message;
@@ -97,6 +103,7 @@ async function refreshRobot() {
   if (r.dispatch_paused) line += " It takes no new task until the problem is cleared.";
   $("#robot-line").textContent = line;
   drawMap();
+  followClock();
 }
 
 // --- the schedule as a Gantt chart ----------------------------------------------------------------
@@ -356,11 +363,16 @@ function nameFeedItem(item) {
   item.textContent = `${dayAndClock(e.time)}: ${who} ${words}${why}`;
   item.dataset.unnamed = e.task_id && !known ? "yes" : "";
 }
+// The browser reconnects a dropped stream by itself (with Last-Event-ID, so nothing is missed or
+// repeated), but gives up when an answer is not a stream (the service restarting, say): then the
+// feed is opened again after a pause, from the last event it showed.
+let lastEventId = null;
 function startFeed() {
   const feed = $("#feed");
-  const source = new EventSource("/api/v1/events?tail=50");
+  const source = new EventSource(lastEventId === null ? "/api/v1/events?tail=50" : "/api/v1/events?after=" + lastEventId);
   source.onmessage = (msg) => {
     const e = JSON.parse(msg.data);
+    lastEventId = msg.lastEventId || lastEventId;
     const item = el("li", e.task_id ? { "data-task": e.task_id } : {});
     item.event = e;
     feed.prepend(item);
@@ -368,7 +380,10 @@ function startFeed() {
     while (feed.children.length > 100) feed.lastChild.remove();
     refreshSoon();
   };
-  source.onerror = () => showProblem("Lost the connection to the service; trying again…");
+  source.onerror = () => {
+    showProblem("Lost the connection to the service; trying again…");
+    if (source.readyState === EventSource.CLOSED) setTimeout(startFeed, 5000);
+  };
   source.onopen = () => showProblem("");
 }
 
@@ -400,6 +415,8 @@ async function start() {
     $("#state-filter").addEventListener("change", () => refreshTasks().catch((err) => showProblem(err.message)));
     startFeed();
     setInterval(() => refreshRobot().catch((err) => showProblem(err.message)), 2000);
+    // The feed refreshes the lists as events come; this catches what a dropped stream missed.
+    setInterval(refreshSoon, 10000);
     setInterval(() => refreshEdges().catch((err) => showProblem(err.message)), 60000);
   } catch (err) {
     showProblem("The service does not answer: " + err.message);

@@ -195,6 +195,22 @@ async function main() {
     if (mine.length !== 2) problems.push(`the service holds ${mine.length} of the 2 tasks added on the page`);
     const cancelled = mine.find((t) => t.activity === later);
     if (cancelled && cancelled.state !== "cancelled") problems.push(`the service says the cancelled task is ${cancelled.state}`);
+  } catch (err) {
+    // What the page and the service showed when a wait ran out, so that a failure in CI says why.
+    problems.push(err.stack || String(err));
+    try {
+      const page = (await browser.pages()).pop();
+      problems.push("the page's problem line: " + JSON.stringify(await page.$eval("#problem", (e) => (e.hidden ? "" : e.textContent))));
+      problems.push("the page's task rows: " + JSON.stringify(await page.$$eval("#tasks tbody tr",
+        (rows) => rows.filter((r) => /browser test/.test(r.dataset.name)).map((r) => [r.dataset.name, r.querySelector("td.state").textContent]))));
+      await page.screenshot({ path: path.join(out, "failure.png"), fullPage: true });
+      const listed = await (await fetch(base + "/api/v1/tasks?limit=1000&source=api")).json();
+      problems.push("the service's tasks: " + JSON.stringify(listed.tasks.map((t) => [t.activity, t.state, t.reason])));
+      const robot = await (await fetch(base + "/api/v1/robot")).json();
+      problems.push("the service's robot: " + JSON.stringify(robot));
+    } catch (more) {
+      problems.push("and could not look further: " + more.message);
+    }
   } finally {
     await browser.close();
     server.kill("SIGTERM");
@@ -202,7 +218,7 @@ async function main() {
     fs.rmSync(data, { recursive: true, force: true });
     if (problems.length) fs.writeFileSync(path.join(out, "server.log"), log());
   }
-  if (problems.length) die(1, problems.join("\n"));
+  if (problems.length) die(1, problems.join("\n") + "\nthe service's last words:\n" + log().split("\n").slice(-40).join("\n"));
   console.log(`dashboard_test: all held; screenshots in ${out}`);
 }
 
