@@ -13,6 +13,14 @@
 
 namespace rondo::test {
 
+// Whether this is the AddressSanitizer build: long scenarios, kill tests and broker or browser
+// tests run once, in the normal build, and skip themselves here (the unit tests run in both).
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kSanitized = true;
+#else
+inline constexpr bool kSanitized = false;
+#endif
+
 // `<tmp>/<prefix>-<pid>/<name>`, emptied; created unless `create` is false.
 inline std::filesystem::path fresh_dir(const std::string& prefix, const std::string& name, bool create = true) {
   auto dir = std::filesystem::temp_directory_path() / (prefix + "-" + std::to_string(::getpid())) / name;

@@ -13,11 +13,7 @@
 namespace rondo {
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
+using test::kSanitized;
 
 TEST(OfficeRun, LoadingTimesLearnedOverAFortnightAreCloserToThePeopleThanTheDeclaredMinute) {
   if (kSanitized) GTEST_SKIP() << "a long scenario: the normal build runs it";

@@ -186,6 +186,7 @@ bool run_and_kill_past(const std::vector<std::string>& args, const std::filesyst
 }
 
 TEST(TaskQueue, ARoutineQueuedInWordsIsTakenOnceAndKeptOverARestart) {
+  if (test::kSanitized) GTEST_SKIP() << "a kill and three simulated days: the normal build runs it";
   const auto dir = folder_with_store("routine-restart");
   const std::vector<std::string> run{"run", "examples/office/deployment.yaml", "--days", "3", "--out", dir.string()};
   // Taken at the first start: a routine of the sentence's own, and one the deployment has already.

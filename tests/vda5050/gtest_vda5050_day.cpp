@@ -13,6 +13,7 @@
 #include <cmath>
 
 #include "rondo/map/map_geometry.h"
+#include "test_files.h"
 #include "vda5050/day_fixture.h"
 
 namespace rondo::vda5050::testing {
@@ -40,11 +41,7 @@ void expect_schemas_kept(const VdaDay& day) {
 
 // Broker, vehicle and kill scenarios of seconds each: they run once, in the normal build, and not
 // again under the sanitizers (the module's unit and codec tests do).
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
+using test::kSanitized;
 
 #define START_DAY(day)                                                                     \
   if (kSanitized) GTEST_SKIP() << "a broker and vehicle scenario: the normal build runs it"; \
