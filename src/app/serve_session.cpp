@@ -1,6 +1,7 @@
 #include "serve_session.h"
 
 #include <fmt/format.h>
+#include <malloc.h>
 #include <pthread.h>
 #include <signal.h>
 
@@ -35,6 +36,15 @@ sigset_t stop_signals() {
   return set;
 }
 
+// glibc's malloc keeps what is freed in the arena of the thread that freed it: after a burst of
+// requests on many HTTP threads, a service that holds no more than before still shows the burst
+// in its resident memory. Once a minute of wall time the free pages go back to the system
+// (docs/operations.md, "Memory over time"); it takes well under a millisecond on the clock's thread.
+void trim_heap_every(exec::Clock& clock, Duration period) {
+  ::malloc_trim(0);
+  clock.schedule_after(period, [&clock, period] { trim_heap_every(clock, period); });
+}
+
 }  // namespace
 
 void schedule_people(exec::Clock& clock, exec::Executor& executor, sim::RequestGenerator& people, sim::Rng& rng,
@@ -62,6 +72,9 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   } else if (!service::is_loopback_host(request.host)) {
     return Error::invalid(fmt::format("--listen {}: a host other than loopback needs --token-file", request.host));
   }
+  // Two malloc arenas, not one per HTTP thread up to eight per core: a burst spread over many
+  // threads leaves its freed memory in many arenas, which the service would keep for good.
+  ::mallopt(M_ARENA_MAX, 2);
   // Blocked before any thread starts (the robot's, the scheduler's worker, HTTP): they inherit
   // it, so only the sigwait thread below takes them.
   const sigset_t signals = stop_signals();
@@ -118,6 +131,7 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   // every half second of wall time.
   RequestIntake intake(clock, executor, db);
   intake.poll_every(intake_period(request.speed));
+  trim_heap_every(clock, std::max(Duration{1}, Duration{static_cast<Duration::rep>(60'000.0 * request.speed)}));
   sim::Rng people_rng(d.seed * 0x9E3779B97F4A7C15ULL + 17);
   if (parts.people) schedule_people(clock, executor, *parts.people, people_rng, d.zone, clock.now());
 

@@ -36,7 +36,7 @@ BackgroundScheduler::BackgroundScheduler(Clock& clock, const map::TopoMap& map, 
       on_ready_(std::move(on_ready)),
       models_(std::make_shared<plan::LearnedEdgeModels>(map, nullptr)),
       planner_(std::make_unique<plan::TravelPlanner>(map_, models_,
-                                                     plan::TravelPlannerOptions{.slot_width = options_.slot_width, .max_cached_slots = kCachedSlots})),
+                                                     planner_options(options_.slot_width))),
       travel_(std::make_unique<TravelCache>(map_, models_, *planner_, options_.slot_width)),
       rng_(options.seed),
       worker_([this](std::stop_token stop) { work(std::move(stop)); }) {}

@@ -43,11 +43,11 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
                                  options.online_model ? plan::LearnedEdgeModels::Reading::kOnline
                                                       : plan::LearnedEdgeModels::Reading::kOffline)),
       planner_(std::make_unique<plan::TravelPlanner>(map_, models_,
-                                                    plan::TravelPlannerOptions{.slot_width = options_.slot_width, .max_cached_slots = kCachedSlots})),
+                                                    planner_options(options_.slot_width))),
       travel_(std::make_unique<TravelCache>(map_, models_, *planner_, options_.slot_width)),
       offline_models_(std::make_shared<plan::LearnedEdgeModels>(map, nullptr)),
       offline_planner_(std::make_unique<plan::TravelPlanner>(
-          map_, offline_models_, plan::TravelPlannerOptions{.slot_width = options_.slot_width, .max_cached_slots = kCachedSlots})),
+          map_, offline_models_, planner_options(options_.slot_width))),
       offline_travel_(std::make_unique<TravelCache>(map_, offline_models_, *offline_planner_, options_.slot_width)),
       scheduler_(parts.scheduler ? std::move(parts.scheduler) : std::make_unique<schedule::DefaultScheduler>()),
       rng_(options.seed),

@@ -13,8 +13,6 @@
 namespace rondo::exec {
 namespace {
 
-constexpr Duration kKeepBehind = hours(24);
-
 Duration to_duration(double seconds) {
   if (!std::isfinite(seconds) || seconds >= to_seconds(kUnreachable)) return kUnreachable;
   return Duration{static_cast<std::int64_t>(std::llround(seconds * 1000.0))};
@@ -57,8 +55,8 @@ const plan::Policy& TravelCache::policy(map::NodeIndex to, Time slot_start) cons
     return it->second.policy;
   }
   // Departures only move forward: entries a day older than the one asked for are not asked again.
-  if (!policies_.empty() && policies_.begin()->first.first < slot_start - kKeepBehind)
-    policies_.erase(policies_.begin(), policies_.lower_bound({slot_start - kKeepBehind, 0}));
+  if (!policies_.empty() && policies_.begin()->first.first < slot_start - kTravelKeepBehind)
+    policies_.erase(policies_.begin(), policies_.lower_bound({slot_start - kTravelKeepBehind, 0}));
   return policies_.emplace(key, Entry{planner_->policy(to, slot_start), models_->version()}).first->second.policy;
 }
 

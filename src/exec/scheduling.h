@@ -20,9 +20,13 @@
 
 namespace rondo::exec {
 
-// The per-slot travel models (M_t) each planner keeps: two days of 15-minute slots, so a service
-// that runs for months holds the days it plans over, not every slot it ever used.
+// The per-slot travel models (M_t) each planner keeps: like TravelCache's entries, those from a
+// day (kTravelKeepBehind) before the slot asked for on, and never more than two days of 15-minute
+// slots, so a service that runs for months holds the day it plans over, not every slot it used.
 inline constexpr std::size_t kCachedSlots = 192;
+inline plan::TravelPlannerOptions planner_options(Duration slot_width) {
+  return {.slot_width = slot_width, .max_cached_slots = kCachedSlots, .keep_behind = kTravelKeepBehind};
+}
 
 // The tasks to schedule: the ones already planned first, then the new ones, then the ones offered
 // again after a drop (which may be dropped again but never preempt the running task).

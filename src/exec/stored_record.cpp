@@ -36,7 +36,12 @@ Result<TaskRecord> record_of(const store::StoredTask& stored, const TimeZone& zo
                .reason = stored.last_transition ? stored.last_transition->reason : std::string(),
                .source = row.source,
                .added = row.created};
-  if (is_final(r.state)) r.ended = stored.last_transition ? stored.last_transition->time : row.updated;
+  if (is_final(r.state)) {
+    r.ended = stored.last_transition ? stored.last_transition->time : row.updated;
+    // What it was planned to do (a task not finished is planned again by the next schedule).
+    r.planned_start = row.planned_start;
+    r.planned_end = row.planned_end;
+  }
   // Its progress: a re-run goes on after the actions already done; a door it waited for.
   TaskBook::read_progress(row.progress, r);
   if (r.state == TaskState::kQueued && stored.dropped_for_now)

@@ -114,7 +114,11 @@ void TaskBook::transition(const TaskId& id, TaskState state, Outcome outcome, co
     ++event_counts_[to_string(state)][outcome];
   }
   // The store is the record of what happened: a failed write is reported, the run goes on.
-  if (auto ok = store::set_task_state(store_, id, to_string(state), clock_.now(), reason, to_string(outcome)); !ok)
+  // With the planned times as they stand, so a finished task read back from the store (after it
+  // left memory) is still shown planned against actual.
+  if (auto ok = store::set_task_state(store_, id, to_string(state), clock_.now(), reason, to_string(outcome),
+                                      store::PlannedTimes{r.planned_start, r.planned_end});
+      !ok)
     write_errors_.push_back(ok.error().message);
 }
 

@@ -70,6 +70,8 @@ const std::shared_ptr<const Mdp>& TravelPlanner::slot_entry(std::int64_t slot) {
   auto it = slots_.find(slot);
   if (it != slots_.end() && refresh(it->second)) return it->second.mdp;
   if (it == slots_.end()) {
+    if (options_.keep_behind)
+      slots_.erase(slots_.begin(), slots_.lower_bound(slot - options_.keep_behind->count() / options_.slot_width.count()));
     if (slots_.size() >= options_.max_cached_slots) slots_.clear();
     it = slots_.emplace(slot, CachedMdp{}).first;
   }

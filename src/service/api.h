@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -93,6 +94,17 @@ struct Api {
   // Runs `work` on the clock's thread and waits for its reply (503 when it does not come within
   // the answer timeout, e.g. while shutting down).
   Reply on_clock(std::function<Reply()> work);
+  // As on_clock, for a write that commits its own store::Batch (a submission). The writes that
+  // wait for the clock's thread together run inside one outer Batch and are answered after its
+  // one synced commit (group commit: a burst of submissions costs one sync, not one each; each
+  // is still answered only once its commit is on disk). If that commit fails, each is answered
+  // with its error.
+  Reply on_clock_grouped(std::function<Reply()> work);
+
+  struct Grouped;  // a write waiting for the clock's thread
+  std::mutex group_mutex{};
+  std::vector<std::shared_ptr<Grouped>> group{};  // guarded by group_mutex
+  void run_group();  // on the clock's thread: the writes waiting now, in one commit
 };
 
 using Handler = std::function<Reply(Api&, const httplib::Request&)>;

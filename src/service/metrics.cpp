@@ -1,10 +1,12 @@
 // /metrics in the Prometheus text format: request counts and latency by route (here), and the
 // executive's figures (tasks by state, scheduler calls, the robot) read on the clock's thread.
 #include <fmt/format.h>
+#include <malloc.h>
 
 #include <array>
 
 #include "api.h"
+#include "rondo/exec/map_travel.h"
 #include "rondo/store/task_table.h"
 
 namespace rondo::service {
@@ -93,6 +95,25 @@ Reply metrics_reply(Api& api) {
         st.schedules, st.refits, st.navigation_attempts, robot.battery(), robot.charging() ? 1 : 0,
         robot.busy() ? 1 : 0, robot.fault() ? 1 : 0, api.ctx.executor.write_errors().size(), st.background_runs,
         st.background_stale);
+    // What the process holds (docs/operations.md, "Memory over time"): tasks and navigation
+    // records in memory, the executor's travel caches, and the heap as glibc's malloc counts it.
+    const exec::TravelCache& travel = api.ctx.executor.travel_cache();
+    const struct mallinfo2 heap = ::mallinfo2();
+    out += fmt::format(
+        "# HELP rondo_memory_tasks Tasks held in the executor's memory (the unfinished ones).\n"
+        "# TYPE rondo_memory_tasks gauge\nrondo_memory_tasks {}\n"
+        "# HELP rondo_memory_navigations Navigation records held in memory.\n"
+        "# TYPE rondo_memory_navigations gauge\nrondo_memory_navigations {}\n"
+        "# HELP rondo_memory_travel_policies Policies held by the executor's travel cache.\n"
+        "# TYPE rondo_memory_travel_policies gauge\nrondo_memory_travel_policies {}\n"
+        "# HELP rondo_memory_travel_slots Time slots whose travel model the executor's planner holds.\n"
+        "# TYPE rondo_memory_travel_slots gauge\nrondo_memory_travel_slots {}\n"
+        "# HELP rondo_memory_heap_bytes Heap bytes in use (malloc).\n"
+        "# TYPE rondo_memory_heap_bytes gauge\nrondo_memory_heap_bytes {}\n"
+        "# HELP rondo_memory_heap_free_bytes Heap bytes free but not returned to the system.\n"
+        "# TYPE rondo_memory_heap_free_bytes gauge\nrondo_memory_heap_free_bytes {}\n",
+        api.ctx.executor.tasks().size(), api.ctx.executor.navigations().size(), travel.cached_count(),
+        travel.planner().cached_slot_count(), heap.uordblks + heap.hblkhd, heap.fordblks);
     Reply r;
     r.text = std::move(out);
     r.content_type = "text/plain; version=0.0.4";

@@ -9,6 +9,7 @@
 #include <regex>
 
 #include "api.h"
+#include "rondo/store/batch.h"
 
 namespace rondo::service {
 namespace {
@@ -70,6 +71,59 @@ Reply Api::on_clock(std::function<Reply()> work) {
       return error_reply(503, "unavailable", "the executive did not take the request in time; it was not carried out");
   }
   return answer.get();
+}
+
+struct Api::Grouped {
+  std::function<Reply()> work;
+  std::promise<Reply> promise;
+  std::atomic<int> stage{0};  // 0 pending, 1 started, 2 withdrawn (as in on_clock)
+};
+
+Reply Api::on_clock_grouped(std::function<Reply()> work) {
+  if (stopping) return error_reply(503, "unavailable", "the service is shutting down");
+  enum : int { kPending, kStarted, kWithdrawn };
+  auto item = std::make_shared<Grouped>();
+  item->work = std::move(work);
+  std::future<Reply> answer = item->promise.get_future();
+  bool first = false;
+  {
+    std::lock_guard lock(group_mutex);
+    first = group.empty();
+    group.push_back(item);
+  }
+  // The first of a group asks the clock's thread to run it; the ones that come before it runs join.
+  if (first) ctx.clock.post([this] { run_group(); });
+  if (answer.wait_for(options.answer_timeout) != std::future_status::ready) {
+    int expected = kPending;
+    if (item->stage.compare_exchange_strong(expected, kWithdrawn))
+      return error_reply(503, "unavailable", "the executive did not take the request in time; it was not carried out");
+  }
+  return answer.get();
+}
+
+void Api::run_group() {
+  std::vector<std::shared_ptr<Grouped>> items;
+  {
+    std::lock_guard lock(group_mutex);
+    items.swap(group);
+  }
+  std::vector<std::pair<std::shared_ptr<Grouped>, Reply>> done;
+  {
+    store::Batch batch(ctx.store);  // each write's own Batch is a savepoint in it
+    for (const std::shared_ptr<Grouped>& item : items) {
+      int expected = 0;
+      if (!item->stage.compare_exchange_strong(expected, 1)) continue;  // withdrawn: answered 503
+      try {
+        done.emplace_back(item, item->work());
+      } catch (const std::exception& e) {
+        done.emplace_back(item, error_reply(500, "internal", fmt::format("internal error: {}", e.what())));
+      }
+    }
+    if (Status ok = batch.commit(); !ok)
+      for (auto& [item, reply] : done) reply = error_reply(ok.error());  // none of them is stored
+  }
+  for (auto& [item, reply] : done) item->promise.set_value(std::move(reply));
+  news.tell();  // the commit is done: the event streams look now
 }
 
 struct Server::Impl {

@@ -110,7 +110,7 @@ Reply submit(Api& api, const httplib::Request& req) {
   if (!file->routines.empty())
     return error_reply(422, "invalid", "request: routines: add routines through /api/v1/routines", "routines");
   if (file->tasks.empty()) return error_reply(422, "invalid", "request: tasks: no task to add", "tasks");
-  return api.on_clock([&api, tasks = std::move(file->tasks), key, print = fingerprint(req.body)]() mutable {
+  return api.on_clock_grouped([&api, tasks = std::move(file->tasks), key, print = fingerprint(req.body)]() mutable {
     return submit_on_clock(api, std::move(tasks), key, print);
   });
 }

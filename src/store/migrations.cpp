@@ -125,10 +125,19 @@ CREATE TABLE requests (
 CREATE INDEX requests_waiting ON requests (id) WHERE taken_ms IS NULL;
 )sql";
 
+// Version 4 (`rondo serve`: finished tasks leave memory and are read from the store): when the task
+// was planned to start and end, as the executor had it at its latest state change, so a finished
+// task is shown planned against actual. Old rows have none (NULL).
+constexpr std::string_view kSchemaV4 = R"sql(
+ALTER TABLE tasks ADD COLUMN planned_start_ms INTEGER;
+ALTER TABLE tasks ADD COLUMN planned_end_ms INTEGER;
+)sql";
+
 constexpr Migration kMigrations[] = {
     {1, "tasks, task_events (append-only), traversals, observations", kSchemaV1},
     {2, "events with subject and outcome code; task source and progress; robot_state; meta", kSchemaV2},
     {3, "requests: the queue of requests written by other processes (rondo task add --data)", kSchemaV3},
+    {4, "tasks: planned start and end", kSchemaV4},
 };
 
 int read_user_version(SQLite::Database& db) {

@@ -5,6 +5,7 @@
 #include <SQLiteCpp/Transaction.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,29 @@ std::vector<std::string> archive_schema(SQLite::Database& db) {
     out.push_back("CREATE TABLE IF NOT EXISTS archive." + name + sql.substr(head.size()));
   }
   return out;
+}
+
+// An archive made by an older build lacks the columns added to the live tables since (ALTER TABLE
+// ADD COLUMN appends them, in the same order): they are added to it, NULL in its old rows, so that
+// the rows copied below (SELECT *) line up.
+void add_missing_archive_columns(SQLite::Database& db) {
+  for (const char* table : {"tasks", "events", "traversals"}) {
+    std::vector<std::string> have;
+    {
+      SQLite::Statement q(db, fmt::format("SELECT name FROM pragma_table_info('{}', 'archive')", table));
+      while (q.executeStep()) have.push_back(q.getColumn(0).getString());
+    }
+    std::vector<std::string> added;
+    {
+      SQLite::Statement q(db, fmt::format("SELECT name, type FROM pragma_table_info('{}', 'main')", table));
+      while (q.executeStep()) {
+        const std::string name = q.getColumn(0).getString();
+        if (std::find(have.begin(), have.end(), name) == have.end())
+          added.push_back(fmt::format("ALTER TABLE archive.{} ADD COLUMN {} {}", table, name, q.getColumn(1).getString()));
+      }
+    }
+    for (const std::string& sql : added) db.exec(sql);
+  }
 }
 
 }  // namespace
@@ -76,6 +100,7 @@ Result<ArchiveReport> archive_old_records(Store& store, Duration age, Duration l
     {
       SQLite::Transaction tx(db, SQLite::TransactionBehavior::IMMEDIATE);
       for (const std::string& create : archive_schema(db)) db.exec(create);
+      add_missing_archive_columns(db);
       const std::string old_tasks =
           fmt::format("SELECT id FROM main.tasks WHERE state IN {} AND updated_ms < {}", kFinalStates, cut);
       const std::string old_events =

@@ -16,7 +16,19 @@ namespace rondo::store {
 namespace {
 
 constexpr const char* kSelectTask =
-    "SELECT id, state, task_json, created_ms, updated_ms, source, progress_json FROM tasks";
+    "SELECT id, state, task_json, created_ms, updated_ms, source, progress_json, planned_start_ms, planned_end_ms "
+    "FROM tasks";
+
+std::optional<Time> optional_time(const SQLite::Column& c) {
+  return c.isNull() ? std::nullopt : std::optional<Time>(time_from_db(c.getInt64()));
+}
+
+void bind_optional_time(SQLite::Statement& s, int index, std::optional<Time> t) {
+  if (t)
+    s.bind(index, to_db(*t));
+  else
+    s.bind(index);
+}
 
 Result<TaskRow> task_from_row(const Store& store, const SQLite::Statement& row) {
   TaskRow r;
@@ -35,6 +47,8 @@ Result<TaskRow> task_from_row(const Store& store, const SQLite::Statement& row) 
     if (r.progress.is_discarded())
       return Error::storage(fmt::format("{}: task '{}': the stored progress does not parse", store.file().string(), r.id));
   }
+  r.planned_start = optional_time(row.getColumn(7));
+  r.planned_end = optional_time(row.getColumn(8));
   return r;
 }
 
@@ -66,8 +80,9 @@ Status add_tasks(Store& store, std::span<const TaskRow> tasks, std::string_view 
     SQLite::Database& db = connection(store);
     WriteTx tx(db);
     SQLite::Statement insert(db,
-                             "INSERT INTO tasks (id, state, task_json, created_ms, updated_ms, source, progress_json) "
-                             "VALUES (?, ?, ?, ?, ?, ?, ?) ON CONFLICT (id) DO NOTHING");
+                             "INSERT INTO tasks (id, state, task_json, created_ms, updated_ms, source, progress_json, "
+                             "planned_start_ms, planned_end_ms) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?) "
+                             "ON CONFLICT (id) DO NOTHING");
     for (const TaskRow& task : tasks) {
       insert.reset();
       insert.bind(1, task.id);
@@ -80,6 +95,8 @@ Status add_tasks(Store& store, std::span<const TaskRow> tasks, std::string_view 
         insert.bind(7);
       else
         insert.bind(7, task.progress.dump());
+      bind_optional_time(insert, 8, task.planned_start);
+      bind_optional_time(insert, 9, task.planned_end);
       if (insert.exec() == 0) {  // the transaction rolls back: none of `tasks` is stored
         return Error::invalid(fmt::format("{}: task '{}' is already stored", store.file().string(), task.id));
       }
@@ -96,14 +113,20 @@ Status add_tasks(Store& store, std::span<const TaskRow> tasks, std::string_view 
 }
 
 Status set_task_state(Store& store, std::string_view id, std::string_view state, Time at, std::string_view reason,
-                      std::string_view code) {
+                      std::string_view code, const std::optional<PlannedTimes>& planned) {
   return guarded(store, fmt::format("changing the state of task '{}'", id), [&]() -> Status {
     SQLite::Database& db = connection(store);
     WriteTx tx(db);
-    SQLite::Statement update(db, "UPDATE tasks SET state = ?, updated_ms = ? WHERE id = ?");
+    SQLite::Statement update(db, planned ? "UPDATE tasks SET state = ?, updated_ms = ?, planned_start_ms = ?, "
+                                           "planned_end_ms = ? WHERE id = ?"
+                                         : "UPDATE tasks SET state = ?, updated_ms = ? WHERE id = ?");
     update.bind(1, std::string(state));
     update.bind(2, to_db(at));
-    update.bind(3, std::string(id));
+    if (planned) {
+      bind_optional_time(update, 3, planned->start);
+      bind_optional_time(update, 4, planned->end);
+    }
+    update.bind(planned ? 5 : 3, std::string(id));
     if (update.exec() == 0) return Error::not_found(fmt::format("{}: no task '{}'", store.file().string(), id));
     insert_event_row(db, {.time = at,
                           .task_id = std::string(id),

@@ -116,6 +116,43 @@ TEST(ApiTasks, AFinishedTaskIsReadFromTheStoreOnceItHasLeftMemory) {
   EXPECT_EQ(body_of(again)["error"]["code"], "invalid");
 }
 
+// A task that ran keeps its planned start and end once it has left memory: the one-task view and
+// the schedule show it planned against actual (they were null before the store kept them).
+TEST(ApiTasks, AFinishedTaskIsShownPlannedAgainstActualOnceItHasLeftMemory) {
+  LiveService s(fresh_dir("rondo-service-test", "planned"), {.speed = 600});
+  auto cli = s.client();
+  const std::string here = body_of(cli.Get("/api/v1/robot"))["node"];
+  const Time now = s.clock().now();
+  const std::string body = fmt::format(
+      R"({{"tasks": [{{"id": "p1", "activity": "look around", "start_node": "{}", "priority": 9,
+          "window": {{"release": "{}", "deadline": "{}"}}, "duration": "2m"}}]}})",
+      here, format_time(now), format_time(now + hours(6)));
+  ASSERT_EQ(cli.Post("/api/v1/tasks", body, "application/json")->status, 201);
+  ASSERT_TRUE(eventually(
+      [&] {
+        bool in_memory = true;
+        s.on_clock([&] { in_memory = s.executor().tasks().contains("p1"); });
+        return !in_memory;
+      },
+      seconds(120)));
+  Json one = body_of(cli.Get("/api/v1/tasks/p1"));
+  ASSERT_TRUE(one["state"] == "succeeded" || one["state"] == "failed") << one.dump();
+  ASSERT_TRUE(one["planned"]["start"].is_string()) << one.dump();
+  ASSERT_TRUE(one["planned"]["end"].is_string()) << one.dump();
+  EXPECT_TRUE(one["actual"]["start"].is_string()) << one.dump();
+  EXPECT_TRUE(one["actual"]["end"].is_string()) << one.dump();
+  const Time planned_start = parse_time(one["planned"]["start"].get<std::string>()).value();
+  EXPECT_GE(planned_start, now);
+  EXPECT_LT(planned_start, parse_time(one["planned"]["end"].get<std::string>()).value());
+  // The schedule of the day it was released on (the clock runs 600 times faster meanwhile).
+  const std::string date = format_time(now).substr(0, 10);
+  Json day = body_of(cli.Get(("/api/v1/schedule?date=" + date).c_str()));
+  const auto it = std::find_if(day["tasks"].begin(), day["tasks"].end(), [](const Json& t) { return t["id"] == "p1"; });
+  ASSERT_NE(it, day["tasks"].end()) << day.dump();
+  EXPECT_EQ((*it)["planned"], one["planned"]);
+  EXPECT_EQ((*it)["actual"], one["actual"]);
+}
+
 // A load confirmed through the API ends the simulated robot's action before the simulated person
 // would have (4 hours), as done; a task that is not loading is a conflict.
 TEST(ApiTasks, ConfirmEndsTheRunningLoadAsDone) {

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "app/cli_runner.h"
+#include "migrations.h"
 #include "rondo/store/events.h"
 #include "rondo/store/task_table.h"
 #include "rondo/store/traversal_log.h"
@@ -94,6 +95,24 @@ struct ThirtyDays {
     EXPECT_TRUE(add_task(db, row("waiting", day(0, 7))));  // old, but not finished
   }
 };
+
+// An archive made by an older build (schema 3: tasks without their planned times) is added to:
+// it gains the columns added since, NULL in its rows.
+TEST(Archive, AddsToAnArchiveOfAnOlderSchema) {
+  ThirtyDays s;
+  {
+    SQLite::Database old(s.archive.path(), SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE);
+    ASSERT_TRUE(migrate(old, schema_migrations().first(3), s.archive.path()).ok());
+  }
+  const auto r = archive_old_records(s.db, hours(24 * 20), hours(24 * 14), s.archive.path());
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_GT(r->tasks, 0);
+  EXPECT_EQ(count(s.archive.path(), "tasks"), r->tasks);
+  SQLite::Database archived(s.archive.path(), SQLite::OPEN_READONLY);
+  EXPECT_EQ(archived.execAndGet("SELECT COUNT(*) FROM tasks WHERE planned_start_ms IS NULL AND planned_end_ms IS NULL")
+                .getInt64(),
+            r->tasks);
+}
 
 TEST(Archive, MovesOldFinishedTasksEventsAndTraversalsAndKeepsTheRest) {
   ThirtyDays s;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rondo/store/store.h"
+#include "rondo/store/task_table.h"
 #include "store/temp_db.h"
 
 namespace rondo::store {
@@ -80,6 +81,39 @@ TEST(Migrations, Version1EventsBecomeTaskEventsOfTheEventLog) {
   EXPECT_EQ(rw.execAndGet("SELECT MAX(seq) FROM events").getInt(), 4);
   EXPECT_THROW(rw.exec("DELETE FROM events"), SQLite::Exception);
   EXPECT_THROW(rw.exec("INSERT INTO events (time_ms, subject, event) VALUES (1, 'task', 'x')"), SQLite::Exception);
+}
+
+// Version 3 -> 4: tasks gain their planned start and end, none for the tasks already stored.
+TEST(Migrations, Version3TasksGainNoPlannedTimes) {
+  TempDb tmp;
+  {
+    auto db = raw_db(tmp);
+    ASSERT_TRUE(migrate(db, schema_migrations().first(3), tmp.path()).ok());
+    db.exec("INSERT INTO tasks (id, state, task_json, created_ms, updated_ms, source) "
+            "VALUES ('t1', 'succeeded', '{\"id\": \"t1\"}', 10, 30, 'api')");
+  }
+  auto store = Store::open(tmp.path());
+  ASSERT_TRUE(store.ok()) << store.error().message;
+  auto old = get_task(*store, "t1");
+  ASSERT_TRUE(old.ok()) << old.error().message;
+  EXPECT_EQ(old->state, "succeeded");
+  EXPECT_EQ(old->source, "api");
+  EXPECT_FALSE(old->planned_start.has_value());
+  EXPECT_FALSE(old->planned_end.has_value());
+  // Written and read back from then on.
+  ASSERT_TRUE(add_task(*store, TaskRow{.id = "t2",
+                                       .task = Json{{"id", "t2"}},
+                                       .state = "queued",
+                                       .created = Time{seconds(40)},
+                                       .updated = Time{seconds(40)}})
+                  .ok());
+  ASSERT_TRUE(set_task_state(*store, "t2", "failed", Time{seconds(50)}, "", "",
+                             PlannedTimes{Time{seconds(42)}, Time{seconds(48)}})
+                  .ok());
+  auto now = get_task(*store, "t2");
+  ASSERT_TRUE(now.ok()) << now.error().message;
+  EXPECT_EQ(now->planned_start, Time{seconds(42)});
+  EXPECT_EQ(now->planned_end, Time{seconds(48)});
 }
 
 // Every older version of the real schema opens and ends at the latest one.

@@ -144,6 +144,23 @@ TEST_F(TaskTable, StateChangesUpdateTheTaskAndAppendEvents) {
   EXPECT_EQ((*events)[2].time, at(180));
 }
 
+// The planned start and end go with a state change when given (both may be none), and stay as
+// they are when not.
+TEST_F(TaskTable, AStateChangeRecordsThePlannedTimesWhenGiven) {
+  ASSERT_TRUE(add_task(db(), sample("t1", 100)).ok());
+  EXPECT_FALSE(get_task(db(), "t1")->planned_start.has_value());
+  ASSERT_TRUE(set_task_state(db(), "t1", "navigating", at(150), "", "", PlannedTimes{at(160), at(280)}).ok());
+  ASSERT_TRUE(set_task_state(db(), "t1", "acting", at(170), "").ok());
+  auto r = get_task(db(), "t1");
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r->planned_start, at(160));
+  EXPECT_EQ(r->planned_end, at(280));
+  ASSERT_TRUE(set_task_state(db(), "t1", "cancelled", at(180), "", "", PlannedTimes{}).ok());
+  r = get_task(db(), "t1");
+  EXPECT_FALSE(r->planned_start.has_value());
+  EXPECT_FALSE(r->planned_end.has_value());
+}
+
 TEST_F(TaskTable, StateChangeOfAnUnknownTaskIsNotFoundAndLogsNothing) {
   Status s = set_task_state(db(), "ghost", "failed", at(1), "");
   ASSERT_FALSE(s.ok());

@@ -27,6 +27,9 @@
 namespace rondo::exec {
 
 inline constexpr Duration kUnreachable = hours(24 * 365);
+// How far behind the slot asked for the travel caches keep what they hold (TravelCache's entries,
+// and the M_t of the executor's planners): a day.
+inline constexpr Duration kTravelKeepBehind = hours(24);
 
 // Expected node-to-node seconds per slot start, shared by every problem of one executor. It keeps
 // the planner's policy to each (slot start, target) asked for, with the models' version() it is

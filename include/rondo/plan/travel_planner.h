@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "rondo/core/time.h"
@@ -41,6 +42,10 @@ struct TravelPlannerOptions {
   Duration slot_width = minutes(15);      // > 0; slots are aligned to 00:00 UTC (Unix time 0)
   std::size_t max_cached_policies = 512;  // the policy cache is emptied when it would grow past this
   std::size_t max_cached_slots = 1024;    // likewise for the per-slot MDPs
+  // When set, building a slot's M_t drops the cached ones that start more than this before it:
+  // a service's departures move forward with its clock, so the cache holds about this span (plus
+  // what lies ahead) however long it runs. Unset: only max_cached_slots bounds it.
+  std::optional<Duration> keep_behind{};
   // How far ahead the time-dependent variant looks for a slot where waiting pays off (FIFO repair),
   // and beyond which an edge closed now counts as closed for good.
   Duration max_wait = hours(24);

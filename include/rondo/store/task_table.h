@@ -33,8 +33,16 @@ struct TaskRow {
   Time updated;       // the last state change
   std::string source{};            // who added it: "routine", "request", "api", ...
   Json progress = Json(nullptr);   // the executor's record of what is done; null before anything is
+  // When it was planned to start and end at its latest state change (set_task_state); none when
+  // it was not planned then.
+  std::optional<Time> planned_start{}, planned_end{};
 
   bool operator==(const TaskRow&) const = default;
+};
+
+// When a task is planned to start and end (the latest schedule's); both unset when it is not.
+struct PlannedTimes {
+  std::optional<Time> start{}, end{};
 };
 
 // Accepts a new task: stores `task` and appends the event (task.created, task.id, task.state,
@@ -51,9 +59,10 @@ Status add_tasks(Store& store, std::span<const TaskRow> tasks, std::string_view 
                  std::string_view code = "", const RequestTaken* taken = nullptr);
 
 // Moves task `id` to `state` at time `at` and appends the event (at, id, state, code, reason), in
-// one transaction. Errors: kNotFound (no such task), kStorage.
+// one transaction; with `planned`, also records when it is planned to start and end (the row's
+// planned_start and planned_end). Errors: kNotFound (no such task), kStorage.
 Status set_task_state(Store& store, std::string_view id, std::string_view state, Time at, std::string_view reason,
-                      std::string_view code = "");
+                      std::string_view code = "", const std::optional<PlannedTimes>& planned = std::nullopt);
 
 // Replaces task `id`'s progress. Errors: kNotFound (no such task), kStorage.
 Status set_task_progress(Store& store, std::string_view id, const Json& progress);
