@@ -90,9 +90,27 @@ class TimingListener final : public exec::RobotListener {
 
 }  // namespace
 
+// argv[i] as a whole number of at least `least`, or `fallback` when it is not given; nullopt (said
+// on stderr) when it is not one.
+std::optional<std::uint64_t> count_arg(int argc, char** argv, int i, const char* what, std::uint64_t fallback,
+                                       std::uint64_t least = 1) {
+  if (argc <= i) return fallback;
+  const std::string text = argv[i];
+  if (text.empty() || text.size() > 9 || !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }) ||
+      std::stoull(text) < least) {
+    fmt::print(stderr, "bench_courier_fortnight: argument {} ({}): expected a whole number from {}, found '{}'\n", i,
+               what, least, text);
+    return std::nullopt;
+  }
+  return std::stoull(text);
+}
+
 int main(int argc, char** argv) {
-  const int runs = argc > 1 ? std::atoi(argv[1]) : 3;
-  const int days = argc > 2 ? std::atoi(argv[2]) : 14;
+  const auto runs_arg = count_arg(argc, argv, 1, "runs", 3);
+  const auto days_arg = count_arg(argc, argv, 2, "days", 14);
+  if (!runs_arg || !days_arg) return 2;
+  const int runs = static_cast<int>(*runs_arg);
+  const int days = static_cast<int>(*days_arg);
   const std::string file = argc > 3 ? argv[3] : "examples/office/deployment.yaml";
   auto deployment = app::load_deployment(file);
   if (!deployment) {
@@ -100,8 +118,11 @@ int main(int argc, char** argv) {
     return 2;
   }
   deployment->days = days;
-  const std::uint64_t first_seed = argc > 4 ? std::strtoull(argv[4], nullptr, 10) : deployment->seed;
-  const int seeds = argc > 5 ? std::atoi(argv[5]) : 1;
+  const auto seed_arg = count_arg(argc, argv, 4, "seed", deployment->seed, 0);
+  const auto seeds_arg = count_arg(argc, argv, 5, "seeds", 1);
+  if (!seed_arg || !seeds_arg) return 2;
+  const std::uint64_t first_seed = *seed_arg;
+  const int seeds = static_cast<int>(*seeds_arg);
   fmt::print("# {} for {} days, seeds {}..{}; load average {}\n", file, days, first_seed,
              first_seed + static_cast<std::uint64_t>(seeds) - 1, bench::load_average());
   fmt::print("# seed  run  breaks  median_ms  p99_ms  max_ms  run_wall_s\n");

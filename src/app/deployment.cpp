@@ -35,7 +35,7 @@ Result<Duration> non_negative_duration(const Field& f) {
 Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
   RONDO_RETURN_IF_ERROR(f.expect_keys({"navigation_overrun", "navigation_slack", "action_overrun", "action_slack",
                                        "dock_when_waiting_over", "max_failed_edges", "blocked_edge",
-                                       "on_demand_patience", "refit_at",
+                                       "on_demand_patience", "person_patience", "refit_at",
                                        "refit_window", "online_model", "slot_width", "scheduler_polls", "capacity",
                                        "return_to", "return_within"}));
   if (auto v = f.optional("navigation_overrun")) { RONDO_ASSIGN_OR_RETURN(o.navigation_overrun, positive(*v)); }
@@ -64,6 +64,10 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
   }
   if (auto v = f.optional("on_demand_patience")) {
     RONDO_ASSIGN_OR_RETURN(o.on_demand_patience, non_negative_duration(*v));
+  }
+  if (auto v = f.optional("person_patience")) {
+    RONDO_ASSIGN_OR_RETURN(o.person_patience, v->as_number());
+    if (!(o.person_patience >= 0 && o.person_patience <= 0.98)) return v->error("must be from 0 (off) to 0.98");
   }
   // optional() hides a null value: null is "never" / "the whole log", so ask has() first.
   if (f.has("refit_at") && !f.optional("refit_at")) o.refit_at.reset();

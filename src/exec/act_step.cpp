@@ -20,12 +20,29 @@ void ActStep::start() {
                        fmt::format("arrived at {} after {} (expected {}); expected processing {}",
                                    ctx_.map.node(arrival_.target()).name, duration_text(now - arrival_.started()),
                                    duration_text(arrival_.expected()), duration_text(r.remaining())));
-  const ExecutorOptions& o = ctx_.options;
-  monitor_.arm(Monitor::limit("action overrun: still acting", "the processing time", r.remaining(), o.action_overrun,
-                              o.action_slack),
-               [this](const std::string& why) { hooks_.overrun(Outcome::kActionOverrun, why); });
+  monitor_.arm(limit(r), [this](const std::string& why) { hooks_.overrun(Outcome::kActionOverrun, why); });
   if (ctx_.in_fault) monitor_.suspend();
   run_next();
+}
+
+// The overrun factor times the processing time still to spend, plus the slack; or, when the
+// people this task waits for are known to take longer than that at times, the share of its
+// patience still to spend (TaskRecord::patience) plus the slack.
+Monitor::Limit ActStep::limit(const TaskRecord& r) const {
+  const ExecutorOptions& o = ctx_.options;
+  Monitor::Limit l =
+      Monitor::limit("action overrun: still acting", "the processing time", r.remaining(), o.action_overrun, o.action_slack);
+  if (!r.patience) return l;
+  const std::size_t n = r.action_count();
+  const Duration left = *r.patience * static_cast<std::int64_t>(n - std::min(r.actions_done, n)) /
+                        static_cast<std::int64_t>(n);
+  if (left + o.action_slack <= l.after) return l;
+  l.after = left + o.action_slack;
+  l.reason = fmt::format("action overrun: still acting after {}, the limit is the {:.0f}th percentile of the learned "
+                         "times {} + {}",
+                         duration_text(l.after), o.person_patience * 100, duration_text(left),
+                         duration_text(o.action_slack));
+  return l;
 }
 
 void ActStep::run_next() {

@@ -98,17 +98,24 @@ void Executor::refresh_learned_durations(const std::vector<TaskId>& ids) {
     TaskRecord& r = book_.at(id);
     if (r.task.actions.empty() || r.task.start_node.empty()) continue;
     const Duration share = r.task.duration / static_cast<std::int64_t>(r.action_count());
-    Duration total{0};
-    bool learned = false;
+    Duration total{0}, patience{0};
+    bool learned = false, slow = false;
     for (const Action& a : r.task.actions) {
       if (!loading_->learns(a.name)) {
         total += share;
+        patience += share;
         continue;
       }
       const Duration e = loading_->expected(a.name, r.task.start_node, share);
       learned = learned || e != share;
       total += e;
+      const std::optional<Duration> q = options_.person_patience > 0
+                                            ? loading_->quantile(a.name, r.task.start_node, share, options_.person_patience)
+                                            : std::nullopt;
+      slow = slow || q.has_value();
+      patience += q.value_or(e);
     }
+    r.patience = slow ? std::optional<Duration>(patience) : std::nullopt;
     // Never past its window: a task that fits as declared is not made impossible by a guess.
     if (learned && r.task.window) total = std::min(total, r.task.window->deadline - r.task.window->release);
     r.learned_duration = learned ? std::optional<Duration>(total) : std::nullopt;

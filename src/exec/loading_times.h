@@ -10,12 +10,14 @@
 
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "rondo/core/time.h"
 #include "rondo/exec/executor_types.h"
+#include "rondo/learn/quantile_table.h"
 #include "rondo/learn/static_model.h"
 
 namespace rondo::exec {
@@ -36,14 +38,27 @@ class LoadingTimes {
   void observe_stopped(const std::string& action, const std::string& place, Duration declared, Duration took, Time at);
   // The expected duration of `action` at `place`; `declared` when nothing is known there.
   Duration expected(const std::string& action, const std::string& place, Duration declared) const;
+  // How long `action` at `place` takes at its q-quantile: the expected time there times the
+  // q-quantile of how much longer than expected people took, pooled over every action and place
+  // (each person has a time of their own, but how far they stray from it is alike, and one
+  // person's few runs would not show it). Nothing until kRatioSamples runs are known.
+  static constexpr std::size_t kRatioSamples = 10;
+  std::optional<Duration> quantile(const std::string& action, const std::string& place, Duration declared,
+                                   double q) const;
 
   std::vector<LearnedActionTime> entries() const;  // by action, then place
 
  private:
   learn::OnlineStaticDuration& model(const std::string& action, const std::string& place, Duration declared);
 
+  void add_ratio(double ratio);
+
   std::vector<std::string> actions_;
   std::map<std::pair<std::string, std::string>, learn::OnlineStaticDuration> models_;
+  static constexpr std::size_t kRatioWindow = 500;
+  std::vector<double> ratios_;  // took / expected before the run, a ring of the last kRatioWindow
+  std::size_t ratios_seen_ = 0;
+  learn::QuantileTable ratio_quantiles_;
 };
 
 }  // namespace rondo::exec

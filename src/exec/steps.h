@@ -98,6 +98,7 @@ class ActStep final : public RobotStep {
  private:
   void go_on() override { run_next(); }
   void run_next();
+  Monitor::Limit limit(const TaskRecord& r) const;
 
   TaskId task_;
   const NavigateStep& arrival_;

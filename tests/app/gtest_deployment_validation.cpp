@@ -193,6 +193,20 @@ namespace {
 // What the executor does after a failed edge expected to stay blocked is a deployment key; a value
 // it does not know is refused naming the line and the values it takes. report.json has a row per
 // week with the failed attempts and the navigation failures.
+TEST(RunCommand, PersonPatienceIsAQuantileFromZeroTo098) {
+  const std::string refit = "refit_at: \"02:00\"        # nightly refit of the edge models";
+  for (const char* bad : {"0.99", "-0.1", "often"}) {
+    const auto dir = fresh_dir("person-patience-bad");
+    const auto deployment = edited_example(dir, "deployment.yaml", refit, refit + "\n  person_patience: " + bad);
+    const auto r = test::run_cli({"run", deployment.string(), "--days", "1", "--out", (dir / "run").string()});
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_THAT(r.err, HasSubstr("deployment.yaml:" + std::to_string(line_of(slurp(deployment), "person_patience"))))
+        << bad;
+    EXPECT_FALSE(std::filesystem::exists(dir / "run")) << bad;
+    std::filesystem::remove_all(dir);
+  }
+}
+
 TEST(RunCommand, BlockedEdgeIsAnExecutorKeyAndTheReportHasItsWeeks) {
   const std::string refit = "refit_at: \"02:00\"        # nightly refit of the edge models";
   {

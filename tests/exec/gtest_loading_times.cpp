@@ -68,5 +68,58 @@ TEST(LoadingTimes, StoppedRunsRaiseTheEstimateUntilTheSlowPersonCanFinish) {
   EXPECT_LT(old, censored);
 }
 
+TEST(LoadingTimes, NoQuantileUntilEnoughRunsAreKnown) {
+  LoadingTimes t;
+  for (std::size_t i = 0; i + 1 < LoadingTimes::kRatioSamples; ++i)
+    t.observe("load", "Desk", minutes(1), minutes(1), true, kNow);
+  EXPECT_FALSE(t.quantile("load", "Desk", minutes(1), 0.98).has_value());
+  t.observe("load", "Desk", minutes(1), minutes(1), true, kNow);
+  ASSERT_TRUE(t.quantile("load", "Desk", minutes(1), 0.98).has_value());
+  EXPECT_EQ(*t.quantile("load", "Desk", minutes(1), 0.98), minutes(1));  // everyone on time: ratio 1
+}
+
+// How much longer than expected people take is pooled over places: a place seen once gets the
+// spread the others showed, scaled to its own expected time.
+TEST(LoadingTimes, TheQuantileIsThePlacesExpectedTimeTimesThePooledRatio) {
+  LoadingTimes t;
+  // Forty runs at one desk, a person of a steady 100 s who takes 3 x that once in ten runs.
+  for (int i = 0; i < 40; ++i) t.observe("load", "A", seconds(100), seconds(i % 10 == 9 ? 300 : 100), true, kNow);
+  const Duration expected_a = t.expected("load", "A", seconds(100));
+  EXPECT_NEAR(to_seconds(*t.quantile("load", "A", seconds(100), 0.5)), to_seconds(expected_a), 15);
+  EXPECT_GT(to_seconds(*t.quantile("load", "A", seconds(100), 0.98)), 2.2 * to_seconds(expected_a));
+  // A desk never seen: its declared time, times the same ratios.
+  const double ratio98 = to_seconds(*t.quantile("load", "A", seconds(100), 0.98)) / to_seconds(expected_a);
+  EXPECT_NEAR(to_seconds(*t.quantile("unload", "B", minutes(2), 0.98)), 120 * ratio98, 1);
+}
+
+// The action monitor's limit as ActStep sets it (ExecutorOptions' defaults: 1.5 x the estimate
+// + 30 s, or the 98th percentile + 30 s when that is longer): people who are usually on time and
+// once in ten runs take 2.5 x as long. With the patience the slow runs complete once the ratios
+// are known; without it every one of them is stopped.
+TEST(LoadingTimes, PatienceLetsTheOccasionallySlowPersonFinish) {
+  const auto stops = [](double patience) {
+    LoadingTimes t;
+    int stopped = 0;
+    for (int run = 0; run < 200; ++run) {
+      const Duration truth = run % 10 == 9 ? seconds(250) : seconds(100);
+      const Duration expected = t.expected("load", "Desk", seconds(100));
+      Duration limit = std::chrono::duration_cast<Duration>(expected * 1.5) + seconds(30);
+      if (const auto q = t.quantile("load", "Desk", seconds(100), patience); patience > 0 && q)
+        limit = std::max(limit, *q + seconds(30));
+      if (truth <= limit) {
+        t.observe("load", "Desk", seconds(100), truth, true, kNow);
+      } else {
+        ++stopped;
+        t.observe_stopped("load", "Desk", seconds(100), limit, kNow);
+      }
+    }
+    return stopped;
+  };
+  const int without = stops(0);
+  const int with = stops(0.98);
+  EXPECT_GE(without, 15);
+  EXPECT_LE(with, 3);
+}
+
 }  // namespace
 }  // namespace rondo::exec

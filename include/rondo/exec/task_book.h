@@ -65,6 +65,10 @@ struct TaskRecord {
   // The processing time learned from experience (loading and unloading times), when the executor
   // knows better than the task's declared duration.
   std::optional<Duration> learned_duration{};
+  // How long its actions may take before the action monitor stops them, when the people it waits
+  // for are known to take longer than the overrun factor allows (ExecutorOptions::person_patience):
+  // the learned quantile of each person's time, the other actions' shares as they are.
+  std::optional<Duration> patience{};
 
   std::size_t action_count() const { return std::max<std::size_t>(1, task.actions.size()); }
   // When it may start: its window's release, or later while a way it needs is held to be blocked
