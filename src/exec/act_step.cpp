@@ -33,9 +33,7 @@ Monitor::Limit ActStep::limit(const TaskRecord& r) const {
   Monitor::Limit l =
       Monitor::limit("action overrun: still acting", "the processing time", r.remaining(), o.action_overrun, o.action_slack);
   if (!r.patience) return l;
-  const std::size_t n = r.action_count();
-  const Duration left = *r.patience * static_cast<std::int64_t>(n - std::min(r.actions_done, n)) /
-                        static_cast<std::int64_t>(n);
+  const Duration left = r.share_left(*r.patience);
   if (left + o.action_slack <= l.after) return l;
   l.after = left + o.action_slack;
   l.reason = fmt::format("action overrun: still acting after {}, the limit is the {:.0f}th percentile of the learned "

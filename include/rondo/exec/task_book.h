@@ -78,10 +78,11 @@ struct TaskRecord {
   }
   Duration expected_duration() const { return learned_duration.value_or(task.duration); }
   // The processing time still to spend: the share of the actions not done yet.
-  Duration remaining() const {
+  Duration remaining() const { return share_left(expected_duration()); }
+  // The share of `whole` (a time for all its actions) that falls to the actions not done yet.
+  Duration share_left(Duration whole) const {
     const std::size_t n = action_count();
-    return expected_duration() * static_cast<std::int64_t>(n - std::min(actions_done, n)) /
-           static_cast<std::int64_t>(n);
+    return whole * static_cast<std::int64_t>(n - std::min(actions_done, n)) / static_cast<std::int64_t>(n);
   }
 };
 
