@@ -65,7 +65,7 @@ void Executor::run_ended(TaskEnd e) {
   if (r.started) stats_.busy += clock_.now() - *r.started;
   std::vector<TaskId> again = std::exchange(after_preempt_, {});
   const bool on_demand = r.task.kind == TaskKind::kOnDemand;
-  if (e.requeue && e.edge && !hold_back(id, *e.edge)) {
+  if (e.requeue && e.edge && !hold_back(id, *e.edge, e.not_before)) {
     e.requeue = false;
     e.state = TaskState::kFailed;
     e.reason += on_demand ? "; the way is not likely passable again within its patience"
@@ -131,12 +131,13 @@ void Executor::preempt_for(Outcome outcome, const std::string& reason, std::vect
   run_->stop(TaskRun::Stop::kPreempt, outcome, reason);
 }
 
-bool Executor::hold_back(const TaskId& id, map::EdgeIndex edge) {
-  constexpr double kLikelyPassable = 0.5;
-  const TaskRecord& r = book_.at(id);
+bool Executor::hold_back(const TaskId& id, map::EdgeIndex edge, std::optional<Time> leave_at) {
+  if (leave_at) {  // the navigation found a later departure that arrives sooner; its reason says so
+    book_.set_not_before(id, *leave_at);
+    return true;
+  }
   const Time now = clock_.now();
-  const Time latest =
-      r.task.window ? r.task.window->deadline - r.remaining() : r.added + options_.on_demand_patience;
+  const Time latest = book_.at(id).latest_start(options_.on_demand_patience);
   for (Time t = planner_->slot_start(now) + options_.slot_width; t <= latest; t += options_.slot_width) {
     const double p = models_->outcome(edge, t).success_probability;
     if (p < kLikelyPassable) continue;

@@ -29,6 +29,9 @@ void NavigateStep::start() {
                 .outcome = Outcome::kNoRoute,
                 .reason = fmt::format("no route: from {} to {} at {}", from, to, ctx_.clock_text(now))});
   }
+  if (purpose_ == Purpose::kToStart) {
+    if (std::optional<StepEnd> wait = leave_later(here, now)) return end(std::move(*wait));
+  }
   ctx_.book.transition(*task_, TaskState::kNavigating, Outcome::kDeparted,
                        fmt::format("to {}{} from {}, expected travel {}", to,
                                    purpose_ == Purpose::kToEnd ? " (its end place)" : "", from,
@@ -107,6 +110,42 @@ void NavigateStep::on_edge_finished(const EdgeAttempt& a) {
     }
   }
   advance();
+}
+
+// The travel estimate of a departure now prices every retry of a blocked edge at the p it has now,
+// while the live model's p recovers with the time since the failure: leaving at a later slot start
+// may arrive sooner. The slot starts up to the task's latest start (at most a day ahead) are read.
+std::optional<StepEnd> NavigateStep::leave_later(map::NodeIndex here, Time now) const {
+  if (ctx_.options.blocked_edge != ExecutorOptions::BlockedEdge::kWait) return std::nullopt;
+  std::optional<map::EdgeIndex> blocked;
+  double p = 1;
+  for (map::EdgeIndex e : expected_route(here)) {
+    p = ctx_.models.outcome(e, now).success_probability;
+    if (p < kLikelyPassable) {
+      blocked = e;
+      break;
+    }
+  }
+  if (!blocked) return std::nullopt;
+  const Time latest = std::min(ctx_.book.at(*task_).latest_start(ctx_.options.on_demand_patience), now + hours(24));
+  Time leave = now;
+  Time arrive = now + expected_;
+  for (Time t = ctx_.travel.slot_start(now) + ctx_.options.slot_width; t <= latest; t += ctx_.options.slot_width) {
+    const Duration d = ctx_.travel.at_slot(here, target_, t);
+    if (d < kUnreachable && t + d < arrive) {
+      leave = t;
+      arrive = t + d;
+    }
+  }
+  if (leave == now) return std::nullopt;
+  return StepEnd{.status = StepEnd::Status::kBlocked,
+                 .outcome = Outcome::kNoRouteNow,
+                 .reason = fmt::format("no route now: the way to {} crosses {}, held to be blocked (p = {:.2f}); "
+                                       "leaving at {} is expected to arrive at {}, sooner than leaving now ({})",
+                                       ctx_.map.node(target_).name, ctx_.map.edge(*blocked).id, p,
+                                       ctx_.clock_text(leave), ctx_.clock_text(arrive), ctx_.clock_text(now + expected_)),
+                 .edge = blocked,
+                 .not_before = leave};
 }
 
 std::optional<std::string> NavigateStep::not_worth_trying(const EdgeAttempt& failed) const {

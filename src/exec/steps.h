@@ -72,6 +72,10 @@ class NavigateStep final : public RobotStep {
   // not all to fail, or the re-planned travel from here would take the navigation past its
   // monitor's limit), or nothing.
   std::optional<std::string> not_worth_trying(const EdgeAttempt& failed) const;
+  // Before leaving for a task: when the way crosses an edge held to be blocked and a later
+  // departure (before the task's latest start) is expected to arrive sooner, the end that makes
+  // the task wait for it (ExecutorOptions::BlockedEdge::kWait); nothing otherwise.
+  std::optional<StepEnd> leave_later(map::NodeIndex here, Time now) const;
 
   Purpose purpose_;
   std::optional<TaskId> task_;

@@ -69,7 +69,8 @@ void TaskRun::step_ended(StepEnd e) {
       return finish({.requeue = false, .state = TaskState::kFailed, .outcome = e.outcome, .reason = e.reason});
     case StepEnd::Status::kBlocked:  // the executor decides whether it waits (Executor::hold_back)
       return finish(
-          {.requeue = true, .state = TaskState::kQueued, .outcome = e.outcome, .reason = e.reason, .edge = e.edge});
+          {.requeue = true, .state = TaskState::kQueued, .outcome = e.outcome, .reason = e.reason, .edge = e.edge,
+           .not_before = e.not_before});
     case StepEnd::Status::kHalted:
       break;
   }

@@ -7,6 +7,7 @@
 
 #include "api.h"
 #include "rondo/exec/map_travel.h"
+#include "rondo/store/store.h"
 #include "rondo/store/task_table.h"
 
 namespace rondo::service {
@@ -111,9 +112,11 @@ Reply metrics_reply(Api& api) {
         "# HELP rondo_memory_heap_bytes Heap bytes in use (malloc).\n"
         "# TYPE rondo_memory_heap_bytes gauge\nrondo_memory_heap_bytes {}\n"
         "# HELP rondo_memory_heap_free_bytes Heap bytes free but not returned to the system.\n"
-        "# TYPE rondo_memory_heap_free_bytes gauge\nrondo_memory_heap_free_bytes {}\n",
+        "# TYPE rondo_memory_heap_free_bytes gauge\nrondo_memory_heap_free_bytes {}\n"
+        "# HELP rondo_memory_sqlite_bytes Of the heap in use, what SQLite holds (page caches).\n"
+        "# TYPE rondo_memory_sqlite_bytes gauge\nrondo_memory_sqlite_bytes {}\n",
         api.ctx.executor.tasks().size(), api.ctx.executor.navigations().size(), travel.cached_count(),
-        travel.planner().cached_slot_count(), heap.uordblks + heap.hblkhd, heap.fordblks);
+        travel.planner().cached_slot_count(), heap.uordblks + heap.hblkhd, heap.fordblks, store::Store::sqlite_memory_bytes());
     Reply r;
     r.text = std::move(out);
     r.content_type = "text/plain; version=0.0.4";

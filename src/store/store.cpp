@@ -1,6 +1,7 @@
 #include "rondo/store/store.h"
 
 #include <SQLiteCpp/Database.h>
+#include <sqlite3.h>
 
 #include <fmt/format.h>
 
@@ -102,6 +103,8 @@ Status check_readable_schema(SQLite::Database& db, const std::filesystem::path& 
 int Store::latest_schema_version() {
   return schema_migrations().back().version;
 }
+
+std::int64_t Store::sqlite_memory_bytes() { return sqlite3_memory_used(); }
 
 Result<Store> Store::open(const std::filesystem::path& file, const StoreOptions& options) {
   if (auto ok = check_path(file, options.mode); !ok) return ok.error();

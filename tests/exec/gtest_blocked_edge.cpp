@@ -161,6 +161,34 @@ TEST(BlockedEdge, WaitHoldsAnOnDemandTaskForTheWayWithinItsPatienceThenRunsIt) {
   EXPECT_EQ(s.drives_of("Hall_Office"), 2u);
 }
 
+// A task that comes after another found the way blocked does not leave into it: a later departure,
+// once the live model expects the edge to pass again, arrives sooner than trying it now.
+TEST(BlockedEdge, ATaskThatNeedsAWayJustFoundBlockedWaitsBeforeLeavingWhenLaterArrivesSooner) {
+  Blocked s(ExecutorOptions::BlockedEdge::kWait);
+  ASSERT_NO_FATAL_FAILURE(s.fail_on_the_way());
+  ASSERT_TRUE(s.executor().add_task(on_demand("B", "Office", minutes(5)), "test").ok());
+  s.settle();
+  EXPECT_EQ(s.state("B"), "queued");
+  EXPECT_EQ(s.code_of("B", "queued"), "no route now");
+  EXPECT_THAT(s.reason_of("B", "queued"), HasSubstr("crosses Hall_Office, held to be blocked"));
+  EXPECT_THAT(s.reason_of("B", "queued"), HasSubstr("sooner than leaving now"));
+  EXPECT_EQ(s.drives_of("Hall_Office"), 1u);  // only A's failed attempt
+  ASSERT_TRUE(s.executor().tasks().at("B").not_before.has_value());
+  const Time leave = *s.executor().tasks().at("B").not_before;
+  EXPECT_GT(leave, s.now());
+  ASSERT_NO_FATAL_FAILURE(s.run_to_success("B", leave));
+}
+
+// With no time to wait (an on-demand task with no patience), the same task leaves at once.
+TEST(BlockedEdge, ATaskWithNoTimeToWaitLeavesAtOnceIntoAWayJustFoundBlocked) {
+  Blocked s(ExecutorOptions::BlockedEdge::kWait, Duration{0});
+  ASSERT_NO_FATAL_FAILURE(s.fail_on_the_way());
+  ASSERT_TRUE(s.executor().add_task(on_demand("B", "Office", minutes(5)), "test").ok());
+  s.settle();
+  EXPECT_EQ(s.state("B"), "navigating");
+  EXPECT_EQ(s.drives_of("Hall_Office"), 2u);
+}
+
 TEST(BlockedEdge, AnOnDemandTaskWithNoPatienceFailsAtOnce) {
   Blocked s(ExecutorOptions::BlockedEdge::kWait, Duration{0});
   ASSERT_NO_FATAL_FAILURE(s.fail_on_the_way(on_demand("B", "Office", minutes(5))));

@@ -99,6 +99,14 @@ TEST(ApiViews, HealthAndMetrics) {
   EXPECT_NE(m->body.find("rondo_tasks{state=\"queued\"} 1\n"), std::string::npos) << m->body;
   EXPECT_NE(m->body.find("rondo_schedule_calls_total "), std::string::npos);
   EXPECT_NE(m->body.find("rondo_robot_battery "), std::string::npos);
+  // What the process holds: SQLite's share is above zero once a store is open.
+  const std::smatch sqlite = [&] {
+    std::smatch found;
+    std::regex_search(m->body, found, std::regex("\nrondo_memory_sqlite_bytes ([0-9]+)\n"));
+    return found;
+  }();
+  ASSERT_FALSE(sqlite.empty()) << m->body;
+  EXPECT_GT(std::stoll(sqlite[1].str()), 0);
   EXPECT_NE(m->body.find("rondo_http_requests_total{route=\"POST /api/v1/tasks\",status=\"201\"} 1\n"),
             std::string::npos)
       << m->body;

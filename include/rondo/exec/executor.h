@@ -250,8 +250,8 @@ class Executor final : public RobotListener {
   // A way the task needs was found blocked (ExecutorOptions::BlockedEdge::kWait): it is not
   // scheduled before the edge is likely passable again; false when that is not before its latest
   // start, or for an on-demand task not within `on_demand_patience` of its request (the caller
-  // fails it).
-  bool hold_back(const TaskId& id, map::EdgeIndex edge);
+  // fails it). With `leave_at` (found before leaving: NavigateStep), it waits until then.
+  bool hold_back(const TaskId& id, map::EdgeIndex edge, std::optional<Time> leave_at);
   // A held on-demand task goes back to the front of its queue and is due at its retry time.
   void hold_on_demand(const TaskId& id, Outcome outcome, const std::string& reason);
   void on_demand_due();  // a held on-demand task may run now: as if it had just come in

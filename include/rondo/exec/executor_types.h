@@ -11,6 +11,10 @@
 
 namespace rondo::exec {
 
+// An edge whose live success probability is below this is held to be blocked for now
+// (ExecutorOptions::blocked_edge).
+inline constexpr double kLikelyPassable = 0.5;
+
 struct ExecutorOptions {
   map::NodeIndex dock = 0;
   double navigation_overrun = 2.0;       // preempt navigation past this x expected travel + slack
@@ -31,6 +35,8 @@ struct ExecutorOptions {
   // queue, not to be scheduled before the edge is likely passable again; kGiveUp fails the task
   // at once ("no route now"); kRetry tries anyway, until the monitor or max_failed_edges stops it
   // (docs/executor.md, "A way found blocked").
+  // Under kWait a task also waits before it leaves, when its way crosses an edge held to be blocked
+  // (kLikelyPassable) and a later departure is expected to arrive sooner.
   enum class BlockedEdge { kRetry, kGiveUp, kWait };
   BlockedEdge blocked_edge = BlockedEdge::kWait;
   // kWait for an on-demand task (no window): it waits for the way while that is likely passable

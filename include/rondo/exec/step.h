@@ -44,6 +44,7 @@ struct StepEnd {
   Outcome outcome = Outcome::kNone;
   std::string reason{};
   std::optional<map::EdgeIndex> edge{};  // kBlocked, or kFailed for no route now: the edge found blocked
+  std::optional<Time> not_before{};      // kBlocked before leaving: the departure expected to arrive soonest
 };
 
 // How a task's run ended: a final state, or back to the queue (preempted).
@@ -53,6 +54,7 @@ struct TaskEnd {
   Outcome outcome = Outcome::kNone;
   std::string reason{};
   std::optional<map::EdgeIndex> edge{};  // requeued because this edge was found blocked
+  std::optional<Time> not_before{};      // and not to leave before this (StepEnd::not_before)
 };
 
 // How a step talks back to whoever runs it (a task run, or the executor for its own trips).

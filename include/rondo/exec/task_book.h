@@ -76,6 +76,11 @@ struct TaskRecord {
   Time release() const {
     return std::min(std::max(task.window->release, not_before.value_or(task.window->release)), task.window->deadline);
   }
+  // The latest it may leave and still be done in time: its deadline less the processing time still
+  // to spend; an on-demand task (no window) may wait `on_demand_patience` after it was added.
+  Time latest_start(Duration on_demand_patience) const {
+    return task.window ? task.window->deadline - remaining() : added + on_demand_patience;
+  }
   Duration expected_duration() const { return learned_duration.value_or(task.duration); }
   // The processing time still to spend: the share of the actions not done yet.
   Duration remaining() const { return share_left(expected_duration()); }

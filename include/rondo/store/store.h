@@ -10,6 +10,7 @@
 // Layout, pragmas and the schema history are documented in docs/storage.md.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 
@@ -48,6 +49,9 @@ class Store {
  public:
   // The schema version this build writes (PRAGMA user_version); see docs/storage.md.
   static int latest_schema_version();
+  // Heap bytes SQLite holds in this process, over every connection (its page caches, mostly;
+  // each connection's cache is bounded by SQLite's cache_size, 2 MB by default).
+  static std::int64_t sqlite_memory_bytes();
 
   // Opens (or creates) `file`, then migrates an older schema, one committed step per version
   // (kReadOnly: never writes; see OpenMode).
