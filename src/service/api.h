@@ -122,6 +122,11 @@ void add_robot_routes(std::vector<Route>& routes);
 void add_meta_routes(std::vector<Route>& routes);  // health, metrics, OpenAPI
 void add_dashboard_routes(std::vector<Route>& routes);
 
+// On the clock's thread: adds the routines to the running executor and stores each before the
+// answer (201 with the routines, or the first error; robot_routes.cpp). POST /api/v1/routines
+// and a repeated command in words (POST /api/v1/commands) both come here.
+Reply add_routines_now(Api& api, std::vector<Routine> list);
+
 // The event stream (GET /api/v1/events): sets a chunked provider on `res`.
 void event_stream(Api& api, const httplib::Request& req, httplib::Response& res);
 

@@ -1,5 +1,6 @@
 // POST /api/v1/commands: a command in words (docs/commands.md, rondo::lang), e.g. {"text": "check
-// WayPoint2 before 15:00"}: its tasks are submitted as POST /api/v1/tasks would (201), a
+// WayPoint2 before 15:00"}: its tasks are submitted as POST /api/v1/tasks would (201), a repeated
+// command's routines are added as POST /api/v1/routines would (201, {"routines": [...]}), a
 // cancellation cancels the tasks it names that are not finished (200). A sentence outside the
 // grammar or a place that is not on the map is 422 naming the word, with the field "text". The
 // places are the map's node names; "now" and local times are the service's clock in the
@@ -23,9 +24,11 @@ Reply command(Api& api, const httplib::Request& req) {
     const lang::Places places = lang::Places::from_map(api.ctx.map);
     auto parsed = lang::parse_command(text, {.places = &places, .zone = api.ctx.zone, .now = api.ctx.clock.now()});
     if (!parsed) return error_reply(422, "invalid", "text: " + parsed.error().message, "text");
-    if (!parsed->routines.empty())
-      return error_reply(422, "invalid", "text: a repeated command makes routines: add them through /api/v1/routines",
-                         "text");
+    if (!parsed->routines.empty()) {  // a repeated command: as POST /api/v1/routines would
+      Reply added = add_routines_now(api, std::move(parsed->routines));
+      if (added.status >= 400) added.body["error"]["field"] = "text";
+      return added;
+    }
     Reply r;
     if (parsed->cancel) {
       std::vector<TaskId> ids;

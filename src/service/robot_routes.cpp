@@ -206,25 +206,31 @@ Reply add_routines(Api& api, const httplib::Request& req) {
   if (!file->tasks.empty())
     return error_reply(422, "invalid", "request: tasks: add tasks through /api/v1/tasks", "tasks");
   if (file->routines.empty()) return error_reply(422, "invalid", "request: routines: no routine to add", "routines");
-  return api.on_clock([&api, list = std::move(file->routines)]() mutable {
-    Json added = Json::array();
-    for (Routine& r : list) {
-      Json encoded = encode(r);
-      const Routine kept = r;
-      if (Status ok = api.ctx.executor.add_routine_now(std::move(r)); !ok) return error_reply(ok.error());
-      // Stored before the answer, so that it comes back after a restart; not run when it cannot be.
-      if (Status ok = remember_added_routine(api.ctx.store, kept); !ok) {
-        (void)api.ctx.executor.remove_routine(kept.name);
-        return error_reply(ok.error());
-      }
-      added.push_back(std::move(encoded));
-    }
-    Reply reply;
-    reply.status = 201;
-    reply.body = Json{{"routines", std::move(added)}};
-    return reply;
-  });
+  return api.on_clock([&api, list = std::move(file->routines)]() mutable { return add_routines_now(api, std::move(list)); });
 }
+
+}  // namespace
+
+Reply add_routines_now(Api& api, std::vector<Routine> list) {
+  Json added = Json::array();
+  for (Routine& r : list) {
+    Json encoded = encode(r);
+    const Routine kept = r;
+    if (Status ok = api.ctx.executor.add_routine_now(std::move(r)); !ok) return error_reply(ok.error());
+    // Stored before the answer, so that it comes back after a restart; not run when it cannot be.
+    if (Status ok = remember_added_routine(api.ctx.store, kept); !ok) {
+      (void)api.ctx.executor.remove_routine(kept.name);
+      return error_reply(ok.error());
+    }
+    added.push_back(std::move(encoded));
+  }
+  Reply reply;
+  reply.status = 201;
+  reply.body = Json{{"routines", std::move(added)}};
+  return reply;
+}
+
+namespace {
 
 Reply remove_routine(Api& api, const httplib::Request& req) {
   const std::string name = req.matches[1];

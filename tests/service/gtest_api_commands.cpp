@@ -1,6 +1,8 @@
 // Commands in words through the API (POST /api/v1/commands): a sentence's tasks are submitted, a
-// cancellation cancels what it names, and a word that is not understood is named in a 422.
+// repeated command's routines are added, a cancellation cancels what it names, and a word that is not understood is named in a 422.
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include "live_service.h"
 #include "test_files.h"
@@ -25,6 +27,24 @@ TEST(ApiCommands, ASentenceAddsItsTasksAndACancellationEndsThem) {
   ASSERT_EQ(cancelled->status, 200) << cancelled->body;
   EXPECT_EQ(body_of(cancelled)["cancelled"], Json::array({id}));
   EXPECT_EQ(body_of(cli.Get(("/api/v1/tasks/" + id).c_str()))["state"], "cancelled");
+}
+
+TEST(ApiCommands, ARepeatedCommandAddsItsRoutineAndKeepsItStored) {
+  LiveService s(fresh_dir("rondo-service-test", "commands-routine"));
+  auto cli = s.client();
+  auto added = cli.Post("/api/v1/commands", R"({"text": "check WayPoint3 every weekday at 09:00"})", "application/json");
+  ASSERT_TRUE(added);
+  ASSERT_EQ(added->status, 201) << added->body;
+  Json j = body_of(added);
+  ASSERT_EQ(j["routines"].size(), 1u) << j.dump();
+  const std::string name = j["routines"][0]["name"];
+  Json listed = body_of(cli.Get("/api/v1/routines"))["routines"];
+  EXPECT_TRUE(std::any_of(listed.begin(), listed.end(), [&](const Json& r) { return r["name"] == name; }))
+      << listed.dump();
+  // The same routine again is refused, naming the field of the sentence.
+  auto again = cli.Post("/api/v1/commands", R"({"text": "check WayPoint3 every weekday at 09:00"})", "application/json");
+  ASSERT_EQ(again->status, 422) << again->body;
+  EXPECT_EQ(body_of(again)["error"]["field"], "text");
 }
 
 TEST(ApiCommands, AWordOrPlaceNotUnderstoodIsNamed) {
