@@ -12,6 +12,7 @@
 //   routines: routines.yaml        # task file: routines (and one-off tasks)
 //   world: world.yaml              # the simulated building (docs/simulation.md)
 //   requests: requests.yaml        # optional: people's on-demand requests
+//   places: places.yaml            # optional: rooms, aliases and people for commands in words
 //   executor: {navigation_overrun: 2.0, navigation_slack: 60s, action_overrun: 1.5,
 //              action_slack: 30s, dock_when_waiting_over: 15m, refit_at: "02:00",
 //              slot_width: 15m, scheduler_polls: 20000}
@@ -45,6 +46,7 @@ struct Deployment {
   std::optional<std::filesystem::path> routines;
   std::filesystem::path world;
   std::optional<std::filesystem::path> requests;
+  std::optional<std::filesystem::path> places;  // commands in words through `rondo serve`'s API
   exec::ExecutorOptions executor{};  // dock is filled in once the map is loaded
   // The robot: nothing for the simulated one (kind: sim, the default), or a VDA 5050 vehicle.
   std::optional<vda5050::Vda5050Config> vda5050;

@@ -26,7 +26,9 @@ Result<DeploymentParts> load_parts(const Deployment& d) {
   RONDO_ASSIGN_OR_RETURN(sim::SimWorld world, sim::load_world(d.world, map, d.zone));
   std::optional<sim::RequestGenerator> people;
   if (d.requests) { RONDO_ASSIGN_OR_RETURN(people, sim::RequestGenerator::load(*d.requests, map, d.zone)); }
-  return DeploymentParts{std::move(map), *dock, std::move(plan), std::move(world), std::move(people)};
+  std::optional<lang::Places> places;
+  if (d.places) { RONDO_ASSIGN_OR_RETURN(places, lang::Places::load(*d.places, map)); }
+  return DeploymentParts{std::move(map), *dock, std::move(plan), std::move(world), std::move(people), std::move(places)};
 }
 
 }  // namespace rondo::app

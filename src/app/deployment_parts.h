@@ -1,5 +1,6 @@
 // Everything a deployment names, loaded and checked against each other before anything runs or is
-// written (the map, the dock, the routines and tasks, the simulated world, the requests): every
+// written (the map, the dock, the routines and tasks, the simulated world, the requests, the
+// places): every
 // node they name is on the map, and every error names the file, the line and the node.
 //
 //   Result<DeploymentParts> parts = load_parts(deployment);   // reads files, writes nothing
@@ -11,6 +12,7 @@
 #include "deployment.h"
 #include "rondo/core/result.h"
 #include "rondo/core/task_codec.h"
+#include "rondo/lang/places.h"
 #include "rondo/map/topo_map.h"
 #include "rondo/sim/request_generator.h"
 #include "rondo/sim/sim_world.h"
@@ -23,6 +25,7 @@ struct DeploymentParts {
   TaskFile plan;  // routines and one-off tasks
   sim::SimWorld world;
   std::optional<sim::RequestGenerator> people;
+  std::optional<lang::Places> places;  // the deployment's places file, checked against the map
 };
 
 Result<DeploymentParts> load_parts(const Deployment& deployment);

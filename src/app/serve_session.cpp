@@ -141,7 +141,8 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
                           .store = db,
                           .map = parts.map,
                           .zone = d.zone,
-                          .deployment = d.name},
+                          .deployment = d.name,
+                          .places = parts.places ? &*parts.places : nullptr},
                          {.host = request.host, .port = request.port, .token = token,
                           .threads = 2 * request.max_streams});
   RONDO_ASSIGN_OR_RETURN(const int port, server.bind());

@@ -3,7 +3,7 @@
 // command's routines are added as POST /api/v1/routines would (201, {"routines": [...]}), a
 // cancellation cancels the tasks it names that are not finished (200). A sentence outside the
 // grammar or a place that is not on the map is 422 naming the word, with the field "text". The
-// places are the map's node names; "now" and local times are the service's clock in the
+// places are the deployment's places file (ServiceContext::places), else the map's node names; "now" and local times are the service's clock in the
 // deployment's zone.
 #include <fmt/format.h>
 
@@ -21,7 +21,9 @@ Reply command(Api& api, const httplib::Request& req) {
   if (!body.contains("text") || !body["text"].is_string())
     return error_reply(422, "invalid", "request: text: expected the command as text", "text");
   return api.on_clock([&api, text = body["text"].get<std::string>()] {
-    const lang::Places places = lang::Places::from_map(api.ctx.map);
+    std::optional<lang::Places> node_names;
+    if (!api.ctx.places) node_names = lang::Places::from_map(api.ctx.map);
+    const lang::Places& places = api.ctx.places ? *api.ctx.places : *node_names;
     auto parsed = lang::parse_command(text, {.places = &places, .zone = api.ctx.zone, .now = api.ctx.clock.now()});
     if (!parsed) return error_reply(422, "invalid", "text: " + parsed.error().message, "text");
     if (!parsed->routines.empty()) {  // a repeated command: as POST /api/v1/routines would

@@ -123,6 +123,24 @@ TEST(RunCommand, ABadDeploymentIsExitCode2NamingFileAndLine) {
   std::filesystem::remove_all(dir.parent_path());
 }
 
+// A places file (commands in words through rondo serve) is checked against the map before anything
+// runs: a room on a node the map does not have is exit 2, naming the places file's line.
+TEST(RunCommand, ThePlacesFileIsCheckedAgainstTheMap) {
+  const auto dir = fresh_dir("places");
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path ex = std::filesystem::absolute("examples/g4s");
+  std::ofstream(dir / "places.yaml") << "rondo_places: 1\nrooms:\n  - name: kitchen\n    node: WayPoint2\n"
+                                        "  - name: attic\n    node: Attic\n";
+  std::ofstream(dir / "deployment.yaml") << "rondo_deployment: 1\nname: x\nmap: " << (ex / "map.yaml").string()
+                                         << "\ntime_zone: UTC\ndock: ChargingPoint\nstart: 2026-11-23\ndays: 1\nworld: "
+                                         << (ex / "world.yaml").string() << "\nplaces: places.yaml\n";
+  const auto r = test::run_cli({"run", (dir / "deployment.yaml").string(), "--out", (dir / "run").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("places.yaml:6"));
+  EXPECT_THAT(r.err, HasSubstr("Attic"));
+  std::filesystem::remove_all(dir.parent_path());
+}
+
 // The robot section (docs/vda5050.md): kind sim (the default) or vda5050, checked with file, line
 // and field like the rest; a vda5050 vehicle moves in real time, so the run needs --realtime.
 TEST(RunCommand, TheRobotSectionIsCheckedAndAVdaVehicleNeedsRealtime) {

@@ -47,6 +47,19 @@ TEST(ApiCommands, ARepeatedCommandAddsItsRoutineAndKeepsItStored) {
   EXPECT_EQ(body_of(again)["error"]["field"], "text");
 }
 
+// With the deployment's places file (examples/office: places.yaml), rooms and their aliases are
+// understood; without one ("check the kitchen" on G4S) only node names are.
+TEST(ApiCommands, TheDeploymentsPlacesFileNamesRoomsByTheirAliases) {
+  LiveService s(fresh_dir("rondo-service-test", "commands-places"), {.deployment = "examples/office/deployment.yaml"});
+  auto cli = s.client();
+  auto added = cli.Post("/api/v1/commands", R"({"text": "check the kitchen tomorrow"})", "application/json");
+  ASSERT_EQ(added->status, 201) << added->body;
+  EXPECT_EQ(body_of(added)["tasks"][0]["start_node"], "A-117");
+  LiveService g4s(fresh_dir("rondo-service-test", "commands-no-places"));
+  EXPECT_EQ(g4s.client().Post("/api/v1/commands", R"({"text": "check the kitchen tomorrow"})", "application/json")->status,
+            422);
+}
+
 TEST(ApiCommands, AWordOrPlaceNotUnderstoodIsNamed) {
   LiveService s(fresh_dir("rondo-service-test", "commands-bad"));
   auto cli = s.client();

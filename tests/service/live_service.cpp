@@ -7,8 +7,8 @@
 namespace rondo::test {
 namespace {
 
-app::DeploymentParts g4s_parts() {
-  auto d = app::load_deployment(std::filesystem::path(RONDO_SOURCE_DIR) / "examples/g4s/deployment.yaml");
+app::DeploymentParts example_parts(const std::string& deployment) {
+  auto d = app::load_deployment(std::filesystem::path(RONDO_SOURCE_DIR) / deployment);
   if (!d) throw std::runtime_error(d.error().message);
   auto parts = app::load_parts(*d);
   if (!parts) throw std::runtime_error(parts.error().message);
@@ -26,7 +26,7 @@ store::Store open_store(const std::filesystem::path& data) {
 }  // namespace
 
 LiveService::LiveService(const std::filesystem::path& data, LiveOptions o)
-    : parts_(g4s_parts()), store_(open_store(data)), clock_(o.speed), token_(o.token) {
+    : parts_(example_parts(o.deployment)), store_(open_store(data)), clock_(o.speed), token_(o.token) {
   robot_ = std::make_unique<sim::SimRobot>(clock_, parts_.map, parts_.world,
                                            sim::SimRobotOptions{.start = parts_.dock, .dock = parts_.dock, .seed = 3});
   exec::ExecutorOptions eo;
@@ -40,7 +40,8 @@ LiveService::LiveService(const std::filesystem::path& data, LiveOptions o)
                                                                       .store = store_,
                                                                       .map = parts_.map,
                                                                       .zone = TimeZone::utc(),
-                                                                      .deployment = "g4s"},
+                                                                      .deployment = "g4s",
+                                                                      .places = parts_.places ? &*parts_.places : nullptr},
                                               service::ServerOptions{.host = "127.0.0.1",
                                                                      .port = 0,
                                                                      .token = o.token,

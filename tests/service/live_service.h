@@ -1,4 +1,5 @@
-// A live service for the API tests: the G4S example's map and simulated world, an executor on a
+// A live service for the API tests: the G4S example's map and simulated world (or another
+// example's, LiveOptions::deployment), an executor on a
 // SystemClock running on its own thread, and a service::Server on an ephemeral loopback port,
 // with an httplib client pointed at it. Conditions are awaited with generous deadlines.
 #pragma once
@@ -31,6 +32,7 @@ struct LiveOptions {
   double speed = 1.0;
   int threads = 16;
   Duration answer_timeout = seconds(30);
+  std::string deployment = "examples/g4s/deployment.yaml";  // under the source tree
 };
 
 class LiveService {

@@ -26,6 +26,7 @@
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
 #include "rondo/exec/robot.h"
+#include "rondo/lang/places.h"
 #include "rondo/map/topo_map.h"
 #include "rondo/store/store.h"
 
@@ -41,6 +42,8 @@ struct ServiceContext {
   const map::TopoMap& map;
   TimeZone zone;
   std::string deployment;  // its name, for /healthz and /metrics
+  // The places of commands in words (rooms, aliases, people); nothing: the map's node names.
+  const lang::Places* places = nullptr;
 };
 
 struct ServerOptions {
