@@ -12,6 +12,7 @@ Result<DeploymentRobot> make_robot(const Deployment& d, DeploymentParts& parts, 
                            vda5050::Vda5050Robot::create(clock, parts.map, *d.vda5050, {.start = start}));
     return DeploymentRobot{.robot = std::move(vehicle), .charging_time = [] { return Duration{0}; }};
   }
+  parts.world.edges->set_seed(d.seed);  // the building's own spells: the deployment's seed, also on resume
   auto sim = std::make_unique<sim::SimRobot>(clock, parts.map, parts.world,
                                              sim::SimRobotOptions{.start = start, .dock = parts.dock, .seed = seed});
   const sim::SimRobot* s = sim.get();

@@ -95,7 +95,7 @@ Status decode_edge_settings(const Field& f, bool with_bursts, ParametricSpec& sp
 
 Result<EdgeEffect> decode_effect(const Field& f, const map::TopoMap& map, const TimeZone& zone) {
   RONDO_RETURN_IF_ERROR(f.expect_keys({"name", "edges", "nodes", "actions", "doors", "all", "when", "unless",
-                                       "failure_probability", "duration_factor", "closed"}));
+                                       "failure_probability", "duration_factor", "closed", "spells"}));
   EdgeEffect effect;
   if (auto name = f.optional("name")) {
     RONDO_ASSIGN_OR_RETURN(effect.name, name->as_string());
@@ -126,6 +126,15 @@ Result<EdgeEffect> decode_effect(const Field& f, const map::TopoMap& map, const 
   RONDO_RETURN_IF_ERROR(read_number(f, "duration_factor", 0, kMaxFactor, effect.duration_factor));
   if (auto closed = f.optional("closed")) {
     RONDO_ASSIGN_OR_RETURN(effect.closed, closed->as_bool());
+  }
+  if (auto spells = f.optional("spells")) {
+    RONDO_RETURN_IF_ERROR(spells->expect_keys({"mean_open", "mean_shut"}));
+    ShutSpells s;
+    RONDO_RETURN_IF_ERROR(read_duration(*spells, "mean_open", s.mean_open));
+    RONDO_RETURN_IF_ERROR(read_duration(*spells, "mean_shut", s.mean_shut));
+    if (s.mean_open <= Duration{0} || s.mean_shut <= Duration{0})
+      return spells->error("mean_open and mean_shut must both be given, and positive");
+    effect.spells = s;
   }
   return effect;
 }

@@ -1,9 +1,11 @@
 #include "rondo/sim/parametric_world.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "rondo/map/map_geometry.h"
+#include "rondo/sim/rng.h"
 
 namespace rondo::sim {
 namespace {
@@ -27,6 +29,8 @@ ParametricWorld::ParametricWorld(const map::TopoMap& map, TimeZone zone, Paramet
   const map::TravelTimeOptions options{.default_speed = spec_.default_speed};
   nominal_.reserve(map.edge_count());
   for (map::EdgeIndex e = 0; e < map.edge_count(); ++e) nominal_.push_back(map::nominal_travel_time(map, e, options));
+  spell_key_.reserve(map.edge_count());
+  for (map::EdgeIndex e = 0; e < map.edge_count(); ++e) spell_key_.push_back(map.edge(e).door.value_or(map.edge(e).id));
   for (std::size_t i = 0; i < spec_.effects.size(); ++i) {
     for (map::EdgeIndex e : spec_.effects[i].edges) {
       auto& list = effects_of_.at(e);
@@ -62,7 +66,7 @@ EdgeConditions ParametricWorld::conditions(map::EdgeIndex edge, Time start, Rng&
   for (std::size_t i : effects_of_.at(edge)) {
     const EdgeEffect& effect = spec_.effects[i];
     if (!active(effect, start)) continue;
-    c.closed = c.closed || effect.closed;
+    c.closed = c.closed || effect.closed || (effect.spells && shut(i, edge, start));
     c.failure_probability = combine_failure(c.failure_probability, effect.failure_probability);
     c.duration_factor *= effect.duration_factor;
   }
@@ -80,9 +84,46 @@ bool ParametricWorld::active(const EdgeEffect& effect, Time t) const {
 }
 
 std::optional<bool> ParametricWorld::closed_at(map::EdgeIndex edge, Time t) const {
-  for (std::size_t i : effects_of_.at(edge))
-    if (spec_.effects[i].closed && active(spec_.effects[i], t)) return true;
+  for (std::size_t i : effects_of_.at(edge)) {
+    const EdgeEffect& effect = spec_.effects[i];
+    if (!active(effect, t)) continue;
+    if (effect.closed || (effect.spells && shut(i, edge, t))) return true;
+  }
   return false;
+}
+
+void ParametricWorld::set_seed(std::uint64_t seed) {
+  seed_ = seed;
+  spells_.clear();
+}
+
+// The day's spells come from a generator seeded by the world's seed, the effect, the door and the
+// local day: the first state is drawn from the stationary shut share mean_shut / (mean_open +
+// mean_shut), then the spells alternate until the day ends.
+bool ParametricWorld::shut(std::size_t effect, map::EdgeIndex edge, Time t) const {
+  const ShutSpells& s = *spec_.effects[effect].spells;
+  if (s.mean_shut <= Duration{0}) return false;
+  if (s.mean_open <= Duration{0}) return true;
+  const std::chrono::year_month_day day = zone_.local_date(t);
+  SpellDay& d = spells_[{effect, spell_key_[edge]}];
+  if (d.day != day || d.changes.empty()) {
+    std::uint64_t mix = seed_ ^ (0x5EE11ULL * (effect + 1));
+    for (char c : spell_key_[edge]) mix = mix * 1099511628211ULL ^ static_cast<unsigned char>(c);
+    mix ^= static_cast<std::uint64_t>(std::chrono::sys_days(day).time_since_epoch().count()) * 0x9E3779B97F4A7C15ULL;
+    Rng rng(splitmix64(mix));
+    const double open_s = to_seconds(s.mean_open);
+    const double shut_s = to_seconds(s.mean_shut);
+    d = SpellDay{.day = day, .shut_at_midnight = rng.bernoulli(shut_s / (open_s + shut_s)), .changes = {}};
+    const Time midnight = zone_.at(day, Duration{0});
+    const Time end = zone_.at(day, hours(24));
+    bool shut_now = d.shut_at_midnight;
+    for (Time at = midnight; at < end; shut_now = !shut_now) {
+      at += from_seconds(rng.exponential(shut_now ? shut_s : open_s));
+      d.changes.push_back(at);  // the last one lies at or past the day's end
+    }
+  }
+  const auto changes_before = std::upper_bound(d.changes.begin(), d.changes.end(), t) - d.changes.begin();
+  return d.shut_at_midnight != (changes_before % 2 == 1);
 }
 
 EdgeSample ParametricWorld::sample_edge(map::EdgeIndex edge, Time start, Rng& rng) {

@@ -189,5 +189,70 @@ RC_GTEST_PROP(ParametricWorld, ClosedEdgesAlwaysFailAndDurationsAreNonNegative,
   }
 }
 
+// The kitchen door "kd" is shut for spells of 30 minutes on average, open 90 minutes between
+// them: a quarter of the time.
+ParametricSpec spells_spec(const map::TopoMap& m) {
+  ParametricSpec spec;
+  spec.failure_probability = 0;
+  spec.effects.push_back({.name = "kitchen shut now and then",
+                          .edges = {edge(m, "Hall_Kitchen"), edge(m, "Kitchen_Hall")},
+                          .spells = ShutSpells{.mean_open = minutes(90), .mean_shut = minutes(30)}});
+  return spec;
+}
+
+// A shut spell holds for both directions of the door, every attempt in it fails, and the door
+// sensor's view (closed_at) is the same spell.
+TEST(ParametricWorld, AShutSpellLastsAndHoldsForBothDirectionsAndTheSensor) {
+  const map::TopoMap m = small_map();
+  ParametricWorld world(m, london(), spells_spec(m));
+  world.set_seed(5);
+  Rng rng(1);
+  const map::EdgeIndex in = edge(m, "Hall_Kitchen"), out = edge(m, "Kitchen_Hall");
+  int shut_minutes = 0, runs = 0;
+  bool was_shut = false;
+  const Time monday = local("2026-11-23T00:00");
+  for (Time t = monday; t < monday + hours(24 * 7); t += minutes(1)) {
+    const bool shut = *world.closed_at(in, t);
+    EXPECT_EQ(*world.closed_at(out, t), shut);
+    if (shut) {
+      EXPECT_FALSE(world.sample_edge(in, t, rng).success);
+      EXPECT_FALSE(world.sample_edge(out, t, rng).success);
+    } else {
+      EXPECT_TRUE(world.sample_edge(in, t, rng).success);
+    }
+    shut_minutes += shut ? 1 : 0;
+    runs += (shut && !was_shut) ? 1 : 0;
+    was_shut = shut;
+  }
+  // A week: about a quarter shut, in spells of about half an hour (not minute by minute).
+  const double share = shut_minutes / (7.0 * 24 * 60);
+  EXPECT_NEAR(share, 0.25, 0.08);
+  ASSERT_GT(runs, 0);
+  EXPECT_NEAR(static_cast<double>(shut_minutes) / runs, 30.0, 12.0);
+  EXPECT_FALSE(*world.closed_at(edge(m, "Dock_Hall"), monday));  // no door, no effect
+}
+
+// The spells are a function of the seed and the time: the order of the looks does not matter, a
+// fresh world with the same seed sees the same, another seed sees other spells.
+TEST(ParametricWorld, ShutSpellsDependOnTheSeedAndTheTimeOnly) {
+  const map::TopoMap m = small_map();
+  const map::EdgeIndex door = edge(m, "Hall_Kitchen");
+  const Time monday = local("2026-11-23T00:00");
+  std::vector<Time> times;
+  for (int i = 0; i < 2000; ++i) times.push_back(monday + minutes(7 * i));
+  const auto looks = [&](std::uint64_t seed, bool backwards) {
+    ParametricWorld world(m, london(), spells_spec(m));
+    world.set_seed(seed);
+    std::vector<bool> shut(times.size());
+    for (std::size_t k = 0; k < times.size(); ++k) {
+      const std::size_t i = backwards ? times.size() - 1 - k : k;
+      shut[i] = *world.closed_at(door, times[i]);
+    }
+    return shut;
+  };
+  EXPECT_EQ(looks(5, false), looks(5, true));
+  EXPECT_NE(looks(5, false), looks(6, false));
+}
+
 }  // namespace
 }  // namespace rondo::sim

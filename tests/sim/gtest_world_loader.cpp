@@ -75,6 +75,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadWorld{"kind: parametric\neffects:\n  - all: true\n    when: {days: [funday]}\n", "world.yaml:4: effects[0].when.days[0]: unknown day 'funday'"},
         BadWorld{"kind: parametric\neffects:\n  - all: true\n    when: {from: \"25:00\"}\n", "effects[0].when.from: a time of day"},
         BadWorld{"kind: parametric\nbursts: {mean_blocked: soon}\n", "world.yaml:2: bursts.mean_blocked"},
+        BadWorld{"kind: parametric\neffects:\n  - doors: [kd]\n    spells: {mean_open: 1h}\n", "world.yaml:4: effects[0].spells: mean_open and mean_shut"},
+        BadWorld{"kind: parametric\neffects:\n  - doors: [kd]\n    spells: {mean_open: 1h, mean_shut: 10m, often: 2}\n", "often"},
         BadWorld{"kind: parametric\nactions:\n  talk: {non_interruptible: -1}\n", "world.yaml:3: actions.talk.non_interruptible"},
         BadWorld{"kind: parametric\nbattery: {charging_per_hour: -2}\n", "world.yaml:2: battery.charging_per_hour: must be from 0"},
         BadWorld{"kind: parametric\nconfirmation: {places: {Attic: 2m}}\n", "world.yaml:2: confirmation.places.Attic: map 'small' has no node 'Attic'"},

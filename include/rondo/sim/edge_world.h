@@ -31,6 +31,9 @@ class EdgeWorld {
   // Whether the building has the edge closed at `t` (a door shut, a corridor blocked), when the
   // world knows: what a sensor sees. Draws nothing and changes nothing.
   virtual std::optional<bool> closed_at(map::EdgeIndex /*edge*/, Time /*t*/) const { return std::nullopt; }
+  // The seed of what the building does by itself, apart from the robot's draws (a door's shut
+  // spells): the deployment's seed, the same when a run resumes.
+  virtual void set_seed(std::uint64_t /*seed*/) {}
 };
 
 }  // namespace rondo::sim

@@ -11,11 +11,15 @@
 //   ParametricWorld world(map, zone, spec);
 //   EdgeSample s = world.sample_edge(edge, t, rng);
 //
-// Contract: as EdgeWorld. Closed edges always fail. The burst state of an edge changes only with
+// Contract: as EdgeWorld. Closed edges, and edges in a shut spell, always fail. The burst state of an edge changes only with
 // time; sampling one edge never changes another's state.
 #pragma once
 
+#include <cstdint>
+#include <map>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rondo/core/timezone.h"
@@ -55,6 +59,18 @@ struct BurstSpec {
   bool operator==(const BurstSpec&) const = default;
 };
 
+// Spells of a door shut and open that last (someone closes their office for a while): while the
+// effect is active, each door it selects alternates between open and shut spells of exponential
+// lengths with these means, the same spell for both directions, and seen by the door sensor
+// (closed_at). An edge with no door has spells of its own. The spells are drawn per local day
+// from the world's seed (EdgeWorld::set_seed), the effect, the door and the day, starting in the
+// stationary state: they do not depend on who looks, when, or in what order.
+struct ShutSpells {
+  Duration mean_open{0};
+  Duration mean_shut{0};
+  bool operator==(const ShutSpells&) const = default;
+};
+
 // A change to some edges at some times. Active at t when `when` is empty or one of it matches, and
 // none of `unless` matches. Failure probabilities combine as independent causes:
 // p = 1 - (1 - p_base)(1 - p_effect)...; duration factors multiply.
@@ -66,6 +82,7 @@ struct EdgeEffect {
   double failure_probability = 0;
   double duration_factor = 1;
   bool closed = false;  // every attempt fails
+  std::optional<ShutSpells> spells{};  // every attempt fails during a shut spell
   bool operator==(const EdgeEffect&) const = default;
 };
 
@@ -94,6 +111,7 @@ class ParametricWorld final : public EdgeWorld {
   ParametricWorld(const map::TopoMap& map, TimeZone zone, ParametricSpec spec);
 
   EdgeSample sample_edge(map::EdgeIndex edge, Time start, Rng& rng) override;
+  void set_seed(std::uint64_t seed) override;
   std::optional<bool> closed_at(map::EdgeIndex edge, Time t) const override;
   // Advances the edge's burst state to `start` (drawing from rng) and returns what applies.
   EdgeConditions conditions(map::EdgeIndex edge, Time start, Rng& rng);
@@ -108,12 +126,25 @@ class ParametricWorld final : public EdgeWorld {
   };
   bool advance_burst(map::EdgeIndex edge, Time t, Rng& rng);
   bool active(const EdgeEffect& effect, Time t) const;
+  // Whether `effect` (active at t) has `edge` shut at t.
+  bool shut(std::size_t effect, map::EdgeIndex edge, Time t) const;
+
+  // One door's spells over one local day: the times it changes, from its state at midnight.
+  struct SpellDay {
+    std::chrono::year_month_day day{};
+    bool shut_at_midnight = false;
+    std::vector<Time> changes{};
+  };
 
   TimeZone zone_;
   ParametricSpec spec_;
   std::vector<Duration> nominal_;                // per edge
   std::vector<std::vector<std::size_t>> effects_of_;  // per edge: indices into spec_.effects
   std::vector<BurstState> burst_;                // per edge
+  std::vector<std::string> spell_key_;           // per edge: its door, else its id
+  std::uint64_t seed_ = 0;
+  // The day drawn last per (effect, door): a memo of a pure function of the seed and the time.
+  mutable std::map<std::pair<std::size_t, std::string>, SpellDay> spells_;
 };
 
 }  // namespace rondo::sim
