@@ -1,7 +1,7 @@
 // Everything a deployment names, loaded and checked against each other before anything runs or is
 // written (the map, the dock, the routines and tasks, the simulated world, the requests, the
-// places): every
-// node they name is on the map, and every error names the file, the line and the node.
+// places): every node they name is on the map, and every error names the file, the line and the
+// node.
 //
 //   Result<DeploymentParts> parts = load_parts(deployment);   // reads files, writes nothing
 //   if (!parts) return parts.error();   // "routines.yaml:12: routines[0].task.start_node: node ..."

@@ -11,8 +11,8 @@
 //   ParametricWorld world(map, zone, spec);
 //   EdgeSample s = world.sample_edge(edge, t, rng);
 //
-// Contract: as EdgeWorld. Closed edges, and edges in a shut spell, always fail. The burst state of an edge changes only with
-// time; sampling one edge never changes another's state.
+// Contract: as EdgeWorld. Closed edges, and edges in a shut spell, always fail. The burst state of
+// an edge changes only with time; sampling one edge never changes another's state.
 #pragma once
 
 #include <cstdint>
