@@ -195,7 +195,9 @@ void SimRobot::finish() {
   if (job.is_edge) {
     if (job.success && job.end == End::kNatural) {
       location_ = map_.to_index(job.edge);
-      distance_m_ += map::edge_length(map_, job.edge);
+      const double metres = map::edge_length(map_, job.edge);
+      distance_m_ += metres;
+      battery_ = world_.battery.after_distance(battery_, metres);
     }
     // The rest of the committed route goes on after a success; anything else ends the drive.
     if (job.success && job.end == End::kNatural && !route_.empty()) {

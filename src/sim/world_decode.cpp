@@ -40,13 +40,14 @@ Result<ActionModel> decode_actions(const Field& f) {
 
 Result<BatteryModel> decode_battery(const Field& f) {
   RONDO_RETURN_IF_ERROR(
-      f.expect_keys({"initial", "moving_per_hour", "acting_per_hour", "idle_per_hour", "charging_per_hour"}));
+      f.expect_keys({"initial", "moving_per_hour", "acting_per_hour", "idle_per_hour", "charging_per_hour", "per_metre"}));
   BatteryModel b;
   RONDO_RETURN_IF_ERROR(detail::read_number(f, "initial", 0, 1, b.initial));
   RONDO_RETURN_IF_ERROR(detail::read_number(f, "moving_per_hour", 0, 100, b.moving_per_hour));
   RONDO_RETURN_IF_ERROR(detail::read_number(f, "acting_per_hour", 0, 100, b.acting_per_hour));
   RONDO_RETURN_IF_ERROR(detail::read_number(f, "idle_per_hour", 0, 100, b.idle_per_hour));
   RONDO_RETURN_IF_ERROR(detail::read_number(f, "charging_per_hour", 0, 100, b.charging_per_hour));
+  RONDO_RETURN_IF_ERROR(detail::read_number(f, "per_metre", 0, 1, b.per_metre));
   return b;
 }
 

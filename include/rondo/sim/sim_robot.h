@@ -26,7 +26,9 @@
 // drive() and run_action() end at once with kRobotFault.
 // Figures: distance_m() counts the length of successfully crossed edges only (a failed or
 // cancelled attempt ends where it began and counts 0 m). charging_time() is the time spent idle
-// at the dock. An empty battery fails every edge and run_action() at once (duration 0).
+// at the dock. The battery drains by the hour in each mode (BatteryModel) and, at the end of each
+// successfully crossed edge, by BatteryModel::per_metre for its map length. An empty battery fails
+// every edge and run_action() at once (duration 0).
 // Misuse (drive() while busy, a route that does not leave location() or is not consecutive)
 // throws std::logic_error.
 // The clock, map and world must outlive the robot; the destructor cancels its pending events.
