@@ -260,6 +260,15 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
     for (Json& t : result.report["loading_times"])
       if (auto truth = s.parts.world.confirmation.at(t["action"].get<std::string>(), t["place"].get<std::string>()))
         t["truth_s"] = to_seconds(*truth);
+  // The simulated battery's true costs beside the learned ones (not for a real vehicle).
+  if (!d.vda5050) {
+    const sim::BatteryModel& b = s.parts.world.battery;
+    result.report["battery"]["truth"] = Json{{"per_km", b.per_metre * 1000},
+                                             {"moving_per_hour", b.moving_per_hour},
+                                             {"acting_per_hour", b.acting_per_hour},
+                                             {"idle_per_hour", b.idle_per_hour},
+                                             {"charging_per_hour", b.charging_per_hour}};
+  }
   result.report["deployment"] = d.name;
   result.report["seed"] = d.seed;
   result.report["days"] = d.days;
