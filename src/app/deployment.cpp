@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "rondo/core/document.h"
+#include "rondo/sim/sim_world.h"
 
 namespace rondo::app {
 namespace {
@@ -140,7 +141,8 @@ Status decode_robot(const Field& f, Deployment& d) {
 Result<Deployment> decode(const Field& root, const std::filesystem::path& file) {
   const std::filesystem::path base = file.parent_path();
   RONDO_RETURN_IF_ERROR(root.expect_keys({"rondo_deployment", "name", "map", "time_zone", "dock", "start", "days",
-                                          "seed", "routines", "world", "requests", "executor", "robot"}));
+                                          "seed", "routines", "world", "requests", "executor", "robot",
+                                          "battery"}));
   Deployment d;
   d.file = file;
   RONDO_ASSIGN_OR_RETURN(const Field version, root.required("rondo_deployment"));
@@ -175,6 +177,7 @@ Result<Deployment> decode(const Field& root, const std::filesystem::path& file) 
   RONDO_ASSIGN_OR_RETURN(d.world, path_field(world, base));
   if (auto f = root.optional("requests")) { RONDO_ASSIGN_OR_RETURN(d.requests, path_field(*f, base)); }
   if (auto f = root.optional("executor")) RONDO_RETURN_IF_ERROR(decode_executor(*f, d.executor));
+  if (auto f = root.optional("battery")) { RONDO_ASSIGN_OR_RETURN(d.battery, sim::decode_battery(*f)); }
   if (auto f = root.optional("robot")) RONDO_RETURN_IF_ERROR(decode_robot(*f, d));
   return d;
 }

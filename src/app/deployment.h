@@ -28,6 +28,7 @@
 #include "rondo/core/result.h"
 #include "rondo/core/timezone.h"
 #include "rondo/exec/executor.h"
+#include "rondo/sim/battery_model.h"
 #include "rondo/vda5050/config.h"
 
 namespace rondo::app {
@@ -46,6 +47,8 @@ struct Deployment {
   std::filesystem::path world;
   std::optional<std::filesystem::path> requests;
   exec::ExecutorOptions executor{};  // dock is filled in once the map is loaded
+  // `battery:`: the simulated battery, in place of the world file's (docs/simulation.md).
+  std::optional<sim::BatteryModel> battery;
   // The robot: nothing for the simulated one (kind: sim, the default), or a VDA 5050 vehicle.
   std::optional<vda5050::Vda5050Config> vda5050;
 };

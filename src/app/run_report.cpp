@@ -156,6 +156,7 @@ Json battery_summary(const exec::Executor& executor) {
          {"charges", f.charges},
          {"on_charger_s", to_seconds(f.on_charger)},
          {"below_threshold", f.low_battery},
+         {"empty_readings", f.empty_readings},
          {"for_charging", for_charging},
          {"learned", rates(f.learned)},
          {"standard_errors", rates(f.standard_errors)},

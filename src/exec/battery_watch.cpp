@@ -20,6 +20,7 @@ void BatteryWatch::action_finished(const ActionResult& r) {
 void BatteryWatch::read(Time now, double level, bool charging) {
   level = std::clamp(level, 0.0, 1.0);
   ++readings_;
+  if (level <= 1e-6) ++empty_readings_;
   if (level < lowest_ || !lowest_at_) {
     lowest_ = level;
     lowest_at_ = now;
@@ -49,6 +50,7 @@ BatteryFigures BatteryWatch::figures() const {
           .charges = charges_,
           .on_charger = on_charger_,
           .low_battery = 0,
+          .empty_readings = empty_readings_,
           .learned = estimator_.rates(),
           .standard_errors = estimator_.standard_errors(),
           .intervals_learned = estimator_.observations()};

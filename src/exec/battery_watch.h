@@ -54,6 +54,7 @@ class BatteryWatch {
   BatteryUse since_{};  // the edges and actions since the last reading
   Duration busy_{0};    //   and their time
   std::size_t readings_ = 0;
+  std::size_t empty_readings_ = 0;
   double lowest_ = 1;
   std::optional<Time> lowest_at_;
   int charges_ = 0;

@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cmath>
+#include <string>
 
 #include "battery_watch.h"
 #include "dispatcher.h"
@@ -16,7 +16,8 @@
 namespace rondo::exec {
 namespace {
 
-int percent(double level) { return static_cast<int>(std::lround(level * 100)); }
+// A state of charge for people: "14.9 %".
+std::string percent(double level) { return fmt::format("{:.1f} %", level * 100); }
 
 }  // namespace
 
@@ -46,8 +47,8 @@ void Executor::enter_low_battery() {
   ++low_battery_count_;
   low_since_ = clock_.now();
   book_.note_robot("battery low", Outcome::kCharging,
-                   fmt::format("battery {} % at {}, below the hard threshold {} %: the robot goes to charge at the "
-                               "next interruptible moment and starts nothing new until {} % (about {} on the "
+                   fmt::format("battery {} at {}, below the hard threshold {}: the robot goes to charge at the "
+                               "next interruptible moment and starts nothing new until {} (about {} on the "
                                "charger)",
                                percent(battery_->level()), map_.node(robot_.location()).name,
                                percent(options_.battery_threshold), percent(resume_level()),
@@ -57,14 +58,14 @@ void Executor::enter_low_battery() {
 void Executor::check_battery() {
   if (low_battery_ || !started_ || !below_threshold()) return;
   enter_low_battery();
+  reschedule({}, "battery low");  // the plan starts after the charge (free_at)
   if (run_) return charge_now();
-  reschedule({}, "battery low");  // the plan starts after the charge
-  if (!trip_) next();             // a trip goes to the dock anyway
+  if (!trip_) next();  // a trip goes to the dock anyway
 }
 
 void Executor::charge_now() {
   if (!run_ || run_->stopping()) return;
-  const std::string why = fmt::format("the battery is below {} %: the robot goes to charge",
+  const std::string why = fmt::format("the battery is below {}: the robot goes to charge",
                                       percent(options_.battery_threshold));
   if (run_->waiting()) return requeue_waiting(Outcome::kCharging, "waiting ended: " + why);
   // Not interruptible now: it finishes first (or on_interruptible_changed() comes back here).
@@ -80,12 +81,12 @@ bool Executor::must_charge() {
     return true;
   }
   if (battery_->level() < resume_level()) return true;
-  low_battery_ = false;
   book_.note_robot("charged", Outcome::kCharging,
-                   fmt::format("battery {} % after {} since it fell below {} %: dispatch resumes",
+                   fmt::format("battery {} after {} since it fell below {}: dispatch resumes",
                                percent(battery_->level()), duration_text(clock_.now() - low_since_),
                                percent(options_.battery_threshold)));
-  reschedule({}, "charged");
+  reschedule({}, "charged");  // still charging for it: what no longer fits is dropped for the charge
+  low_battery_ = false;
   return false;
 }
 

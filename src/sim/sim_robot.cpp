@@ -106,8 +106,22 @@ void SimRobot::drive(const exec::Route& route) {
   start_edge(route.edges.front());
 }
 
+void SimRobot::rescue_if_stranded() {
+  if (battery_ > 0 || location_ == options_.dock || !world_.battery.rescue_after) {
+    empty_since_.reset();
+    return;
+  }
+  const Time now = clock_.now();
+  if (!empty_since_) empty_since_ = now;
+  if (now - *empty_since_ < *world_.battery.rescue_after) return;
+  location_ = options_.dock;  // carried back onto the charger: the command fails, from the dock
+  empty_since_.reset();
+  ++rescues_;
+}
+
 void SimRobot::start_edge(map::EdgeIndex edge) {
   settle_battery();
+  rescue_if_stranded();
   Job job{.is_edge = true, .edge = edge, .start = clock_.now()};
   if (fault_) {
     job.success = false;
@@ -126,6 +140,7 @@ void SimRobot::start_edge(map::EdgeIndex edge) {
 void SimRobot::run_action(const Action& action, Duration expected) {
   if (busy()) throw std::logic_error("SimRobot::run_action while busy");
   settle_battery();
+  rescue_if_stranded();
   Job job{.is_edge = false, .action = action.name, .start = clock_.now()};
   ActionSample s{.success = false};
   if (fault_) {

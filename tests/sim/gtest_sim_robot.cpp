@@ -360,6 +360,28 @@ TEST(SimRobot, TheBatteryDrainsByTheMetreOfEachEdgeCrossedOnTopOfTheHour) {
   EXPECT_NEAR(f.robot.battery(), before - 0.6 * to_seconds(f.rec.edges[2].duration) / 3600, 1e-9);
 }
 
+TEST(SimRobot, AStrandedEmptyRobotIsCarriedBackToTheDockWhenTheWorldSaysSo) {
+  Fixture f;
+  f.world.battery.initial = 0.0;
+  f.world.battery.rescue_after = hours(1);
+  SimRobot robot(f.clock, f.m, f.world, {.start = node(f.m, "Hall"), .dock = node(f.m, "Dock")});
+  robot.set_listener(&f.rec);
+  robot.traverse(edge(f.m, "Hall_Office"));  // empty: fails at once, and the hour starts
+  f.clock.run_until(kStart + minutes(59));
+  robot.traverse(edge(f.m, "Hall_Office"));
+  f.clock.run_until(kStart + minutes(61));
+  EXPECT_EQ(robot.location(), node(f.m, "Hall"));
+  robot.traverse(edge(f.m, "Hall_Office"));  // an hour empty away from the dock: carried back
+  f.clock.run_until(kStart + minutes(62));
+  ASSERT_EQ(f.rec.edges.size(), 3u);
+  EXPECT_FALSE(f.rec.edges[2].succeeded());
+  EXPECT_EQ(robot.location(), node(f.m, "Dock"));
+  EXPECT_EQ(robot.rescues(), 1);
+  EXPECT_TRUE(robot.charging());
+  f.clock.run_until(kStart + minutes(122));
+  EXPECT_NEAR(robot.battery(), 0.61, 1e-6);  // charging from 61 min
+}
+
 TEST(SimRobot, AnEmptyBatteryFailsAtOnceUntilCharged) {
   Fixture f;
   f.world.battery.initial = 0.0;

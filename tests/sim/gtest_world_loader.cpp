@@ -79,6 +79,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadWorld{"kind: parametric\nbattery: {charging_per_hour: -2}\n", "world.yaml:2: battery.charging_per_hour: must be from 0"},
         BadWorld{"kind: parametric\nbattery:\n  per_metre: 2\n", "world.yaml:3: battery.per_metre: must be from 0 to 1"},
         BadWorld{"kind: parametric\nbattery: {per_meter: 0.001}\n", "per_meter"},
+        BadWorld{"kind: parametric\nbattery: {rescue_after: 0s}\n", "world.yaml:2: battery.rescue_after: must be positive"},
         BadWorld{"kind: parametric\nconfirmation: {places: {Attic: 2m}}\n", "world.yaml:2: confirmation.places.Attic: map 'small' has no node 'Attic'"},
         BadWorld{"kind: parametric\nconfirmation: {default: 0s}\n", "world.yaml:2: confirmation.default: must be positive"},
         BadWorld{"kind: parametric\nconfirmation: {by: 2m}\n", "by"},

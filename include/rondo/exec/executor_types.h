@@ -99,6 +99,7 @@ struct BatteryFigures {
   int charges = 0;                // stays on the charger
   Duration on_charger{0};         // their total length
   int low_battery = 0;            // times the battery fell below the hard threshold
+  std::size_t empty_readings = 0;  // readings of an empty battery (the robot ran flat)
   BatteryRates learned{};         // BatteryEstimator::rates()
   BatteryRates standard_errors{};
   std::size_t intervals_learned = 0;

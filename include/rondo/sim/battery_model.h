@@ -11,6 +11,8 @@
 // traverse() and run_action() at once until it has charged (docs/simulation.md).
 #pragma once
 
+#include <optional>
+
 #include "rondo/core/time.h"
 
 namespace rondo::sim {
@@ -24,6 +26,9 @@ struct BatteryModel {
   double idle_per_hour = 0.0;
   double charging_per_hour = 0.50;
   double per_metre = 0.0;  // for each metre of an edge crossed (SimRobot: at the edge's end)
+  // A robot that stands empty away from its dock this long is carried back onto it (people find
+  // it), at its next command; nothing: it stays where it ran flat.
+  std::optional<Duration> rescue_after{};
 
   // The state of charge after `elapsed` in `mode`, starting from `level`.
   double after(double level, Mode mode, Duration elapsed) const;
