@@ -228,6 +228,19 @@ TEST(RunCommand, BatteryLevelsAreStatesOfChargeInOrder) {
   }
 }
 
+TEST(RunCommand, ADeploymentBatteryBlockIsCheckedLikeTheWorlds) {
+  const std::string refit = "refit_at: \"02:00\"        # nightly refit of the edge models";
+  for (const char* bad : {"battery:\n  per_metre: 2", "battery:\n  moving_per_hour: fast", "battery:\n  per_meter: 0.1"}) {
+    const auto dir = fresh_dir("battery-block-bad");
+    const auto deployment = edited_example(dir, "deployment.yaml", refit, refit + "\n" + bad);
+    const auto r = test::run_cli({"run", deployment.string(), "--days", "1", "--out", (dir / "run").string()});
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_THAT(r.err, HasSubstr("deployment.yaml:" + std::to_string(line_of(slurp(deployment), "battery:") + 1))) << bad;
+    EXPECT_FALSE(std::filesystem::exists(dir / "run")) << bad;
+    std::filesystem::remove_all(dir);
+  }
+}
+
 TEST(RunCommand, BlockedEdgeIsAnExecutorKeyAndTheReportHasItsWeeks) {
   const std::string refit = "refit_at: \"02:00\"        # nightly refit of the edge models";
   {
