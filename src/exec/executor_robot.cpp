@@ -5,8 +5,8 @@
 
 #include <algorithm>
 
-#include "dispatcher.h"
 #include "battery_watch.h"
+#include "dispatcher.h"
 #include "loading_times.h"
 #include "rondo/exec/executor.h"
 #include "rondo/store/observations.h"

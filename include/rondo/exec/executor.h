@@ -70,10 +70,10 @@ namespace rondo::exec {
 struct ScheduleAnswer;
 struct ScheduleCall;
 class AssumptionMap;
+class BatteryWatch;
 class Deliveries;
 class DoorModels;
 class LoadingTimes;
-class BatteryWatch;
 class Dispatcher;
 class NavigateStep;
 class Opportunities;
