@@ -105,6 +105,14 @@ void run_run(const RunArgs& args, CommandContext& ctx) {
   const Json& n = r["navigation"];
   ctx.out << fmt::format("navigation {} of {} edge attempts succeeded, {:.0f} m driven\n",
                          n["successes"].get<int>(), n["attempts"].get<int>(), n["distance_m"].get<double>());
+  const Json& b = r["battery"];
+  ctx.out << fmt::format("battery    lowest {:.0f} %, {} stays on the charger ({:.1f} h), {} times below the hard "
+                         "threshold; for charging: {} tasks back in the queue, {} dropped for now, {} failed, {} "
+                         "dropped\n",
+                         b["lowest"].get<double>() * 100, b["charges"].get<int>(),
+                         b["on_charger_s"].get<double>() / 3600, b["below_threshold"].get<int>(),
+                         b["for_charging"].value("queued", 0), b["for_charging"].value("dropped for now", 0),
+                         b["for_charging"].value("failed", 0), b["for_charging"].value("dropped", 0));
   ctx.out << fmt::format("wall time  {:.1f} s; report: {}\n", result->wall_seconds,
                          (request.out / "report.json").string());
   if (result->write_errors > 0) {

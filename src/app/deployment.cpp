@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "rondo/core/document.h"
+#include "rondo/sim/sim_world.h"
 
 namespace rondo::app {
 namespace {
@@ -32,12 +33,36 @@ Result<Duration> non_negative_duration(const Field& f) {
   return d;
 }
 
+// battery_reserve, battery_threshold (0: off) and battery_resume (0: the reserve): states of
+// charge, the threshold below the reserve and the resume level above the threshold.
+Status decode_battery_levels(const Field& f, exec::ExecutorOptions& o) {
+  const auto level = [&f](std::string_view key, double& out) -> Status {
+    if (auto v = f.optional(key)) {
+      RONDO_ASSIGN_OR_RETURN(out, v->as_number());
+      if (!(out >= 0 && out < 1)) return v->error("must be a state of charge from 0 to below 1");
+    }
+    return Status{};
+  };
+  RONDO_RETURN_IF_ERROR(level("battery_reserve", o.battery_reserve));
+  RONDO_RETURN_IF_ERROR(level("battery_threshold", o.battery_threshold));
+  RONDO_RETURN_IF_ERROR(level("battery_resume", o.battery_resume));
+  if (o.battery_threshold > o.battery_reserve)
+    return f.error_at(f.has("battery_threshold") ? "battery_threshold" : "battery_reserve",
+                      fmt::format("the hard threshold {} is above the reserve {}", o.battery_threshold,
+                                  o.battery_reserve));
+  if (o.battery_resume > 0 && o.battery_resume <= o.battery_threshold)
+    return f.error_at("battery_resume", fmt::format("the resume level {} must be above the hard threshold {}",
+                                                    o.battery_resume, o.battery_threshold));
+  return Status{};
+}
+
 Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
   RONDO_RETURN_IF_ERROR(f.expect_keys({"navigation_overrun", "navigation_slack", "action_overrun", "action_slack",
                                        "dock_when_waiting_over", "max_failed_edges", "blocked_edge",
                                        "on_demand_patience", "person_patience", "refit_at",
                                        "refit_window", "online_model", "slot_width", "scheduler_polls", "capacity",
-                                       "return_to", "return_within"}));
+                                       "return_to", "return_within", "battery_reserve", "battery_threshold",
+                                       "battery_resume"}));
   if (auto v = f.optional("navigation_overrun")) { RONDO_ASSIGN_OR_RETURN(o.navigation_overrun, positive(*v)); }
   if (auto v = f.optional("navigation_slack")) { RONDO_ASSIGN_OR_RETURN(o.navigation_slack, non_negative_duration(*v)); }
   if (auto v = f.optional("action_overrun")) { RONDO_ASSIGN_OR_RETURN(o.action_overrun, positive(*v)); }
@@ -96,7 +121,7 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
     RONDO_ASSIGN_OR_RETURN(o.return_within, v->as_duration());
     if (o.return_within < minutes(1)) return v->error("must be at least 1m");
   }
-  return Status{};
+  return decode_battery_levels(f, o);
 }
 
 // robot: {kind: sim} (the default) or a VDA 5050 vehicle (docs/vda5050.md).
@@ -116,7 +141,8 @@ Status decode_robot(const Field& f, Deployment& d) {
 Result<Deployment> decode(const Field& root, const std::filesystem::path& file) {
   const std::filesystem::path base = file.parent_path();
   RONDO_RETURN_IF_ERROR(root.expect_keys({"rondo_deployment", "name", "map", "time_zone", "dock", "start", "days",
-                                          "seed", "routines", "world", "requests", "places", "executor", "robot"}));
+                                          "seed", "routines", "world", "requests", "places", "executor", "robot",
+                                          "battery"}));
   Deployment d;
   d.file = file;
   RONDO_ASSIGN_OR_RETURN(const Field version, root.required("rondo_deployment"));
@@ -152,6 +178,7 @@ Result<Deployment> decode(const Field& root, const std::filesystem::path& file) 
   if (auto f = root.optional("requests")) { RONDO_ASSIGN_OR_RETURN(d.requests, path_field(*f, base)); }
   if (auto f = root.optional("places")) { RONDO_ASSIGN_OR_RETURN(d.places, path_field(*f, base)); }
   if (auto f = root.optional("executor")) RONDO_RETURN_IF_ERROR(decode_executor(*f, d.executor));
+  if (auto f = root.optional("battery")) { RONDO_ASSIGN_OR_RETURN(d.battery, sim::decode_battery(*f)); }
   if (auto f = root.optional("robot")) RONDO_RETURN_IF_ERROR(decode_robot(*f, d));
   return d;
 }

@@ -29,6 +29,7 @@
 #include "rondo/core/result.h"
 #include "rondo/core/timezone.h"
 #include "rondo/exec/executor.h"
+#include "rondo/sim/battery_model.h"
 #include "rondo/vda5050/config.h"
 
 namespace rondo::app {
@@ -48,6 +49,8 @@ struct Deployment {
   std::optional<std::filesystem::path> requests;
   std::optional<std::filesystem::path> places;  // commands in words through `rondo serve`'s API
   exec::ExecutorOptions executor{};  // dock is filled in once the map is loaded
+  // `battery:`: the simulated battery, in place of the world file's (docs/simulation.md).
+  std::optional<sim::BatteryModel> battery;
   // The robot: nothing for the simulated one (kind: sim, the default), or a VDA 5050 vehicle.
   std::optional<vda5050::Vda5050Config> vda5050;
 };

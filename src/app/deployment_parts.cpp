@@ -24,6 +24,7 @@ Result<DeploymentParts> load_parts(const Deployment& d) {
   }
   // The world and the requests decoders check their nodes against the map themselves.
   RONDO_ASSIGN_OR_RETURN(sim::SimWorld world, sim::load_world(d.world, map, d.zone));
+  if (d.battery) world.battery = *d.battery;  // the deployment's battery replaces the world's
   std::optional<sim::RequestGenerator> people;
   if (d.requests) { RONDO_ASSIGN_OR_RETURN(people, sim::RequestGenerator::load(*d.requests, map, d.zone)); }
   std::optional<lang::Places> places;

@@ -133,6 +133,38 @@ Json event_summary(const exec::Executor& executor) {
               {"rejected_requests", by_code("rejected")}};
 }
 
+// The battery (docs/executor.md, "Battery"): the lowest state of charge read, the stays on the
+// charger, the falls below the hard threshold, the tasks moved, dropped or failed for charging
+// (events with the code `charging`, by event), and the learned costs with their standard errors.
+Json battery_summary(const exec::Executor& executor) {
+  const exec::BatteryFigures f = executor.battery_figures();
+  const auto round_to = [](double v, double digits) { return std::round(v * digits) / digits; };
+  const auto rates = [&](const exec::BatteryRates& r) {
+    return Json{{"per_km", round_to(r.per_metre * 1000, 1e5)},
+                {"moving_per_hour", round_to(r.moving_per_hour, 1e5)},
+                {"acting_per_hour", round_to(r.acting_per_hour, 1e5)},
+                {"idle_per_hour", round_to(r.idle_per_hour, 1e5)},
+                {"charging_per_hour", round_to(r.charging_per_hour, 1e5)}};
+  };
+  Json for_charging = Json::object();
+  for (const auto& [event, codes] : executor.book().event_counts()) {
+    const auto it = codes.find(exec::Outcome::kCharging);
+    if (it != codes.end() && event != "battery low" && event != "charged") for_charging[event] = it->second;
+  }
+  Json j{{"readings", f.readings},
+         {"lowest", round_to(f.lowest, 1e4)},
+         {"charges", f.charges},
+         {"on_charger_s", to_seconds(f.on_charger)},
+         {"below_threshold", f.low_battery},
+         {"empty_readings", f.empty_readings},
+         {"for_charging", for_charging},
+         {"learned", rates(f.learned)},
+         {"standard_errors", rates(f.standard_errors)},
+         {"intervals_learned", f.intervals_learned}};
+  if (f.lowest_at) j["lowest_at"] = format_time(*f.lowest_at);
+  return j;
+}
+
 Json travel_table(const map::TopoMap& map, std::span<const Traversal> log, Time start, int days,
                   const TimeZone& zone) {
   const Duration week = hours(24 * 7);
@@ -247,6 +279,7 @@ Json run_report(const exec::Executor& executor, const RunFigures& figures) {
   j["scheduler_calls"] = s.schedules;
   j["model_refits"] = s.refits;
   j["live_estimates"] = live_estimates(executor);
+  j["battery"] = battery_summary(executor);
   return j;
 }
 

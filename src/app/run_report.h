@@ -45,6 +45,10 @@ Json live_estimates(const exec::Executor& executor);
 // happen (or not) week by week; report.json's "weeks".
 Json weekly_summary(std::span<const Traversal> log, std::span<const store::Event> events, Time from, Time to);
 
+// report.json's "battery": lowest state of charge, stays on the charger, falls below the hard
+// threshold, tasks moved/dropped/failed for charging by event, and the learned costs.
+Json battery_summary(const exec::Executor& executor);
+
 Json run_report(const exec::Executor& executor, const RunFigures& figures);
 
 // The schedule picture of one local day [from, to).

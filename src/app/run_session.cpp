@@ -211,6 +211,7 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   // move with the machine's other load); null for a day that an earlier attempt ran.
   Json day_wall_seconds = Json::array(), day_cpu_seconds = Json::array();
   const Time end_at = request.run_for ? start + *request.run_for : Time::max();
+  int days_flat = 0;  // days on which the robot read an empty battery
   for (int day = 0; day < d.days; ++day) {
     const auto day_wall_start = std::chrono::steady_clock::now();
     const double day_cpu_start = process_cpu_seconds();
@@ -230,7 +231,9 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
       day_wall_seconds.push_back(nullptr);  // run by an earlier attempt
       day_cpu_seconds.push_back(nullptr);
     } else {
+      const std::size_t empty_before = executor.battery_figures().empty_readings;
       run_until(day_to);
+      if (executor.battery_figures().empty_readings > empty_before) ++days_flat;
       day_wall_seconds.push_back(
           std::chrono::duration<double>(std::chrono::steady_clock::now() - day_wall_start).count());
       day_cpu_seconds.push_back(process_cpu_seconds() - day_cpu_start);
@@ -260,6 +263,16 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
     for (Json& t : result.report["loading_times"])
       if (auto truth = s.parts.world.confirmation.at(t["action"].get<std::string>(), t["place"].get<std::string>()))
         t["truth_s"] = to_seconds(*truth);
+  result.report["battery"]["days_flat"] = days_flat;
+  // The simulated battery's true costs beside the learned ones (not for a real vehicle).
+  if (!d.vda5050) {
+    const sim::BatteryModel& b = s.parts.world.battery;
+    result.report["battery"]["truth"] = Json{{"per_km", b.per_metre * 1000},
+                                             {"moving_per_hour", b.moving_per_hour},
+                                             {"acting_per_hour", b.acting_per_hour},
+                                             {"idle_per_hour", b.idle_per_hour},
+                                             {"charging_per_hour", b.charging_per_hour}};
+  }
   result.report["deployment"] = d.name;
   result.report["seed"] = d.seed;
   result.report["days"] = d.days;

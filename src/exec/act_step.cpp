@@ -60,6 +60,7 @@ void ActStep::run_next() {
   const Action action = task.actions.empty() ? Action{.name = task.activity.empty() ? "task" : task.activity, .args = {}}
                                              : task.actions[index_];
   running_ = action.name;
+  ctx_.before_command();
   ctx_.robot.run_action(action, r.expected_duration() / static_cast<std::int64_t>(n));
 }
 

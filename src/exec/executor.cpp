@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "assumptions.h"
+#include "battery_watch.h"
 #include "deliveries.h"
 #include "dispatcher.h"
 #include "door_models.h"
@@ -57,10 +58,11 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
       loading_(std::make_unique<LoadingTimes>()),
       // With the online model off the executor plans with the snapshot itself: no second cache.
       steps_{clock_,    robot_, map_,   book_,        *travel_, options_.online_model ? *offline_travel_ : *travel_,
-             *planner_, options_, zone_, stats_, navigations_, in_fault_, *models_},
+             *planner_, options_, zone_, stats_, navigations_, in_fault_, *models_, [this] { read_battery(); }},
       assumption_map_(std::make_unique<AssumptionMap>(map_, options_.dock)),
       opportunities_(std::make_unique<Opportunities>()),
       door_models_(std::make_unique<DoorModels>(zone_)) {
+  battery_ = std::make_unique<BatteryWatch>(map_);
   robot_.set_listener(this);
   if (options_.forget_finished)
     book_.forget_finished([this] { clock_.schedule_at(clock_.now(), [this] { sweep_finished(); }); });
@@ -188,6 +190,7 @@ void Executor::start() {
   if (started_) return;
   started_ = true;
   if (auto up = robot_.activate(); !up) on_fault({.kind = RobotFault::Kind::kError, .message = up.error().message});
+  read_battery();
   create_routine_tasks(zone_.local_date(clock_.now()));
   std::vector<TaskId> pending;
   const auto queued = [](const std::vector<TaskId>& q, const TaskId& id) {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "battery_watch.h"
 #include "dispatcher.h"
 #include "loading_times.h"
 #include "rondo/exec/executor.h"
@@ -46,6 +47,8 @@ void Executor::on_edge_finished(const EdgeAttempt& a) {
   retired_runs_.clear();
   retired_steps_.clear();
   stats_.travelling += a.duration;
+  battery_->edge_finished(a);
+  read_battery();
   learn_from(a);
   save_robot_state();
   if (run_) {
@@ -55,6 +58,7 @@ void Executor::on_edge_finished(const EdgeAttempt& a) {
   } else if (a.outcome == EdgeOutcome::kCancelled) {
     next();
   }
+  check_battery();
 }
 
 // A loading or unloading time is experience of the person at that place: learned, and kept in the
@@ -127,16 +131,20 @@ void Executor::on_action_finished(const ActionResult& reported) {
   retired_runs_.clear();
   retired_steps_.clear();
   stats_.acting += result.duration;
+  battery_->action_finished(result);
+  read_battery();
   learn_from(result);
   if (run_) {
     if (Step* s = run_->current()) s->on_action_finished(result);
   } else if (result.outcome == ActionOutcome::kCancelled) {
     next();
   }
+  check_battery();
 }
 
 void Executor::on_interruptible_changed(bool interruptible) {
   if (!run_ || run_->set_robot_interruptible(interruptible) || !interruptible) return;
+  if (low_battery_) return charge_now();  // the charge waited for this moment
   if (!running_standard() || !interruptible_now()) return;
   if (const std::optional<TaskId> ready = dispatcher_->ready_on_demand(clock_.now())) preempt_for_on_demand(*ready);
 }

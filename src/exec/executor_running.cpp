@@ -14,12 +14,7 @@ namespace rondo::exec {
 void Executor::kick() {
   if (run_) {
     if (!run_->waiting()) return;  // a task navigates or acts: it goes on
-    const TaskId id = run_->id();
-    end_wait();
-    book_.transition(id, TaskState::kQueued, Outcome::kScheduleChanged, "waiting interrupted: the schedule changed");
-    std::vector<TaskId>& planned = dispatcher_->planned;
-    if (std::find(planned.begin(), planned.end(), id) == planned.end()) planned.insert(planned.begin(), id);
-    return next();
+    return requeue_waiting(Outcome::kScheduleChanged, "waiting interrupted: the schedule changed");
   }
   if (trip_) {
     if (robot_.busy()) return trip_->halt();  // trip_ended() looks again
@@ -28,11 +23,21 @@ void Executor::kick() {
   next();
 }
 
+void Executor::requeue_waiting(Outcome outcome, const std::string& reason) {
+  const TaskId id = run_->id();
+  end_wait();
+  book_.transition(id, TaskState::kQueued, outcome, reason);
+  std::vector<TaskId>& planned = dispatcher_->planned;
+  if (std::find(planned.begin(), planned.end(), id) == planned.end()) planned.insert(planned.begin(), id);
+  next();
+}
+
 void Executor::next() {
   if (run_ || trip_ || robot_.busy() || in_fault_) return;  // a fault: on_ready() comes back here
   if (look_again_ != 0) clock_.cancel(look_again_);
   look_again_ = 0;
   if (out_of_service_) return go_to_dock();  // set_out_of_service(): nothing new starts
+  if (must_charge()) return charge();        // below the battery's hard threshold
   const Time now = clock_.now();
   const map::NodeIndex here = robot_.location();
   for (;;) {
@@ -71,8 +76,11 @@ void Executor::run_ended(TaskEnd e) {
     e.reason += on_demand ? "; the way is not likely passable again within its patience"
                           : "; the way is not likely passable again before its latest start";
   }
-  if (e.requeue && on_demand && e.edge) {
-    hold_on_demand(id, e.outcome, e.reason);
+  if (e.requeue && on_demand && (e.edge || e.outcome == Outcome::kCharging)) {
+    if (e.edge)
+      hold_on_demand(id, e.outcome, e.reason);
+    else
+      requeue_on_demand(id, e.outcome, e.reason);  // it runs first once charged
     if (!again.empty()) reschedule(std::move(again), "after holding " + id);
     return next();
   }
@@ -151,9 +159,13 @@ bool Executor::hold_back(const TaskId& id, map::EdgeIndex edge, std::optional<Ti
 }
 
 void Executor::hold_on_demand(const TaskId& id, Outcome outcome, const std::string& reason) {
+  requeue_on_demand(id, outcome, reason);
+  clock_.schedule_at(*book_.at(id).not_before, [this] { on_demand_due(); });
+}
+
+void Executor::requeue_on_demand(const TaskId& id, Outcome outcome, const std::string& reason) {
   book_.transition(id, TaskState::kQueued, outcome, reason + "; back in the on-demand queue");
   dispatcher_->on_demand.push_front(id);  // it came before the others waiting
-  clock_.schedule_at(*book_.at(id).not_before, [this] { on_demand_due(); });
 }
 
 void Executor::on_demand_due() {

@@ -8,6 +8,7 @@
 #include "rondo/exec/executor.h"
 #include "scheduling.h"
 #include "task_run.h"
+#include "text.h"
 
 namespace rondo::exec {
 
@@ -30,6 +31,10 @@ std::pair<map::NodeIndex, Time> Executor::free_at() const {
     here = task.end_node.empty() ? start : *map_.find_node(task.end_node);
   };
   if (run_ && !run_->waiting()) run(book_.at(run_->id()), run_->acting_until());
+  if (low_battery_) {  // below the hard threshold: to the dock, and charged back to the resume level
+    t += travel_->travel(here, options_.dock, t) + time_to_charge();
+    here = options_.dock;
+  }
   for (const TaskId& id : dispatcher_->on_demand)  // one held back for a blocked way comes later
     if (!book_.at(id).not_before || *book_.at(id).not_before <= now) run(book_.at(id), std::nullopt);
   return {here, t};
@@ -139,15 +144,19 @@ void Executor::apply_schedule(const std::vector<TaskId>& ids, const schedule::Sc
     r.planned_start.reset();
     r.planned_end.reset();
     // Dropped for now: offered again at every reschedule while its window can still be met.
-    const Outcome outcome = drop_outcome(d.cause);
-    if (r.state != TaskState::kQueued) book_.transition(id, TaskState::kQueued, outcome, d.reason);
+    // While the robot must charge, what does not fit does not fit for the charge.
+    const Outcome outcome = low_battery_ ? Outcome::kCharging : drop_outcome(d.cause);
+    const std::string reason =
+        low_battery_ ? fmt::format("while the robot charges (about {} more): {}", duration_text(time_to_charge()), d.reason)
+                     : d.reason;
+    if (r.state != TaskState::kQueued) book_.transition(id, TaskState::kQueued, outcome, reason);
     if (!r.dropped_for_now) {
-      book_.note(id, "dropped for now", outcome, d.reason);
+      book_.note(id, "dropped for now", outcome, reason);
       // When its window can no longer be met it is dropped for good, whatever else happens.
       clock_.schedule_at(r.task.window->deadline - r.remaining() + milliseconds(1),
                          [this] { (void)reoffer_deferred(); });
     }
-    r.dropped_for_now = std::make_pair(outcome, d.reason);
+    r.dropped_for_now = std::make_pair(outcome, reason);
     if (std::find(deferred.begin(), deferred.end(), id) == deferred.end()) deferred.push_back(id);
   }
 }

@@ -61,6 +61,7 @@ void NavigateStep::advance() {
                                       ctx_.map.node(target_).name, ctx_.clock_text(ctx_.clock.now()))});
   }
   // The next edge is committed; the rest of the policy's expected route is the horizon.
+  ctx_.before_command();
   ctx_.robot.drive(Route{.edges = expected_route(here), .committed = 1});
 }
 

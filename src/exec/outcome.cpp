@@ -6,7 +6,7 @@
 namespace rondo::exec {
 namespace {
 
-constexpr std::array<std::pair<Outcome, std::string_view>, 39> kNames{{
+constexpr std::array<std::pair<Outcome, std::string_view>, 40> kNames{{
     {Outcome::kNone, ""},
     {Outcome::kAdded, "added"},
     {Outcome::kScheduled, "scheduled"},
@@ -46,6 +46,7 @@ constexpr std::array<std::pair<Outcome, std::string_view>, 39> kNames{{
     {Outcome::kObservation, "observation"},
     {Outcome::kBattery, "battery"},
     {Outcome::kConfirmed, "confirmed"},
+    {Outcome::kCharging, "charging"},
 }};
 
 constexpr std::array<Outcome, kNames.size()> kAll = [] {

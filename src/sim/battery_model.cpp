@@ -15,4 +15,8 @@ double BatteryModel::after(double level, Mode mode, Duration elapsed) const {
   return std::clamp(level + rate * to_seconds(elapsed) / 3600.0, 0.0, 1.0);
 }
 
+double BatteryModel::after_distance(double level, double metres) const {
+  return std::clamp(level - per_metre * metres, 0.0, 1.0);
+}
+
 }  // namespace rondo::sim

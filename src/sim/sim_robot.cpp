@@ -106,8 +106,22 @@ void SimRobot::drive(const exec::Route& route) {
   start_edge(route.edges.front());
 }
 
+void SimRobot::rescue_if_stranded() {
+  if (battery_ > 0 || location_ == options_.dock || !world_.battery.rescue_after) {
+    empty_since_.reset();
+    return;
+  }
+  const Time now = clock_.now();
+  if (!empty_since_) empty_since_ = now;
+  if (now - *empty_since_ < *world_.battery.rescue_after) return;
+  location_ = options_.dock;  // carried back onto the charger: the command fails, from the dock
+  empty_since_.reset();
+  ++rescues_;
+}
+
 void SimRobot::start_edge(map::EdgeIndex edge) {
   settle_battery();
+  rescue_if_stranded();
   Job job{.is_edge = true, .edge = edge, .start = clock_.now()};
   if (fault_) {
     job.success = false;
@@ -126,6 +140,7 @@ void SimRobot::start_edge(map::EdgeIndex edge) {
 void SimRobot::run_action(const Action& action, Duration expected) {
   if (busy()) throw std::logic_error("SimRobot::run_action while busy");
   settle_battery();
+  rescue_if_stranded();
   Job job{.is_edge = false, .action = action.name, .start = clock_.now()};
   ActionSample s{.success = false};
   if (fault_) {
@@ -195,7 +210,9 @@ void SimRobot::finish() {
   if (job.is_edge) {
     if (job.success && job.end == End::kNatural) {
       location_ = map_.to_index(job.edge);
-      distance_m_ += map::edge_length(map_, job.edge);
+      const double metres = map::edge_length(map_, job.edge);
+      distance_m_ += metres;
+      battery_ = world_.battery.after_distance(battery_, metres);
     }
     // The rest of the committed route goes on after a success; anything else ends the drive.
     if (job.success && job.end == End::kNatural && !route_.empty()) {

@@ -38,18 +38,6 @@ Result<ActionModel> decode_actions(const Field& f) {
   return ActionModel(fallback, std::move(by_name));
 }
 
-Result<BatteryModel> decode_battery(const Field& f) {
-  RONDO_RETURN_IF_ERROR(
-      f.expect_keys({"initial", "moving_per_hour", "acting_per_hour", "idle_per_hour", "charging_per_hour"}));
-  BatteryModel b;
-  RONDO_RETURN_IF_ERROR(detail::read_number(f, "initial", 0, 1, b.initial));
-  RONDO_RETURN_IF_ERROR(detail::read_number(f, "moving_per_hour", 0, 100, b.moving_per_hour));
-  RONDO_RETURN_IF_ERROR(detail::read_number(f, "acting_per_hour", 0, 100, b.acting_per_hour));
-  RONDO_RETURN_IF_ERROR(detail::read_number(f, "idle_per_hour", 0, 100, b.idle_per_hour));
-  RONDO_RETURN_IF_ERROR(detail::read_number(f, "charging_per_hour", 0, 100, b.charging_per_hour));
-  return b;
-}
-
 Result<DoorSensor> decode_door_sensor(const Field& f) {
   RONDO_RETURN_IF_ERROR(f.expect_keys({"range", "miss_rate"}));
   DoorSensor d{.enabled = true};
@@ -163,6 +151,24 @@ Result<SimWorld> decode_world(const Document& doc, const std::filesystem::path& 
     RONDO_ASSIGN_OR_RETURN(world.confirmation, decode_confirmation(*confirmation, map));
   }
   return world;
+}
+
+Result<BatteryModel> decode_battery(const Field& f) {
+  RONDO_RETURN_IF_ERROR(
+      f.expect_keys({"initial", "moving_per_hour", "acting_per_hour", "idle_per_hour", "charging_per_hour", "per_metre",
+                      "rescue_after"}));
+  BatteryModel b;
+  RONDO_RETURN_IF_ERROR(detail::read_number(f, "initial", 0, 1, b.initial));
+  RONDO_RETURN_IF_ERROR(detail::read_number(f, "moving_per_hour", 0, 100, b.moving_per_hour));
+  RONDO_RETURN_IF_ERROR(detail::read_number(f, "acting_per_hour", 0, 100, b.acting_per_hour));
+  RONDO_RETURN_IF_ERROR(detail::read_number(f, "idle_per_hour", 0, 100, b.idle_per_hour));
+  RONDO_RETURN_IF_ERROR(detail::read_number(f, "charging_per_hour", 0, 100, b.charging_per_hour));
+  RONDO_RETURN_IF_ERROR(detail::read_number(f, "per_metre", 0, 1, b.per_metre));
+  if (auto v = f.optional("rescue_after")) {
+    RONDO_ASSIGN_OR_RETURN(b.rescue_after, v->as_duration());
+    if (*b.rescue_after <= Duration{0}) return v->error("must be positive");
+  }
+  return b;
 }
 
 std::optional<Duration> Confirmation::at(const std::string& action, const std::string& place) const {

@@ -207,6 +207,40 @@ TEST(RunCommand, PersonPatienceIsAQuantileFromZeroTo098) {
   }
 }
 
+TEST(RunCommand, BatteryLevelsAreStatesOfChargeInOrder) {
+  const std::string refit = "refit_at: \"02:00\"        # nightly refit of the edge models";
+  const std::pair<const char*, const char*> cases[] = {
+      {"battery_threshold: 1.5", "battery_threshold"},  // not a state of charge
+      {"battery_reserve: often", "battery_reserve"},
+      {"battery_reserve: 0.1\n  battery_threshold: 0.3", "battery_threshold"},  // above the reserve
+      {"battery_resume: 0.05", "battery_resume"},                          // below the threshold
+      {"battery_reseve: 0.2", "battery_reseve"},                           // unknown key
+  };
+  for (const auto& [bad, field] : cases) {
+    const auto dir = fresh_dir("battery-bad");
+    const auto deployment = edited_example(dir, "deployment.yaml", refit, refit + "\n  " + bad);
+    const auto r = test::run_cli({"run", deployment.string(), "--days", "1", "--out", (dir / "run").string()});
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_THAT(r.err, HasSubstr(field)) << bad;
+    EXPECT_THAT(r.err, HasSubstr("deployment.yaml:" + std::to_string(line_of(slurp(deployment), field)))) << bad;
+    EXPECT_FALSE(std::filesystem::exists(dir / "run")) << bad;
+    std::filesystem::remove_all(dir);
+  }
+}
+
+TEST(RunCommand, ADeploymentBatteryBlockIsCheckedLikeTheWorlds) {
+  const std::string refit = "refit_at: \"02:00\"        # nightly refit of the edge models";
+  for (const char* bad : {"battery:\n  per_metre: 2", "battery:\n  moving_per_hour: fast", "battery:\n  per_meter: 0.1"}) {
+    const auto dir = fresh_dir("battery-block-bad");
+    const auto deployment = edited_example(dir, "deployment.yaml", refit, refit + "\n" + bad);
+    const auto r = test::run_cli({"run", deployment.string(), "--days", "1", "--out", (dir / "run").string()});
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_THAT(r.err, HasSubstr("deployment.yaml:" + std::to_string(line_of(slurp(deployment), "battery:") + 1))) << bad;
+    EXPECT_FALSE(std::filesystem::exists(dir / "run")) << bad;
+    std::filesystem::remove_all(dir);
+  }
+}
+
 TEST(RunCommand, BlockedEdgeIsAnExecutorKeyAndTheReportHasItsWeeks) {
   const std::string refit = "refit_at: \"02:00\"        # nightly refit of the edge models";
   {

@@ -61,11 +61,13 @@ class ScriptedRobot final : public Robot {
     if (edge_) finish_edge(EdgeOutcome::kCancelled, clock_.now() - started_);
     if (action_) finish_action(ActionOutcome::kCancelled, "cancelled");
   }
-  double battery() const override { return 0.9; }
-  bool charging() const override { return false; }
+  double battery() const override { return battery_level; }
+  bool charging() const override { return on_charger; }
   std::optional<RobotFault> fault() const override { return fault_; }
 
   // --- the test's side ---
+  double battery_level = 0.9;  // what battery() reads
+  bool on_charger = false;     // what charging() reads
   bool driving() const { return edge_.has_value(); }
   // A real vehicle may end an attempt anywhere: the next answer leaves the robot at `node`.
   void move_to(map::NodeIndex node) { location_ = node; }

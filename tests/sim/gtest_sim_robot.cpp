@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "rondo/exec/clock.h"
+#include "rondo/map/map_geometry.h"
 #include "rondo/sim/parametric_world.h"
 #include "sim_test_util.h"
 
@@ -338,6 +339,47 @@ TEST(SimRobot, TheBatteryDrainsWhenBusyAndChargesOnlyIdleAtTheDock) {
   f.clock.run_until(kStart + hours(2));
   EXPECT_NEAR(f.robot.battery(), 0.8 - 0.6 * (52.222 / 3600) - 0.15, 1e-6);
   EXPECT_EQ(f.robot.charging_time(), minutes(30));
+}
+
+TEST(SimRobot, TheBatteryDrainsByTheMetreOfEachEdgeCrossedOnTopOfTheHour) {
+  Fixture f;
+  f.world.battery.per_metre = 0.001;
+  f.world.battery.charging_per_hour = 0;
+  const double metres = map::edge_length(f.m, edge(f.m, "Dock_Hall"));
+  f.traverse("Dock_Hall");
+  f.clock.run_until(kStart + hours(1));
+  EXPECT_NEAR(f.robot.battery(), 0.5 - 0.6 * (52.222 / 3600) - 0.001 * metres, 1e-6);
+  f.traverse("Hall_Office");
+  f.clock.run_until(kStart + hours(2));
+  // A failed attempt ends where it began: time, but no metres.
+  const double before = f.robot.battery();
+  f.traverse("Office_Hall");  // always fails
+  f.clock.run_until(kStart + hours(3));
+  ASSERT_EQ(f.rec.edges.size(), 3u);
+  EXPECT_FALSE(f.rec.edges[2].succeeded());
+  EXPECT_NEAR(f.robot.battery(), before - 0.6 * to_seconds(f.rec.edges[2].duration) / 3600, 1e-9);
+}
+
+TEST(SimRobot, AStrandedEmptyRobotIsCarriedBackToTheDockWhenTheWorldSaysSo) {
+  Fixture f;
+  f.world.battery.initial = 0.0;
+  f.world.battery.rescue_after = hours(1);
+  SimRobot robot(f.clock, f.m, f.world, {.start = node(f.m, "Hall"), .dock = node(f.m, "Dock")});
+  robot.set_listener(&f.rec);
+  robot.traverse(edge(f.m, "Hall_Office"));  // empty: fails at once, and the hour starts
+  f.clock.run_until(kStart + minutes(59));
+  robot.traverse(edge(f.m, "Hall_Office"));
+  f.clock.run_until(kStart + minutes(61));
+  EXPECT_EQ(robot.location(), node(f.m, "Hall"));
+  robot.traverse(edge(f.m, "Hall_Office"));  // an hour empty away from the dock: carried back
+  f.clock.run_until(kStart + minutes(62));
+  ASSERT_EQ(f.rec.edges.size(), 3u);
+  EXPECT_FALSE(f.rec.edges[2].succeeded());
+  EXPECT_EQ(robot.location(), node(f.m, "Dock"));
+  EXPECT_EQ(robot.rescues(), 1);
+  EXPECT_TRUE(robot.charging());
+  f.clock.run_until(kStart + minutes(122));
+  EXPECT_NEAR(robot.battery(), 0.61, 1e-6);  // charging from 61 min
 }
 
 TEST(SimRobot, AnEmptyBatteryFailsAtOnceUntilCharged) {

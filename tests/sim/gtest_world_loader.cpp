@@ -79,12 +79,26 @@ INSTANTIATE_TEST_SUITE_P(
         BadWorld{"kind: parametric\neffects:\n  - doors: [kd]\n    spells: {mean_open: 1h, mean_shut: 10m, often: 2}\n", "often"},
         BadWorld{"kind: parametric\nactions:\n  talk: {non_interruptible: -1}\n", "world.yaml:3: actions.talk.non_interruptible"},
         BadWorld{"kind: parametric\nbattery: {charging_per_hour: -2}\n", "world.yaml:2: battery.charging_per_hour: must be from 0"},
+        BadWorld{"kind: parametric\nbattery:\n  per_metre: 2\n", "world.yaml:3: battery.per_metre: must be from 0 to 1"},
+        BadWorld{"kind: parametric\nbattery: {per_meter: 0.001}\n", "per_meter"},
+        BadWorld{"kind: parametric\nbattery: {rescue_after: 0s}\n", "world.yaml:2: battery.rescue_after: must be positive"},
         BadWorld{"kind: parametric\nconfirmation: {places: {Attic: 2m}}\n", "world.yaml:2: confirmation.places.Attic: map 'small' has no node 'Attic'"},
         BadWorld{"kind: parametric\nconfirmation: {default: 0s}\n", "world.yaml:2: confirmation.default: must be positive"},
         BadWorld{"kind: parametric\nconfirmation: {by: 2m}\n", "by"},
         BadWorld{"kind: replay\n", "logs"},
         BadWorld{"kind: replay\nlogs: no/such/folder\n", "world.yaml:2: logs: './no/such/folder' is not a folder"},
         BadWorld{"kind: replay\nlogs: .\nlog_timezone: Mars/Olympus\n", "world.yaml:3: log_timezone"}));
+
+TEST(LoadWorld, TheBatteryDrainsByTheMetreOnlyWhenTheFileSaysSo) {
+  auto plain = parse("kind: parametric\nbattery: {moving_per_hour: 0.3}\n", small_map());
+  ASSERT_TRUE(plain.ok()) << plain.error().message;
+  EXPECT_EQ(plain->battery.moving_per_hour, 0.3);
+  EXPECT_EQ(plain->battery.per_metre, 0.0);  // old files keep their battery
+  auto metered = parse("kind: parametric\nbattery: {per_metre: 0.0002, charging_per_hour: 0.4}\n", small_map());
+  ASSERT_TRUE(metered.ok()) << metered.error().message;
+  EXPECT_EQ(metered->battery.per_metre, 0.0002);
+  EXPECT_EQ(metered->battery.charging_per_hour, 0.4);
+}
 
 TEST(LoadWorld, AMissingFileIsNotFound) {
   auto world = load_world("examples/g4s/no-such-world.yaml", small_map(), london());

@@ -70,6 +70,7 @@ namespace rondo::exec {
 struct ScheduleAnswer;
 struct ScheduleCall;
 class AssumptionMap;
+class BatteryWatch;
 class Deliveries;
 class DoorModels;
 class LoadingTimes;
@@ -162,6 +163,10 @@ class Executor final : public RobotListener {
   std::vector<std::string> door_names() const;  // the doors with a learned model, by name
   const TimeZone& zone() const { return zone_; }
   bool paused() const { return in_fault_; }
+  // The battery as read so far, and what was learned of its costs (executor_battery.cpp).
+  BatteryFigures battery_figures() const;
+  // Below the hard threshold and not yet charged back to the resume level: nothing new starts.
+  bool charging_for_battery() const { return low_battery_; }
 
   // RobotListener
   void on_edge_finished(const EdgeAttempt& attempt) override;
@@ -226,6 +231,19 @@ class Executor final : public RobotListener {
 
   // the robot (executor_robot.cpp)
   void log_battery();
+  // the battery (executor_battery.cpp)
+  void read_battery();  // a reading for the BatteryWatch
+  double resume_level() const;
+  bool below_threshold() const;  // by the last reading
+  Duration time_to_charge() const;  // from the last reading to the resume level, as learned
+  void enter_low_battery();
+  // After a robot callback: below the threshold, the robot goes to charge.
+  void check_battery();
+  // The running task gives way to the charge now if it is interruptible (else it finishes first).
+  void charge_now();
+  // In next(): true while the robot must charge (it enters or leaves that state here).
+  bool must_charge();
+  void charge();  // to the dock, and wait there
   // The robot's last known state in the store (its node, pose, battery, fault), for a restart.
   void save_robot_state();
   void learn_from(const EdgeAttempt& attempt);
@@ -242,6 +260,8 @@ class Executor final : public RobotListener {
   void start_run(const TaskId& id, std::optional<Time> wait_until);
   void run_ended(TaskEnd end);
   void end_wait();  // the waiting task goes back to the executor, undecided
+  // The waiting task goes back to the front of the queue (`outcome`, `reason`), and next().
+  void requeue_waiting(Outcome outcome, const std::string& reason);
   void go_to_dock();
   void trip_ended(StepEnd end);
   void look_again_at(Time at);
@@ -254,6 +274,8 @@ class Executor final : public RobotListener {
   bool hold_back(const TaskId& id, map::EdgeIndex edge, std::optional<Time> leave_at);
   // A held on-demand task goes back to the front of its queue and is due at its retry time.
   void hold_on_demand(const TaskId& id, Outcome outcome, const std::string& reason);
+  // An on-demand task goes back to the front of its queue.
+  void requeue_on_demand(const TaskId& id, Outcome outcome, const std::string& reason);
   void on_demand_due();  // a held on-demand task may run now: as if it had just come in
   // Frees the run or the trip later: it ended in a callback of its own, still on the stack.
   void retire_run();
@@ -355,6 +377,10 @@ class Executor final : public RobotListener {
   std::optional<Time> fault_since_;
   bool started_ = false;
   bool out_of_service_ = false;  // set_out_of_service(): next() starts nothing
+  std::unique_ptr<BatteryWatch> battery_;
+  bool low_battery_ = false;  // below the hard threshold, not yet charged back to the resume level
+  int low_battery_count_ = 0;
+  Time low_since_{};
   // assumptions and opportunities
   std::unique_ptr<AssumptionMap> assumption_map_;
   std::vector<Assumption> assumptions_;

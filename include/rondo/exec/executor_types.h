@@ -7,6 +7,7 @@
 
 #include "rondo/core/task.h"
 #include "rondo/core/time.h"
+#include "rondo/exec/battery_estimator.h"
 #include "rondo/map/topo_map.h"
 
 namespace rondo::exec {
@@ -28,6 +29,14 @@ struct ExecutorOptions {
   // quantiles' last level. 0.98 was chosen on the office example's validation seeds 101-103.
   double person_patience = 0.98;
   Duration dock_when_waiting_over = minutes(15);  // longer waits are spent on the charger
+  // The battery (docs/executor.md, "Battery"), states of charge in [0, 1]. Below
+  // `battery_threshold` the robot goes to charge at the next interruptible moment, whatever the
+  // schedule says, and starts nothing new until the battery is back at `battery_resume` (0: at
+  // `battery_reserve`); 0 turns the threshold off. `battery_reserve` is the level a schedule is
+  // to keep (the scheduler does not plan charging yet).
+  double battery_reserve = 0.2;
+  double battery_threshold = 0.1;
+  double battery_resume = 0;
   int max_failed_edges = 25;                      // a navigation gives up after this many failed attempts
   // After a failed edge, when trying again is not worth it by the live model (the attempts left
   // before max_failed_edges are more likely than not all to fail, or the travel still to go would
@@ -85,6 +94,21 @@ struct ExecutorStats {
   int schedules = 0;       // scheduler calls
   int background_runs = 0;   // reschedules solved on the worker (background_scheduling)
   int background_stale = 0;  //   of which the answer came too late: the book had moved on
+};
+
+// The battery as the executor saw it (BatteryWatch): readings, the lowest, stays on the charger,
+// and what it learned of the battery's costs.
+struct BatteryFigures {
+  std::size_t readings = 0;
+  double lowest = 1;              // the lowest state of charge read
+  std::optional<Time> lowest_at{};
+  int charges = 0;                // stays on the charger
+  Duration on_charger{0};         // their total length
+  int low_battery = 0;            // times the battery fell below the hard threshold
+  std::size_t empty_readings = 0;  // readings of an empty battery (the robot ran flat)
+  BatteryRates learned{};         // BatteryEstimator::rates()
+  BatteryRates standard_errors{};
+  std::size_t intervals_learned = 0;
 };
 
 // One navigation of a task to its start: what the executor expected when it left, and what

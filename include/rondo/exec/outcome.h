@@ -52,6 +52,8 @@ enum class Outcome {
   kObservation,               // the robot saw something that matters
   kBattery,                   // a battery reading
   kConfirmed,                 // a person confirmed a load or unload (through the API)
+  kCharging,                  // the battery fell below the hard threshold: the robot charges, and a
+                              // task was preempted, dropped or failed for it (or it is charged again)
 };
 
 // The readable name, e.g. "navigation overrun"; "" for kNone.

@@ -79,6 +79,7 @@ struct StepContext {
   std::vector<NavigationRecord>& navigations;
   const bool& in_fault;  // the robot reports a fault: steps send nothing new to it
   const plan::EdgeModelView& models;  // what the planner reads (the live model, when online)
+  std::function<void()> before_command;  // called just before every drive() and run_action()
 
   std::string clock_text(Time t) const { return zone.format_clock(t); }
 };

@@ -26,7 +26,11 @@
 // drive() and run_action() end at once with kRobotFault.
 // Figures: distance_m() counts the length of successfully crossed edges only (a failed or
 // cancelled attempt ends where it began and counts 0 m). charging_time() is the time spent idle
-// at the dock. An empty battery fails every edge and run_action() at once (duration 0).
+// at the dock. The battery drains by the hour in each mode (BatteryModel) and, at the end of each
+// successfully crossed edge, by BatteryModel::per_metre for its map length. An empty battery fails
+// every edge and run_action() at once (duration 0); with BatteryModel::rescue_after, a robot that
+// has stood empty away from its dock that long is carried back onto the dock at its next command
+// (which fails, and leaves it there).
 // Misuse (drive() while busy, a route that does not leave location() or is not consecutive)
 // throws std::logic_error.
 // The clock, map and world must outlive the robot; the destructor cancels its pending events.
@@ -79,6 +83,7 @@ class SimRobot final : public exec::Robot {
 
   double distance_m() const { return distance_m_; }
   Duration charging_time() const;
+  int rescues() const { return rescues_; }  // times it was carried back onto the dock, empty
 
  private:
   enum class End { kNatural, kCancelled, kFault };
@@ -107,6 +112,8 @@ class SimRobot final : public exec::Robot {
 
   BatteryModel::Mode mode() const;
   void settle_battery();  // accounts the time since the last change, before the mode changes
+  // Empty away from the dock for BatteryModel::rescue_after: carried back onto the dock.
+  void rescue_if_stranded();
   void finish();          // the job's end: update state, then deliver the callback
   void deliver(const Job& job);
   void notify_interruptible(bool interruptible);
@@ -126,6 +133,8 @@ class SimRobot final : public exec::Robot {
   std::vector<std::vector<std::pair<std::string, map::EdgeIndex>>> doors_near_;  // per node: door, one edge
   double battery_;
   Time battery_since_;
+  std::optional<Time> empty_since_;  // empty and away from the dock since, at a command
+  int rescues_ = 0;
   Duration charging_time_{0};
   double distance_m_ = 0;
   std::map<std::uint64_t, exec::TimerId> posted_;

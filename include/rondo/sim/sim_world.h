@@ -60,6 +60,9 @@ struct SimWorld {
 };
 
 Result<SimWorld> load_world(const std::filesystem::path& file, const map::TopoMap& map, const TimeZone& zone);
+// A `battery:` block (docs/simulation.md, "Battery"): of a world file, or of a deployment file,
+// where it replaces the world's.
+Result<BatteryModel> decode_battery(const Field& f);
 // The same from a parsed document; `base` is the folder relative paths (replay logs) start from.
 Result<SimWorld> decode_world(const Document& doc, const std::filesystem::path& base, const map::TopoMap& map,
                               const TimeZone& zone);
