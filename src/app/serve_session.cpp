@@ -78,8 +78,7 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   // A fixed mmap threshold: blocks of 128 KiB and more (the nightly refit's tables, the planners'
   // larger arrays) get pages of their own that go back when freed. glibc would otherwise raise the
   // threshold after the first such block is freed, and later ones would come from the heap, where
-  // a refit leaves holes that the service keeps (heaptrack: the live heap stayed level while the
-  // resident memory rose in steps at refits).
+  // they leave holes when freed (docs/operations.md, "Memory over time": what the soak measured).
   ::mallopt(M_MMAP_THRESHOLD, 128 * 1024);
   // Blocked before any thread starts (the robot's, the scheduler's worker, HTTP): they inherit
   // it, so only the sigwait thread below takes them.
