@@ -7,7 +7,8 @@
 #include "rondo/learn/evaluation.h"
 
 namespace rondo::app {
-void add_eval_travel_command(CLI::App* eval, CommandContext& ctx);  // cmd_eval_travel.cpp
+void add_eval_travel_command(CLI::App* eval, CommandContext& ctx);      // cmd_eval_travel.cpp
+void add_eval_robustness_command(CLI::App* eval, CommandContext& ctx);  // cmd_eval_robustness.cpp
 namespace {
 
 struct EvalEdgesArgs {
@@ -74,7 +75,7 @@ void run_eval_binary(const EvalBinaryArgs& args, CommandContext& ctx) {
 }  // namespace
 
 void add_eval_commands(CLI::App& root, CommandContext& ctx) {
-  auto* eval = root.add_subcommand("eval", "Compare the learned navigation models on real logs");
+  auto* eval = root.add_subcommand("eval", "Evaluate: learned models on real logs, schedules under risk");
   eval->require_subcommand(1);
 
   auto edges_args = std::make_shared<EvalEdgesArgs>();
@@ -104,6 +105,7 @@ void add_eval_commands(CLI::App& root, CommandContext& ctx) {
   binary->add_flag("--json", binary_args->json, "Print JSON instead of a table");
   binary->callback([binary_args, &ctx] { run_eval_binary(*binary_args, ctx); });
   add_eval_travel_command(eval, ctx);
+  add_eval_robustness_command(eval, ctx);
 }
 
 }  // namespace rondo::app

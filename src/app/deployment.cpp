@@ -62,7 +62,7 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
                                        "on_demand_patience", "person_patience", "refit_at",
                                        "refit_window", "online_model", "slot_width", "scheduler_polls", "capacity",
                                        "return_to", "return_within", "battery_reserve", "battery_threshold",
-                                       "battery_resume"}));
+                                       "battery_resume", "risk_alpha"}));
   if (auto v = f.optional("navigation_overrun")) { RONDO_ASSIGN_OR_RETURN(o.navigation_overrun, positive(*v)); }
   if (auto v = f.optional("navigation_slack")) { RONDO_ASSIGN_OR_RETURN(o.navigation_slack, non_negative_duration(*v)); }
   if (auto v = f.optional("action_overrun")) { RONDO_ASSIGN_OR_RETURN(o.action_overrun, positive(*v)); }
@@ -120,6 +120,12 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
   if (auto v = f.optional("return_within")) {
     RONDO_ASSIGN_OR_RETURN(o.return_within, v->as_duration());
     if (o.return_within < minutes(1)) return v->error("must be at least 1m");
+  }
+  if (f.has("risk_alpha") && !f.optional("risk_alpha")) o.risk_alpha.reset();
+  if (auto v = f.optional("risk_alpha")) {
+    RONDO_ASSIGN_OR_RETURN(const double a, v->as_number());
+    if (!(a > 0 && a <= 0.5)) return v->error("must be above 0 and at most 0.5 (or null: expected values)");
+    o.risk_alpha = a;
   }
   return decode_battery_levels(f, o);
 }

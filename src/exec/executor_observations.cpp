@@ -290,7 +290,7 @@ bool Executor::opportunity_fits(const TaskId& id, bool interrupt, const std::vec
   std::mt19937_64 rng(options_.seed);  // a trial: the executor's own draws stay as they were
   const ScheduleInputs in{.map = map_, .travel = *travel_, .book = book_, .zone = zone_, .scheduler = *scheduler_,
                           .polls = options_.scheduler_polls, .rng = rng, .capacity = options_.capacity,
-                          .on_board = std::move(load)};
+                          .on_board = std::move(load), .risk_alpha = options_.risk_alpha};
   const map::NodeIndex end = r.task.end_node.empty() ? start : *map_.find_node(r.task.end_node);
   refresh_learned_durations(pending.ids);
   auto solved = schedule_pending(in, pending, end, ends, std::nullopt);

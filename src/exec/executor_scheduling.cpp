@@ -95,7 +95,7 @@ std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_
   }
   const ScheduleInputs in{.map = map_, .travel = *travel_, .book = book_, .zone = zone_, .scheduler = *scheduler_,
                           .polls = options_.scheduler_polls, .rng = rng_, .capacity = options_.capacity,
-                          .on_board = on_board_when_free()};
+                          .on_board = on_board_when_free(), .risk_alpha = options_.risk_alpha};
   auto problem = pending_problem(in, pending, here, free, running);
   if (!problem) {  // the pending tasks do not make a well-formed problem: keep the plan as it is
     book_.note_schedule("not rescheduled", Outcome::kNone, fmt::format("{}: {}", why, problem.error().message));

@@ -37,9 +37,21 @@ void NavigateStep::start() {
                                    purpose_ == Purpose::kToEnd ? " (its end place)" : "", from,
                                    duration_text(expected_)));
   const ExecutorOptions& o = ctx_.options;
-  monitor_.arm(Monitor::limit("navigation overrun: still travelling", "the expected travel time", expected_,
-                              o.navigation_overrun, o.navigation_slack),
-               [this](const std::string& why) { hooks_.overrun(Outcome::kNavigationOverrun, why); });
+  Monitor::Limit limit = Monitor::limit("navigation overrun: still travelling", "the expected travel time", expected_,
+                                        o.navigation_overrun, o.navigation_slack);
+  if (o.risk_alpha) {
+    // Under the chance constraint the schedule left this journey its (1 − α)-quantile before the
+    // task's latest start: a journey within it is the learned spread of travel times, not a fault.
+    const double level = 1.0 - *o.risk_alpha;
+    const Duration q = ctx_.travel.quantile_travel(here, target_, now, level);
+    if (q < kUnreachable && q + o.navigation_slack > limit.after)
+      limit = {.after = q + o.navigation_slack,
+               .reason = fmt::format("navigation overrun: still travelling after {}, the limit is the {:g} "
+                                     "quantile of the travel time {} + {}",
+                                     duration_text(q + o.navigation_slack), level, duration_text(q),
+                                     duration_text(o.navigation_slack))};
+  }
+  monitor_.arm(std::move(limit), [this](const std::string& why) { hooks_.overrun(Outcome::kNavigationOverrun, why); });
   if (ctx_.in_fault) monitor_.suspend();
   advance();
 }

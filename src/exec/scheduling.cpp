@@ -17,6 +17,13 @@ Outcome drop_outcome(schedule::DropCause cause) {
   return Outcome::kDoesNotFit;
 }
 
+void set_travel(schedule::Problem& problem, const TravelCache& cache, const std::vector<map::NodeIndex>& nodes,
+                std::optional<double> risk_alpha) {
+  problem.travel = std::make_shared<SchedulerTravel>(cache, nodes);
+  problem.window_travel.reset();
+  if (risk_alpha) problem.window_travel = std::make_shared<SchedulerQuantileTravel>(cache, nodes, 1.0 - *risk_alpha);
+}
+
 Result<schedule::TryScheduleResult> schedule_pending(const ScheduleInputs& in, const PendingTasks& pending,
                                              map::NodeIndex here, Time free,
                                              std::optional<schedule::RunningTask> running) {
@@ -65,11 +72,12 @@ Result<PendingProblem> pending_problem(const ScheduleInputs& in, const PendingTa
   for (map::NodeIndex n : nodes) problem.location_names.push_back(in.map.node(n).name);
   problem.robot.location = 0;
   problem.robot.time = free;
-  problem.travel = std::make_shared<SchedulerTravel>(in.travel, nodes);
+  set_travel(problem, in.travel, nodes, in.risk_alpha);
 
   RONDO_RETURN_IF_ERROR(schedule::validate(problem));
   PendingProblem out{.request = {.problem = std::move(problem), .new_tasks = {}, .zone = in.zone},
-                     .nodes = std::move(nodes)};
+                     .nodes = std::move(nodes),
+                     .risk_alpha = in.risk_alpha};
   schedule::TryScheduleRequest& request = out.request;
   for (std::size_t i = pending.old_count; i < pending.ids.size(); ++i) request.new_tasks.push_back(i);
   for (std::size_t i = pending.first_reoffered; i < pending.ids.size(); ++i) request.cannot_preempt.push_back(i);

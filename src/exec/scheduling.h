@@ -46,6 +46,7 @@ struct ScheduleInputs {
   std::mt19937_64& rng;
   std::int64_t capacity = 0;              // 0 = unlimited
   std::vector<OnBoard> on_board{};        // when the robot is next free
+  std::optional<double> risk_alpha{};     // ExecutorOptions::risk_alpha
 };
 
 // A scheduling problem built from the book (on the clock's thread), ready to solve anywhere: the
@@ -54,7 +55,12 @@ struct ScheduleInputs {
 struct PendingProblem {
   schedule::TryScheduleRequest request;
   std::vector<map::NodeIndex> nodes;
+  std::optional<double> risk_alpha{};  // the window travel's level is 1 − risk_alpha
 };
+
+// The problem's travel, and its window travel under a chance constraint, over `cache` and `nodes`.
+void set_travel(schedule::Problem& problem, const TravelCache& cache, const std::vector<map::NodeIndex>& nodes,
+                std::optional<double> risk_alpha);
 
 // One reschedule between its two halves: which tasks, and their problem.
 struct ScheduleCall {

@@ -2,6 +2,7 @@
 // the rules of MISSION.md §2 and §5.
 #include "rondo/schedule/checker.h"
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -66,6 +67,12 @@ CheckReport check_schedule(const Problem& p, const Schedule& s) {
     if (e.arrival < e.depart + need)
       bad(fmt::format("'{}': arrives {} after leaving, travel takes {}", id, format_duration(e.arrival - e.depart),
                       format_duration(need)));
+    if (p.window_travel) {
+      const Duration risk = std::max(need, p.window_travel->travel(here, t.start_location, e.depart));
+      if (e.depart + risk > t.latest_start())
+        bad(fmt::format("'{}': leaves at {} with {} of travel to allow for, after its latest start {}", id,
+                        format_time(e.depart), format_duration(risk), format_time(t.latest_start())));
+    }
     if (e.start < e.arrival) bad(fmt::format("'{}': starts before arriving", id));
     if (e.start < t.release) bad(fmt::format("'{}': starts before its release", id));
     if (e.end != e.start + t.duration) bad(fmt::format("'{}': end != start + duration", id));

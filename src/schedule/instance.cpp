@@ -15,7 +15,8 @@ constexpr std::size_t kShortestPathMaxTasks = 320;
 
 Instance::Instance(const Problem& p) : problem_(&p), n_(p.tasks.size()) {
   const Time origin = p.robot.time;
-  static_ = !p.travel->time_dependent();
+  window_ = p.window_travel != nullptr;
+  static_ = !p.travel->time_dependent() && !(window_ && p.window_travel->time_dependent());
   has_return_ = p.return_to.has_value();
   if (has_return_) return_latest_ = ms(p.return_to->deadline - origin);
   release_.resize(n_);
@@ -30,12 +31,14 @@ Instance::Instance(const Problem& p) : problem_(&p), n_(p.tasks.size()) {
   const std::size_t m = n_ + 1;
   gap_.assign(m * m, 0);
   if (static_) arc_.assign(m * m, 0);
+  if (static_ && window_) window_arc_.assign(m * m, 0);
   for (std::size_t a = 0; a < m; ++a)
     for (std::size_t b = 0; b < m; ++b) {
       const bool to_return = b == n_;
       if (to_return && !has_return_) continue;
       const LocationIndex la = from_location(a), lb = to_location(b);
       if (static_) arc_[a * m + b] = ms(p.travel->travel(la, lb, origin));
+      if (static_ && window_ && !to_return) window_arc_[a * m + b] = ms(p.window_travel->travel(la, lb, origin));
       gap_[a * m + b] = ms(p.travel->lower_bound(la, lb));
     }
   // Shortest paths through tasks: from the end of a, via tasks (their durations count), to b.
@@ -119,6 +122,11 @@ std::int64_t Instance::travel_dynamic(std::size_t from, std::size_t to, std::int
                                      problem_->robot.time + Duration{depart}));
 }
 
+std::int64_t Instance::window_travel_dynamic(std::size_t from, std::size_t to, std::int64_t depart) const {
+  return ms(problem_->window_travel->travel(from_location(from), to_location(to),
+                                            problem_->robot.time + Duration{depart}));
+}
+
 bool Instance::order_respects_rules(const std::vector<std::size_t>& order) const {
   if (!has_rules_) return true;
   std::vector<char> done(n_, 0);
@@ -137,7 +145,7 @@ Instance::Timing Instance::time(const std::vector<std::size_t>& order) const {
   std::size_t last = n_;
   for (std::size_t j : order) {
     const std::int64_t start = std::max(release_[j], now + travel(last, j, now));
-    if (start > latest_[j]) return t;
+    if (start > latest_[j] || !window_allows(last, j, now)) return t;
     now = start + duration_[j];
     objective += now;
     last = j;

@@ -33,6 +33,15 @@ class Instance {
     if (static_) return arc_[from * (n_ + 1) + to];
     return travel_dynamic(from, to, depart);
   }
+  // The chance constraint (Problem::window_travel): may `to` start in its window after leaving
+  // `from` at `depart`, allowing for the window travel? Always true without one. The expected
+  // start's own check (start <= latest) is separate.
+  bool has_window_travel() const { return window_; }
+  bool window_allows(std::size_t from, std::size_t to, std::int64_t depart) const {
+    if (!window_ || to == n_) return true;
+    const std::int64_t need = static_ ? window_arc_[from * (n_ + 1) + to] : window_travel_dynamic(from, to, depart);
+    return depart + need <= latest_[to];
+  }
   // Lower bound on the time from the end of `from` to the arrival at the start of `to`, over any
   // sequence of tasks in between (shortest paths over lower-bound travel plus durations).
   std::int64_t min_gap(std::size_t from, std::size_t to) const { return gap_[from * (n_ + 1) + to]; }
@@ -86,16 +95,18 @@ class Instance {
     std::size_t drop;    // kNone: never dropped
   };
   std::int64_t travel_dynamic(std::size_t from, std::size_t to, std::int64_t depart) const;
+  std::int64_t window_travel_dynamic(std::size_t from, std::size_t to, std::int64_t depart) const;
   LocationIndex from_location(std::size_t from) const;
   LocationIndex to_location(std::size_t to) const;
 
   const Problem* problem_;
   std::size_t n_;
   bool static_ = true;
+  bool window_ = false;  // a chance constraint
   bool has_return_ = false;
   std::int64_t return_latest_ = kNever;
   std::vector<std::int64_t> release_, latest_, duration_;
-  std::vector<std::int64_t> arc_, gap_, max_gap_;
+  std::vector<std::int64_t> arc_, window_arc_, gap_, max_gap_;
   std::vector<std::size_t> by_latest_, by_earliest_end_;
   std::int64_t min_step_ = 0;
   bool has_rules_ = false;

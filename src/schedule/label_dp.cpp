@@ -149,7 +149,7 @@ LabelDpResult run_label_dp(const Instance& in, const LabelDpOptions& opt, const 
       for (std::size_t j = 0; j < n; ++j) {
         if (has(m, j)) continue;
         const std::int64_t start = std::max(in.release(j), t + in.travel(i, j, t));
-        if (start > in.latest(j)) continue;
+        if (start > in.latest(j) || !in.window_allows(i, j, t)) continue;
         if (rules && !in.allows(j, cur.load[l], done)) continue;
         const std::int64_t e = start + in.duration(j);
         const std::int64_t c = cur.cost[l] + e;

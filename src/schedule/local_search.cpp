@@ -44,10 +44,12 @@ void OrderImprover::retime(std::size_t from) {
 
 bool OrderImprover::propagate(std::size_t q, std::int64_t t, std::size_t prev, std::int64_t& delta,
                               bool need_gain) const {
-  const bool exact_slack = in_.static_travel();
+  // The forward slack counts only the expected starts; a chance constraint also bounds departures.
+  const bool exact_slack = in_.static_travel() && !in_.has_window_travel();
   for (std::size_t k = q; k < n_; ++k) {
     const std::size_t x = order_[k];
     const std::int64_t s = std::max(in_.release(x), t + in_.travel(prev, x, t));
+    if (!in_.window_allows(prev, x, t)) return false;
     if (s == start_[k]) return true;  // the old times resume from here
     const std::int64_t shift = s - start_[k];
     if (exact_slack && shift > slack_[k]) return false;
@@ -67,7 +69,7 @@ bool OrderImprover::simulate(const std::size_t* tasks, std::size_t count, const 
   for (std::size_t c = 0; c < count; ++c) {
     const std::size_t x = tasks[c];
     const std::int64_t s = std::max(in_.release(x), t + in_.travel(prev, x, t));
-    if (s > in_.latest(x)) return false;
+    if (s > in_.latest(x) || !in_.window_allows(prev, x, t)) return false;
     t = s + in_.duration(x);
     delta += t - old_ends[c];
     prev = x;
@@ -95,13 +97,13 @@ bool OrderImprover::try_forward(std::size_t i, std::size_t len, bool random_acce
     // Shift old[p] left over the removed segment.
     const std::size_t x = order_[p];
     const std::int64_t s = std::max(in_.release(x), t + in_.travel(prev, x, t));
-    if (s > in_.latest(x)) break;  // cannot happen under FIFO; guards odd oracles
+    if (s > in_.latest(x) || !in_.window_allows(prev, x, t)) break;  // guards odd oracles
     t = s + in_.duration(x);
     delta += t - end_[p];
     prev = x;
     // Insert the segment after old[p].
     const std::int64_t seg_start = std::max(in_.release(first), t + in_.travel(prev, first, t));
-    if (seg_start > in_.latest(first)) break;  // later places only start it later
+    if (seg_start > in_.latest(first) || !in_.window_allows(prev, first, t)) break;  // later places: later
     std::int64_t t2 = t, d2 = delta;
     std::size_t prev2 = prev;
     if (!simulate(&order_[i], len, &end_[i], t2, prev2, d2)) continue;

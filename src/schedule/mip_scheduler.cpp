@@ -45,6 +45,7 @@ Status MipScheduler::check_supported(const Problem& p) {
     if (t.transfer && !t.transfer->appearance.empty())
       return Error::unsupported("the MIP of the paper has no rule for same-looking items");
   if (p.return_to) return Error::unsupported("the MIP of the paper has no return to a depot");
+  if (p.window_travel) return Error::unsupported("the MIP of the paper has no chance constraint");
   return {};
 }
 

@@ -1,5 +1,6 @@
 #include "rondo/schedule/problem.h"
 
+#include <algorithm>
 #include <map>
 
 #include <fmt/format.h>
@@ -57,9 +58,18 @@ Status check_acyclic(const Problem& p) {
 
 }  // namespace
 
+Time Problem::window_arrival(LocationIndex from, LocationIndex to, Time depart) const {
+  Duration need = travel->travel(from, to, depart);
+  if (window_travel) need = std::max(need, window_travel->travel(from, to, depart));
+  return depart + need;
+}
+
 Status validate(const Problem& p) {
   if (!p.travel) return Error::invalid("problem: no travel oracle");
   const std::size_t locations = p.travel->location_count();
+  if (p.window_travel && p.window_travel->location_count() != locations)
+    return Error::invalid(fmt::format("problem: the window travel has {} locations, the travel {}",
+                                      p.window_travel->location_count(), locations));
   if (p.robot.location >= locations)
     return Error::invalid(fmt::format("robot: location {} out of range (0..{})", p.robot.location, locations));
   if (p.robot.capacity < 0) return Error::invalid("robot: capacity must not be negative");

@@ -47,6 +47,9 @@ Result<Schedule> time_order(const Problem& p, const std::vector<std::size_t>& or
     if (e.start > t.latest_start())
       return Error::invalid(fmt::format("task '{}' cannot start by {} (earliest {})", t.id,
                                         format_time(t.latest_start()), format_time(e.start)));
+    if (p.window_travel && p.window_arrival(here, t.start_location, now) > t.latest_start())
+      return Error::invalid(fmt::format("task '{}' starts by {} with too little chance (leaving at {})", t.id,
+                                        format_time(t.latest_start()), format_time(now)));
     s.objective += e.end - p.robot.time;
     now = e.end;
     here = t.end_location;

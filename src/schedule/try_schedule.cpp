@@ -58,7 +58,8 @@ DroppedTask reason_for(const Problem& p, std::size_t i, const Schedule& kept, co
   const ProblemTask& t = p.tasks[i];
   const std::string window = fmt::format("window {}–{}", hhmm(zone, t.release), zone.format_clock(t.deadline));
   // Alone from the robot's position?
-  const Duration first_travel = p.travel->travel(p.robot.location, t.start_location, p.robot.time);
+  // Travel as the window check counts it (with a chance constraint, its quantile).
+  const Duration first_travel = p.window_arrival(p.robot.location, t.start_location, p.robot.time) - p.robot.time;
   if (p.robot.time + first_travel > t.latest_start())
     return {i,
             fmt::format("{} cannot be reached from the robot's position at {} (travel {})", window,
@@ -76,7 +77,7 @@ DroppedTask reason_for(const Problem& p, std::size_t i, const Schedule& kept, co
     if (e.end <= t.latest_start()) before = &e;
   if (before != nullptr) {
     const ProblemTask& b = p.tasks[index[before->task]];
-    const Duration leg = p.travel->travel(b.end_location, t.start_location, before->end);
+    const Duration leg = p.window_arrival(b.end_location, t.start_location, before->end) - before->end;
     if (before->end + leg > t.latest_start())
       where = fmt::format("{} cannot be reached after task {} ends at {} (travel {})", window, b.id,
                           zone.format_clock(before->end), format_duration(leg));

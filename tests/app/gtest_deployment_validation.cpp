@@ -207,7 +207,7 @@ TEST(RunCommand, PersonPatienceIsAQuantileFromZeroTo098) {
   }
 }
 
-TEST(RunCommand, BatteryLevelsAreStatesOfChargeInOrder) {
+TEST(RunCommand, BatteryLevelsAreStatesOfChargeInOrderAndRiskAlphaIsInItsRange) {
   const std::string refit = "refit_at: \"02:00\"        # nightly refit of the edge models";
   const std::pair<const char*, const char*> cases[] = {
       {"battery_threshold: 1.5", "battery_threshold"},  // not a state of charge
@@ -215,6 +215,8 @@ TEST(RunCommand, BatteryLevelsAreStatesOfChargeInOrder) {
       {"battery_reserve: 0.1\n  battery_threshold: 0.3", "battery_threshold"},  // above the reserve
       {"battery_resume: 0.05", "battery_resume"},                          // below the threshold
       {"battery_reseve: 0.2", "battery_reseve"},                           // unknown key
+      {"risk_alpha: 0.7", "risk_alpha"},                                   // above the median
+      {"risk_alpha: 0", "risk_alpha"},
   };
   for (const auto& [bad, field] : cases) {
     const auto dir = fresh_dir("battery-bad");

@@ -47,6 +47,43 @@ RC_GTEST_PROP(SchedulerTravel, IsFifoAndAboveItsLowerBound, ()) {
   RC_ASSERT(d1 >= Duration{0});
 }
 
+RC_GTEST_PROP(SchedulerQuantileTravel, IsFifoAndGrowsWithTheLevel, ()) {
+  const map::TopoMap map = scenario_map();
+  const auto phase = *rc::gen::container<std::vector<double>>(map.edge_count(), rc::gen::inRange(0, 24));
+  const double p = *rc::gen::inRange(30, 101) / 100.0;
+  auto models = rhythmic_models(phase, *rc::gen::inRange(0, 40) / 10.0, p);
+  plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
+  TravelCache cache(map, models, planner, minutes(15));
+  const double level = *rc::gen::inRange(50, 99) / 100.0;
+  SchedulerQuantileTravel q(cache, {0, 1, 2, 3, 4}, level);
+  SchedulerQuantileTravel higher(cache, {0, 1, 2, 3, 4}, std::min(0.99, level + 0.05));
+  const auto a = *rc::gen::inRange<std::size_t>(0, 5);
+  const auto b = *rc::gen::inRange<std::size_t>(0, 5);
+  const Time t1 = kMonday + seconds(*rc::gen::inRange(0, 7 * 86400));
+  const Time t2 = t1 + seconds(*rc::gen::inRange(0, 4 * 3600));
+  const Duration d1 = q.travel(a, b, t1), d2 = q.travel(a, b, t2);
+  RC_ASSERT(t1 + d1 <= t2 + d2 + Duration{1});  // FIFO (1 ms of rounding)
+  RC_ASSERT(d1 >= Duration{0});
+  RC_ASSERT(higher.travel(a, b, t1) >= d1);
+}
+
+TEST(SchedulerQuantileTravel, IsTheRoutesDistributionQuantileAtSlotStarts) {
+  const map::TopoMap map = scenario_map();
+  auto models = std::make_shared<plan::FunctionEdgeModels>(
+      [](map::EdgeIndex, Time) { return plan::EdgeOutcome{0.5, 10.0}; });
+  plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
+  TravelCache cache(map, models, planner, minutes(15));
+  const map::NodeIndex dock = *map.find_node("Dock"), office = *map.find_node("Office");
+  const Time s0 = kMonday + hours(9);
+  // Two edges of 10 s, each tried until it succeeds with p = 0.5: T = 10 s × (N1 + N2), N geometric.
+  // P(T <= 40 s) = P(N1 + N2 <= 4) = 1 − P(more than 4) = 1 − 5/16 = 0.6875; P(<= 50 s) = 0.8125.
+  const Duration q = cache.quantile_at_slot(dock, office, s0, 0.8);
+  EXPECT_GE(q, seconds(50));
+  EXPECT_LE(q, seconds(51));  // the grid's bracket
+  EXPECT_EQ(cache.travel(dock, office, s0), seconds(40));  // the expected value stays
+  EXPECT_EQ(cache.quantile_at_slot(dock, dock, s0, 0.8), Duration{0});
+}
+
 TEST(SchedulerTravel, EqualsThePlannerAtSlotStartsAndInterpolatesBetween) {
   const map::TopoMap map = scenario_map();
   auto models = rhythmic_models({0, 3, 6, 9, 12, 15, 18, 21}, 1.5, 0.8);

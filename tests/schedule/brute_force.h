@@ -1,5 +1,5 @@
 // A slow, obviously correct scheduler for tests: tries every order (depth first), times each
-// prefix exactly as the rules say, and keeps the cheapest complete order. Its only pruning:
+// prefix exactly as the rules say (the chance constraint's window travel included), and keeps the cheapest complete order. Its only pruning:
 // a prefix that already breaks a rule, or already costs at least the best complete order (costs
 // only grow), is not extended. Up to ~12 tasks.
 #pragma once
@@ -54,6 +54,8 @@ inline BruteForceAnswer brute_force(const Problem& p) {
       if (pickup && !t.transfer->appearance.empty() && looks[t.transfer->appearance] > 0) continue;
       const Time start = std::max(now + p.travel->travel(here, t.start_location, now), t.release);
       if (start > t.latest_start()) continue;
+      // The chance constraint: the departure must leave the window travel too.
+      if (p.window_travel && now + p.window_travel->travel(here, t.start_location, now) > t.latest_start()) continue;
       const Time end = start + t.duration;
       used[j] = true;
       order.push_back(j);

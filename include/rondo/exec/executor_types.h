@@ -37,6 +37,11 @@ struct ExecutorOptions {
   double battery_reserve = 0.2;
   double battery_threshold = 0.1;
   double battery_resume = 0;
+  // The chance constraint (docs/scheduling.md, "Slack sized by risk"): a task is planned only
+  // where its departure leaves the (1 − risk_alpha)-quantile of its route's learned travel time
+  // before its latest start, so it starts in its window with probability >= 1 − risk_alpha.
+  // Timing and the objective stay on expected values. Nothing: plan with expected values alone.
+  std::optional<double> risk_alpha{};
   int max_failed_edges = 25;                      // a navigation gives up after this many failed attempts
   // After a failed edge, when trying again is not worth it by the live model (the attempts left
   // before max_failed_edges are more likely than not all to fail, or the travel still to go would

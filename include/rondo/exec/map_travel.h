@@ -50,6 +50,13 @@ class TravelCache {
   Duration at_slot(map::NodeIndex from, map::NodeIndex to, Time slot_start) const;
   // E(from, to, depart) interpolated between slot starts, FIFO-repaired (see above).
   Duration travel(map::NodeIndex from, map::NodeIndex to, Time depart) const;
+  // The `level`-quantile of the travel time from `from` to `to` at the start of the slot that
+  // contains `depart`: the policy's route with each edge's attempts geometric in its success
+  // probability (plan::TravelTimeDistribution, its upper bracket, so never below the true
+  // quantile). Interpolated between slot starts and FIFO-repaired as travel() is. Each (slot,
+  // target, source) is computed once per level and kept with its policy.
+  Duration quantile_at_slot(map::NodeIndex from, map::NodeIndex to, Time slot_start, double level) const;
+  Duration quantile_travel(map::NodeIndex from, map::NodeIndex to, Time depart, double level) const;
   // A lower bound of travel(from, to, t) over every t: the shortest path over per-edge minima of
   // the expected crossing time τ/p read at every slot start of one week. Exact for models that
   // repeat weekly (ours do: time-of-day and day-of-week bins); otherwise a schedule stays feasible
@@ -66,9 +73,16 @@ class TravelCache {
   struct Entry {
     plan::Policy policy;
     std::uint64_t version = 0;  // models->version() it is valid at
+    // Quantile seconds of the policy's travel time per source node at `level` (NaN: not yet read).
+    double level = 0;
+    std::vector<double> quantile_seconds{};
   };
-  // The policy to `to` at `slot_start`, valid at the current version.
-  const plan::Policy& policy(map::NodeIndex to, Time slot_start) const;
+  // The policy to `to` at `slot_start`, valid at the current version, with what is kept beside it.
+  Entry& entry(map::NodeIndex to, Time slot_start) const;
+  const plan::Policy& policy(map::NodeIndex to, Time slot_start) const { return entry(to, slot_start).policy; }
+  // FIFO-repaired linear interpolation between the values at the slot starts around `depart`.
+  template <class AtSlot>
+  Duration interpolate(Time depart, const AtSlot& at_slot) const;
   bool refresh(Entry& entry, Time slot_start) const;
   void refresh_lower_bounds() const;
   double edge_week_min(map::EdgeIndex e) const;
@@ -82,6 +96,23 @@ class TravelCache {
   mutable std::uint64_t lower_version_ = 0;                            // of edge_min_seconds_
   mutable std::vector<double> edge_min_seconds_;                       // empty until first needed
   mutable std::map<map::NodeIndex, std::vector<double>> lower_from_;  // per source: seconds to all
+};
+
+// The chance constraint's window travel (schedule::Problem::window_travel): the quantile of
+// the travel time at level 1 − α over the same cache and nodes.
+class SchedulerQuantileTravel final : public schedule::TravelOracle {
+ public:
+  SchedulerQuantileTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes, double level);
+  std::size_t location_count() const override { return nodes_.size(); }
+  Duration travel(schedule::LocationIndex from, schedule::LocationIndex to, Time depart) const override;
+  // Zero: the solvers read lower bounds from the expected travel only.
+  Duration lower_bound(schedule::LocationIndex, schedule::LocationIndex) const override { return Duration{0}; }
+  bool time_dependent() const override { return true; }
+
+ private:
+  const TravelCache* cache_;
+  std::vector<map::NodeIndex> nodes_;
+  double level_;
 };
 
 class SchedulerTravel final : public schedule::TravelOracle {

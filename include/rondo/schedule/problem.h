@@ -78,11 +78,20 @@ struct Problem {
   RobotState robot{};
   std::vector<ProblemTask> tasks{};
   std::shared_ptr<const TravelOracle> travel{};
+  // The chance constraint (docs/scheduling.md, "Slack sized by risk"). When set, a task may only
+  // be planned where its departure leaves this much travel before its latest start: the
+  // (1 − α)-quantile of the route's travel time at that departure, so that the task starts in its
+  // window with probability at least 1 − α. Timing and the objective stay on `travel` (expected
+  // values). Same locations and the same contract as `travel` (FIFO in the departure time).
+  std::shared_ptr<const TravelOracle> window_travel{};
   std::optional<ReturnTo> return_to{};
   std::vector<std::string> location_names{};  // optional, for messages; index = LocationIndex
 
   bool has_item_constraints() const;  // any transfer, capacity or item on board
   bool has_precedence() const;        // any `after`
+  // The latest a task leaving `from` at `depart` for `to` arrives, as the window check counts it:
+  // depart + max(travel, window_travel) (just travel without a chance constraint).
+  Time window_arrival(LocationIndex from, LocationIndex to, Time depart) const;
   std::string location_name(LocationIndex l) const;
 };
 
