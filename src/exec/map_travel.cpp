@@ -78,7 +78,11 @@ Duration TravelCache::quantile_at_slot(map::NodeIndex from, map::NodeIndex to, T
     // expected time per expected attempt, and a route's distribution costs a quarter.
     const plan::TravelTimeDistribution d =
         e.policy.travel_time_distribution(from, {.cells = 1024, .horizon_factor = 16.0});
-    q = d.reachable() ? d.quantile(level).upper : std::numeric_limits<double>::infinity();
+    // A quantile beyond the grid (16 x the expected time) is read as the grid's end: a reachable
+    // target stays reachable for the window check.
+    const double upper = d.quantile(level).upper;
+    q = !d.reachable() ? std::numeric_limits<double>::infinity()
+                       : (std::isfinite(upper) ? upper : d.horizon_seconds());
   }
   return to_duration(q);
 }
