@@ -31,8 +31,8 @@ inline constexpr Duration kUnreachable = hours(24 * 365);
 // How far behind the slot asked for the travel caches keep what they hold (TravelCache's entries,
 // and the M_t of the executor's planners): a day.
 inline constexpr Duration kTravelKeepBehind = hours(24);
-// TravelCache's count bound (see there): at least this many entries (a few MB of policies on an
-// office map), and otherwise this many times the largest working set of its recent problems.
+// TravelCache's count bound (see there): at least this many entries (about 1.3 MB of policies on
+// the G4S map), and otherwise this many times the largest working set of its recent problems.
 inline constexpr std::size_t kTravelCacheFloor = 256;
 inline constexpr std::size_t kTravelCacheWorkingSets = 2;
 
