@@ -98,6 +98,7 @@ ScheduleAnswer BackgroundScheduler::solve(ScheduleJob& job, std::stop_token stop
   ScheduleAnswer answer{.generation = job.generation,
                         .result = solve_pending(request, scheduler_, options_.polls, &either, rng_)};
   answer.seconds = steady_seconds() - start;
+  answer.travel_policies = travel_->cached_count();
   return answer;
 }
 

@@ -47,6 +47,7 @@ struct ScheduleAnswer {
   std::uint64_t generation = 0;
   schedule::TryScheduleResult result;
   double seconds = 0;  // wall time the solve took
+  std::size_t travel_policies = 0;  // the worker's TravelCache::cached_count() after the solve
 };
 
 class BackgroundScheduler {

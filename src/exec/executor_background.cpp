@@ -116,6 +116,7 @@ void Executor::background_book_changed() {
 
 void Executor::background_answered(ScheduleAnswer answer) {
   Background& bg = *background_;
+  stats_.background_travel_policies = answer.travel_policies;
   if (!bg.in_flight || answer.generation != bg.generation) return;
   Background::InFlight f = std::move(*bg.in_flight);
   bg.in_flight.reset();

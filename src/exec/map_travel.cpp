@@ -42,22 +42,59 @@ bool TravelCache::refresh(Entry& entry, Time slot_start) const {
   return true;
 }
 
+TravelCache::Entry& TravelCache::touch(Entry& entry) const {
+  if (entry.used != generation_) {
+    entry.used = generation_;
+    ++recent_sets_[generation_ % kRecentGenerations];
+  }
+  return entry;
+}
+
 TravelCache::Entry& TravelCache::entry(map::NodeIndex to, Time slot_start) const {
   const auto key = std::make_pair(slot_start, to);
   auto it = policies_.find(key);
   if (it != policies_.end()) {
     if (refresh(it->second, slot_start)) {
       ++kept_;
-      return it->second;
+      return touch(it->second);
     }
     ++resolved_;
-    it->second = {planner_->policy(to, slot_start), models_->version()};
-    return it->second;
+    ++solved_;
+    it->second.policy = planner_->solve_policy(to, slot_start);
+    it->second.version = models_->version();
+    it->second.quantile_seconds.clear();
+    return touch(it->second);
   }
   // Departures only move forward: entries a day older than the one asked for are not asked again.
   if (!policies_.empty() && policies_.begin()->first.first < slot_start - kTravelKeepBehind)
     policies_.erase(policies_.begin(), policies_.lower_bound({slot_start - kTravelKeepBehind, 0}));
-  return policies_.emplace(key, Entry{planner_->policy(to, slot_start), models_->version()}).first->second;
+  ++solved_;
+  return touch(policies_.emplace(key, Entry{planner_->solve_policy(to, slot_start), models_->version()}).first->second);
+}
+
+void TravelCache::begin_problem() const {
+  ++generation_;
+  recent_sets_[generation_ % kRecentGenerations] = 0;
+  evict_to_bound();
+}
+
+void TravelCache::evict_to_bound() const {
+  const std::size_t largest = *std::max_element(recent_sets_.begin(), recent_sets_.end());
+  const std::size_t bound = std::max(kTravelCacheFloor, kTravelCacheWorkingSets * largest);
+  if (policies_.size() <= bound) return;
+  // Least recently read first (by generation; within one, the earlier slot). A new generation has
+  // read nothing yet, and the previous one's entries sort last, within the bound (>= its size).
+  using Item = std::pair<std::uint64_t, decltype(policies_)::iterator>;
+  std::vector<Item> order;
+  order.reserve(policies_.size());
+  for (auto it = policies_.begin(); it != policies_.end(); ++it) order.emplace_back(it->second.used, it);
+  const std::size_t excess = policies_.size() - bound;
+  std::nth_element(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(excess - 1), order.end(),
+                   [](const Item& a, const Item& b) {
+                     return a.first != b.first ? a.first < b.first : a.second->first < b.second->first;
+                   });
+  for (std::size_t i = 0; i < excess; ++i) policies_.erase(order[i].second);
+  evicted_ += excess;
 }
 
 Duration TravelCache::at_slot(map::NodeIndex from, map::NodeIndex to, Time slot_start) const {
@@ -181,7 +218,9 @@ Duration SchedulerQuantileTravel::travel(schedule::LocationIndex from, schedule:
 }
 
 SchedulerTravel::SchedulerTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes)
-    : cache_(&cache), nodes_(std::move(nodes)) {}
+    : cache_(&cache), nodes_(std::move(nodes)) {
+  cache_->begin_problem();
+}
 
 Duration SchedulerTravel::travel(schedule::LocationIndex from, schedule::LocationIndex to, Time depart) const {
   return cache_->travel(nodes_[from], nodes_[to], depart);

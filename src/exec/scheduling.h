@@ -24,8 +24,14 @@ namespace rondo::exec {
 // day (kTravelKeepBehind) before the slot asked for on, and never more than two days of 15-minute
 // slots, so a service that runs for months holds the day it plans over, not every slot it used.
 inline constexpr std::size_t kCachedSlots = 192;
+// The policies each planner keeps itself: only navigation's (to its target, departing now, asked
+// again after every edge); the scheduler's are TravelCache's (TravelPlanner::solve_policy).
+inline constexpr std::size_t kCachedNavigationPolicies = 64;
 inline plan::TravelPlannerOptions planner_options(Duration slot_width) {
-  return {.slot_width = slot_width, .max_cached_slots = kCachedSlots, .keep_behind = kTravelKeepBehind};
+  return {.slot_width = slot_width,
+          .max_cached_policies = kCachedNavigationPolicies,
+          .max_cached_slots = kCachedSlots,
+          .keep_behind = kTravelKeepBehind};
 }
 
 // The tasks to schedule: the ones already planned first, then the new ones, then the ones offered

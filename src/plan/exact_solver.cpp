@@ -48,6 +48,9 @@ bool ExactSolver::uses_buckets(const Mdp& mdp) const {
   return mdp.max_crossing_seconds() / width <= static_cast<double>(options_.max_buckets - 2);
 }
 
+// The widest bucket ring a solver keeps between solves (about 100 KB of empty buckets).
+constexpr std::size_t kKeptBuckets = 4096;
+
 // Dial's bucket queue: bucket k holds the nodes whose tentative cost lies in [kΔ, (k + 1)Δ), with
 // Δ the cheapest usable crossing. Every node in the lowest non-empty bucket is final, in any
 // order: a path that could still improve it would end with an edge costing at least Δ, from a
@@ -81,6 +84,12 @@ void ExactSolver::run_buckets(Search& search, NodeIndex source) const {
     }
     bucket.clear();
   }
+  // A wide ring is released after its solve. One slot whose M_t spreads its crossing costs widely
+  // (an edge expected to stay shut for a long time: a large τ/p) needs up to max_buckets buckets,
+  // 24 bytes each (1.5 MB at 2^16); kept, that would be held for good by every planner that ever
+  // met such a slot (docs/operations.md, "Memory over time"). Such a solve walks the whole ring
+  // anyway, so building it again costs about as much as the walk.
+  if (buckets_.size() > kKeptBuckets) std::vector<std::vector<NodeIndex>>().swap(buckets_);
 }
 
 // A binary min-heap of (cost, node) with lazy deletion, for M_t whose crossing costs are too

@@ -114,10 +114,15 @@ const Policy& TravelPlanner::policy(NodeIndex target, Time depart) {
     ++resolved_;
     policies_.erase(it);
   }
-  const std::shared_ptr<const Mdp> mdp = slot_entry(slot);  // kept alive while solving
-  Solution solution = solver_.solve(*mdp, target).value();  // target checked above
+  Policy solved = solve_policy(target, depart);
   if (policies_.size() >= options_.max_cached_policies) policies_.clear();
-  return policies_.emplace(key, CachedPolicy{std::move(solution.policy), models_->version()}).first->second.policy;
+  return policies_.emplace(key, CachedPolicy{std::move(solved), models_->version()}).first->second.policy;
+}
+
+Policy TravelPlanner::solve_policy(NodeIndex target, Time depart) {
+  check_node(*map_, target);
+  const std::shared_ptr<const Mdp> mdp = slot_entry(slot_of(depart));  // kept alive while solving
+  return std::move(solver_.solve(*mdp, target).value().policy);        // target checked above
 }
 
 double TravelPlanner::expected_seconds(NodeIndex from, NodeIndex to, Time depart) {

@@ -107,6 +107,8 @@ Reply metrics_reply(Api& api) {
         "# TYPE rondo_memory_navigations gauge\nrondo_memory_navigations {}\n"
         "# HELP rondo_memory_travel_policies Policies held by the executor's travel cache.\n"
         "# TYPE rondo_memory_travel_policies gauge\nrondo_memory_travel_policies {}\n"
+        "# HELP rondo_memory_background_travel_policies Policies held by the background scheduler's travel cache.\n"
+        "# TYPE rondo_memory_background_travel_policies gauge\nrondo_memory_background_travel_policies {}\n"
         "# HELP rondo_memory_travel_slots Time slots whose travel model the executor's planner holds.\n"
         "# TYPE rondo_memory_travel_slots gauge\nrondo_memory_travel_slots {}\n"
         "# HELP rondo_memory_heap_bytes Heap bytes in use (malloc).\n"
@@ -116,7 +118,7 @@ Reply metrics_reply(Api& api) {
         "# HELP rondo_memory_sqlite_bytes Of the heap in use, what SQLite holds (page caches).\n"
         "# TYPE rondo_memory_sqlite_bytes gauge\nrondo_memory_sqlite_bytes {}\n",
         api.ctx.executor.tasks().size(), api.ctx.executor.navigations().size(), travel.cached_count(),
-        travel.planner().cached_slot_count(), heap.uordblks + heap.hblkhd, heap.fordblks, store::Store::sqlite_memory_bytes());
+        api.ctx.executor.stats().background_travel_policies, travel.planner().cached_slot_count(), heap.uordblks + heap.hblkhd, heap.fordblks, store::Store::sqlite_memory_bytes());
     Reply r;
     r.text = std::move(out);
     r.content_type = "text/plain; version=0.0.4";

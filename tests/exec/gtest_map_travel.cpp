@@ -171,5 +171,91 @@ TEST(SchedulerTravel, AnUnreachableNodeIsKUnreachable) {
   EXPECT_EQ(travel.lower_bound(0, 1), kUnreachable);
 }
 
+// Asks `travel` for every pair of its locations at every slot start in [from, from + span).
+void ask_all(const SchedulerTravel& travel, Time from, Duration span) {
+  for (Time t = from; t < from + span; t += minutes(15))
+    for (std::size_t a = 0; a < travel.location_count(); ++a)
+      for (std::size_t b = 0; b < travel.location_count(); ++b) (void)travel.travel(a, b, t);
+}
+
+TEST(SchedulerTravel, TheCountBoundEvictsWhatRecentProblemsDidNotRead) {
+  const map::TopoMap map = scenario_map();
+  auto models = rhythmic_models({0, 3, 6, 9, 12, 15, 18, 21}, 1.5, 0.8);
+  plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
+  TravelCache cache(map, models, planner, minutes(15));
+  const std::vector<map::NodeIndex> all = {0, 1, 2, 3, 4};
+  // A day's problem to every node: 5 targets x 97 slot starts, far above the floor.
+  {
+    SchedulerTravel day(cache, all);
+    ask_all(day, kMonday, hours(24) - minutes(15));
+  }
+  const std::size_t day_entries = cache.cached_count();
+  EXPECT_GT(day_entries, kTravelCacheFloor);
+  // Small problems after it: the day's entries stay while the day is among the recent working
+  // sets (the bound is twice its size) ...
+  const std::vector<map::NodeIndex> two = {*map.find_node("Dock"), *map.find_node("Office")};
+  for (int k = 0; k < 7; ++k) {
+    SchedulerTravel small(cache, two);
+    ask_all(small, kMonday + hours(20), hours(1));
+  }
+  EXPECT_EQ(cache.evicted_count(), 0u);
+  EXPECT_EQ(cache.cached_count(), day_entries);
+  // ... and go, least recently read first, once it is not: down to the floor.
+  const std::size_t solved = cache.solved_count();
+  SchedulerTravel next(cache, two);
+  EXPECT_EQ(cache.cached_count(), kTravelCacheFloor);
+  EXPECT_EQ(cache.evicted_count(), day_entries - kTravelCacheFloor);
+  // The previous problem's entries are still there: asking them again solves nothing.
+  ask_all(next, kMonday + hours(20), hours(1));
+  EXPECT_EQ(cache.solved_count(), solved);
+  // And what was evicted is solved again, equal to what a fresh cache gives.
+  plan::TravelPlanner fresh_planner(map, models, {.slot_width = minutes(15)});
+  TravelCache fresh(map, models, fresh_planner, minutes(15));
+  for (map::NodeIndex a : all)
+    for (map::NodeIndex b : all) EXPECT_EQ(cache.travel(a, b, kMonday + hours(8)), fresh.travel(a, b, kMonday + hours(8)));
+  EXPECT_GT(cache.solved_count(), solved);
+}
+
+// However problems come (any nodes, any hours of two days), answers equal a fresh cache's, the
+// count stays within its bound after each problem opens, and the previous problem's entries are
+// never solved again when the next problem asks for them.
+RC_GTEST_PROP(SchedulerTravel, TheCountBoundKeepsAnswersAndThePreviousProblem, ()) {
+  const map::TopoMap map = scenario_map();
+  const auto phase = *rc::gen::container<std::vector<double>>(map.edge_count(), rc::gen::inRange(0, 24));
+  auto models = rhythmic_models(phase, 1.5, 0.8);
+  plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
+  TravelCache cache(map, models, planner, minutes(15));
+  const int problems = *rc::gen::inRange(1, 30);
+  Time start = kMonday;
+  std::vector<map::NodeIndex> previous_nodes;
+  Time previous_from = start;
+  Duration previous_span{0};
+  for (int k = 0; k < problems; ++k) {
+    const auto chosen = *rc::gen::container<std::vector<bool>>(map.node_count(), rc::gen::arbitrary<bool>());
+    std::vector<map::NodeIndex> nodes;
+    for (map::NodeIndex n = 0; n < map.node_count(); ++n)
+      if (chosen[n]) nodes.push_back(n);
+    start += minutes(15) * *rc::gen::inRange(0, 8);  // departures move forward
+    const Duration span = hours(*rc::gen::inRange(1, 24));
+    SchedulerTravel travel(cache, nodes);
+    RC_ASSERT(cache.cached_count() <= std::max(kTravelCacheFloor, kTravelCacheWorkingSets * 5 * 97));
+    if (!previous_nodes.empty() && *rc::gen::arbitrary<bool>()) {
+      const std::size_t solved = cache.solved_count();
+      ask_all(SchedulerTravel(cache, previous_nodes), previous_from, previous_span);
+      RC_ASSERT(cache.solved_count() == solved);
+    }
+    ask_all(travel, start, span);
+    previous_nodes = nodes;
+    previous_from = start;
+    previous_span = span;
+  }
+  RC_CLASSIFY(cache.evicted_count() > 0, "evicted");
+  plan::TravelPlanner fresh_planner(map, models, {.slot_width = minutes(15)});
+  TravelCache fresh(map, models, fresh_planner, minutes(15));
+  for (map::NodeIndex a = 0; a < map.node_count(); ++a)
+    for (map::NodeIndex b = 0; b < map.node_count(); ++b)
+      RC_ASSERT(cache.travel(a, b, start + minutes(7)) == fresh.travel(a, b, start + minutes(7)));
+}
+
 }  // namespace
 }  // namespace rondo::exec::testing

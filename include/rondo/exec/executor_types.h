@@ -1,6 +1,7 @@
 // What the executor is configured with and what it counts: shared by the executor and its steps.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -99,6 +100,7 @@ struct ExecutorStats {
   int schedules = 0;       // scheduler calls
   int background_runs = 0;   // reschedules solved on the worker (background_scheduling)
   int background_stale = 0;  //   of which the answer came too late: the book had moved on
+  std::size_t background_travel_policies = 0;  // held by the worker's travel cache, at its last answer
 };
 
 // The battery as the executor saw it (BatteryWatch): readings, the lowest, stays on the charger,

@@ -12,6 +12,7 @@
 // unreachable node gives kUnreachable, which no time window admits.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <map>
@@ -30,6 +31,10 @@ inline constexpr Duration kUnreachable = hours(24 * 365);
 // How far behind the slot asked for the travel caches keep what they hold (TravelCache's entries,
 // and the M_t of the executor's planners): a day.
 inline constexpr Duration kTravelKeepBehind = hours(24);
+// TravelCache's count bound (see there): at least this many entries (about 1.3 MB of policies on
+// the G4S map), and otherwise this many times the largest working set of its recent problems.
+inline constexpr std::size_t kTravelCacheFloor = 256;
+inline constexpr std::size_t kTravelCacheWorkingSets = 2;
 
 // Expected node-to-node seconds per slot start, shared by every problem of one executor. It keeps
 // the planner's policy to each (slot start, target) asked for, with the models' version() it is
@@ -38,9 +43,18 @@ inline constexpr Duration kTravelKeepBehind = hours(24);
 // start), and is solved again otherwise; everything is dropped when the models cannot say what
 // changed (a refit). The lower bounds re-read only the changed edges' weekly minima, and are
 // recomputed when one of those minima moved. So an online update of one edge leaves the entries
-// it does not touch, and every answer equals what a fresh cache would give. Entries for slots more
-// than a day before the latest one filled are dropped (departures move forward with the clock), so
-// the cache stays the same size however long the robot has lived.
+// it does not touch, and every answer equals what a fresh cache would give.
+//
+// Two bounds keep the cache the same size however long the robot has lived. Entries for slots
+// more than a day before the latest one filled are dropped (departures move forward with the
+// clock). And the count: each SchedulerTravel made over the cache (one per scheduling problem)
+// opens a generation; the entries read during a generation are its working set (a day's problem
+// reads targets x slots of the day). When a generation opens, the entries read longest ago go
+// until at most max(kTravelCacheFloor, kTravelCacheWorkingSets x the largest working set of the
+// last kRecentGenerations) are left. The previous generation's entries are the most recent, so
+// they always stay: eviction never makes the next, similar problem solve its policies again, and
+// never happens inside a solve. A service that sends the robot to many places (each target of
+// the day is an entry per slot) holds what its recent problems read, not every place of the day.
 class TravelCache {
  public:
   // `planner` must read `models`; the map and the planner must outlive the cache.
@@ -67,22 +81,35 @@ class TravelCache {
   // Cached (slot, target) entries, and how many were solved again / kept after a model change.
   std::size_t cached_count() const { return policies_.size(); }
   std::size_t resolved_count() const { return resolved_; }
+  // Policies solved in all (entries filled, and solved again).
+  std::size_t solved_count() const { return solved_; }
   std::size_t kept_count() const { return kept_; }
+  // Opens a generation (SchedulerTravel's constructor calls it) and evicts down to the bound.
+  void begin_problem() const;
+  // Entries read in the previous generation, and how many entries the count bound has evicted.
+  std::size_t last_working_set() const { return recent_sets_[(generation_ - 1) % kRecentGenerations]; }
+  std::size_t evicted_count() const { return evicted_; }
 
  private:
+  static constexpr std::size_t kRecentGenerations = 8;
   struct Entry {
     plan::Policy policy;
     std::uint64_t version = 0;  // models->version() it is valid at
+    std::uint64_t used = 0;     // the generation it was last read in
     // Quantile seconds of the policy's travel time per source node at `level` (NaN: not yet read).
     double level = 0;
     std::vector<double> quantile_seconds{};
   };
-  // The policy to `to` at `slot_start`, valid at the current version, with what is kept beside it.
+  // The policy to `to` at `slot_start`, valid at the current version.
+  // The entry of the policy to `to` at `slot_start`, valid at the current version, with what is
+  // kept beside it; read in the current generation.
   Entry& entry(map::NodeIndex to, Time slot_start) const;
   const plan::Policy& policy(map::NodeIndex to, Time slot_start) const { return entry(to, slot_start).policy; }
+  Entry& touch(Entry& entry) const;
   // FIFO-repaired linear interpolation between the values at the slot starts around `depart`.
   template <class AtSlot>
   Duration interpolate(Time depart, const AtSlot& at_slot) const;
+  void evict_to_bound() const;
   bool refresh(Entry& entry, Time slot_start) const;
   void refresh_lower_bounds() const;
   double edge_week_min(map::EdgeIndex e) const;
@@ -92,14 +119,17 @@ class TravelCache {
   plan::TravelPlanner* planner_;
   Duration slot_width_;
   mutable std::map<std::pair<Time, map::NodeIndex>, Entry> policies_;
-  mutable std::size_t resolved_ = 0, kept_ = 0;
+  mutable std::size_t resolved_ = 0, kept_ = 0, evicted_ = 0, solved_ = 0;
+  mutable std::uint64_t generation_ = 1;
+  mutable std::array<std::size_t, kRecentGenerations> recent_sets_{};  // working sets by generation
   mutable std::uint64_t lower_version_ = 0;                            // of edge_min_seconds_
   mutable std::vector<double> edge_min_seconds_;                       // empty until first needed
   mutable std::map<map::NodeIndex, std::vector<double>> lower_from_;  // per source: seconds to all
 };
 
 // The chance constraint's window travel (schedule::Problem::window_travel): the quantile of
-// the travel time at level 1 − α over the same cache and nodes.
+// the travel time at level 1 − α over the same cache and nodes. Made with the problem's
+// SchedulerTravel, whose generation it reads in.
 class SchedulerQuantileTravel final : public schedule::TravelOracle {
  public:
   SchedulerQuantileTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes, double level);
@@ -117,6 +147,7 @@ class SchedulerQuantileTravel final : public schedule::TravelOracle {
 
 class SchedulerTravel final : public schedule::TravelOracle {
  public:
+  // Opens a generation of `cache` (TravelCache::begin_problem): make one per problem.
   SchedulerTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes);
   std::size_t location_count() const override { return nodes_.size(); }
   Duration travel(schedule::LocationIndex from, schedule::LocationIndex to, Time depart) const override;

@@ -78,6 +78,9 @@ class TravelPlanner {
   double expected_seconds(NodeIndex from, NodeIndex to, Time depart);
   // The optimal policy to `target` in the same M_t. The reference is valid until the next query.
   const Policy& policy(NodeIndex target, Time depart);
+  // The same policy, solved and not kept in the policy cache (the slot's M_t is): for callers that
+  // keep the policies they ask for themselves (exec::TravelCache), so each is held once.
+  Policy solve_policy(NodeIndex target, Time depart);
   // The snapshot for depart's slot. The pointer stays valid after the caches are emptied.
   std::shared_ptr<const Mdp> mdp_at(Time depart);
 
