@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
-"""Measures examples/battery: the hard threshold against idle charging (docs/executor.md, "Battery").
+"""Measures examples/battery: planned charging, the hard threshold alone and idle charging
+(docs/executor.md, "Battery" and "Planned charging").
 
-Runs examples/battery/deployment.yaml (hard threshold on) and idle-charging.yaml (off) for the
-same seeds and days with build/rondo, and prints per run and in total: days with a reading of an
-empty battery (`battery.days_flat`), the lowest state of charge, tasks completed, failed and
-dropped (by outcome code), falls below the threshold and the events with the code `charging`.
+Runs examples/battery/deployment.yaml (planned charging and the hard threshold),
+threshold-only.yaml and idle-charging.yaml (neither) for the same seeds and days with
+build/rondo, and prints per run and in total: days with a reading of an empty battery
+(`battery.days_flat`), the lowest state of charge, runs whose lowest reading is below the 20 %
+reserve, tasks completed, failed and dropped (by outcome code), falls below the threshold and the
+events with the code `charging`.
 
   python3 scripts/battery_example.py [--seeds 1-10] [--days 30] [--rondo build/rondo]
 """
@@ -24,7 +27,8 @@ def main():
     a = ap.parse_args()
     lo, _, hi = a.seeds.partition("-")
     seeds = range(int(lo), int(hi or lo) + 1)
-    for mode, deployment in [("threshold", "examples/battery/deployment.yaml"),
+    for mode, deployment in [("planned", "examples/battery/deployment.yaml"),
+                             ("threshold", "examples/battery/threshold-only.yaml"),
                              ("idle charging", "examples/battery/idle-charging.yaml")]:
         total = collections.Counter()
         codes = collections.Counter()
@@ -40,7 +44,7 @@ def main():
             print(f"{mode:13} seed {seed:3}: {b['days_flat']} days flat, lowest {b['lowest']:.3f}, "
                   f"{t['completed']} completed, {failed} failed, {dropped} dropped, "
                   f"{b['below_threshold']} below the threshold, charging {b['for_charging']}")
-            total.update(runs=1, runs_flat=b["days_flat"] > 0, days_flat=b["days_flat"], added=t["added"],
+            total.update(runs=1, runs_flat=b["days_flat"] > 0, runs_below_reserve=b["lowest"] < 0.2, days_flat=b["days_flat"], added=t["added"],
                          completed=t["completed"], failed=failed, dropped=dropped, below=b["below_threshold"])
             codes.update({f"failed: {k}": v for k, v in t["failed"].items()})
             codes.update({f"dropped: {k}": v for k, v in t["dropped"].items()})

@@ -50,6 +50,11 @@ Status decode_battery_levels(const Field& f, exec::ExecutorOptions& o) {
     return f.error_at(f.has("battery_threshold") ? "battery_threshold" : "battery_reserve",
                       fmt::format("the hard threshold {} is above the reserve {}", o.battery_threshold,
                                   o.battery_reserve));
+  if (auto v = f.optional("battery_planning")) { RONDO_ASSIGN_OR_RETURN(o.battery_planning, v->as_bool()); }
+  if (auto v = f.optional("battery_margin")) {
+    RONDO_ASSIGN_OR_RETURN(o.battery_margin, v->as_number());
+    if (!(o.battery_margin >= 0 && o.battery_margin <= 10)) return v->error("must be from 0 to 10 standard errors");
+  }
   if (o.battery_resume > 0 && o.battery_resume <= o.battery_threshold)
     return f.error_at("battery_resume", fmt::format("the resume level {} must be above the hard threshold {}",
                                                     o.battery_resume, o.battery_threshold));
@@ -62,7 +67,7 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
                                        "on_demand_patience", "person_patience", "refit_at",
                                        "refit_window", "online_model", "slot_width", "scheduler_polls", "capacity",
                                        "return_to", "return_within", "battery_reserve", "battery_threshold",
-                                       "battery_resume", "risk_alpha"}));
+                                       "battery_resume", "battery_planning", "battery_margin", "risk_alpha"}));
   if (auto v = f.optional("navigation_overrun")) { RONDO_ASSIGN_OR_RETURN(o.navigation_overrun, positive(*v)); }
   if (auto v = f.optional("navigation_slack")) { RONDO_ASSIGN_OR_RETURN(o.navigation_slack, non_negative_duration(*v)); }
   if (auto v = f.optional("action_overrun")) { RONDO_ASSIGN_OR_RETURN(o.action_overrun, positive(*v)); }

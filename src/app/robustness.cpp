@@ -33,7 +33,8 @@ Deployment variant_of(const Deployment& base, const RobustnessVariant& v, std::u
   d.seed = seed;
   if (days) d.days = *days;
   d.executor.risk_alpha = v.risk_alpha;
-  if (v.idle_charging) d.executor.battery_threshold = 0;
+  if (v.idle_charging) d.executor.battery_threshold = 0, d.executor.battery_planning = false;
+  if (v.planned_charging) d.executor.battery_planning = true;
   return d;
 }
 
@@ -52,6 +53,7 @@ std::vector<RobustnessVariant> robustness_variants(const std::vector<double>& al
   std::vector<RobustnessVariant> v{{.name = "expected"}};
   for (double a : alphas) v.push_back({.name = fmt::format("alpha {:g}", a), .risk_alpha = a});
   v.push_back({.name = "idle charging", .idle_charging = true});
+  v.push_back({.name = "planned charging", .planned_charging = true});
   return v;
 }
 
@@ -77,14 +79,15 @@ RunFiguresSummary summarize_report(const Json& report) {
 Result<RobustnessResult> evaluate_robustness(const RobustnessOptions& options) {
   RobustnessResult result{.variants = robustness_variants(options.alphas), .runs = {}, .seeds = options.seeds};
   struct Job {
+    std::size_t index;
     const Deployment* deployment;
     const RobustnessVariant* variant;
     std::uint64_t seed;
   };
   std::vector<Job> jobs;
-  for (const Deployment& d : options.deployments)
+  for (std::size_t i = 0; i < options.deployments.size(); ++i)
     for (const RobustnessVariant& v : result.variants)
-      for (std::uint64_t seed : options.seeds) jobs.push_back({&d, &v, seed});
+      for (std::uint64_t seed : options.seeds) jobs.push_back({i, &options.deployments[i], &v, seed});
   result.runs.resize(jobs.size());
   result.days = options.days ? *options.days : (options.deployments.empty() ? 0 : options.deployments.front().days);
 
@@ -111,7 +114,8 @@ Result<RobustnessResult> evaluate_robustness(const RobustnessOptions& options) {
                                                       job.seed));
         return;
       }
-      result.runs[i] = {.deployment = job.deployment->name,
+      result.runs[i] = {.deployment_index = job.index,
+                        .deployment = job.deployment->name,
                         .variant = job.variant->name,
                         .seed = job.seed,
                         .figures = summarize_report(run->report),
@@ -128,17 +132,19 @@ Result<RobustnessResult> evaluate_robustness(const RobustnessOptions& options) {
 
 namespace {
 
-// Totals over the seeds of one deployment and variant.
+// Totals over the seeds of one deployment and variant (sum.lowest_charge: the lowest of them).
 struct Totals {
-  RunFiguresSummary sum{};
-  double lowest_charge = 1;
+  RunFiguresSummary sum{.lowest_charge = 1};
   int runs = 0;
 };
 
-std::map<std::pair<std::string, std::string>, Totals> totals_of(const RobustnessResult& r) {
-  std::map<std::pair<std::string, std::string>, Totals> out;
+// Keyed by the deployment's position among the arguments and the variant's name.
+using TotalsKey = std::pair<std::size_t, std::string>;
+
+std::map<TotalsKey, Totals> totals_of(const RobustnessResult& r) {
+  std::map<TotalsKey, Totals> out;
   for (const RobustnessRun& run : r.runs) {
-    Totals& t = out[{run.deployment, run.variant}];
+    Totals& t = out[{run.deployment_index, run.variant}];
     const RunFiguresSummary& f = run.figures;
     t.sum.added += f.added;
     t.sum.completed += f.completed;
@@ -149,17 +155,19 @@ std::map<std::pair<std::string, std::string>, Totals> totals_of(const Robustness
     t.sum.dropped += f.dropped;
     t.sum.waiting_s += f.waiting_s;
     t.sum.days_flat += f.days_flat;
-    t.lowest_charge = std::min(t.lowest_charge, f.lowest_charge);
+    t.sum.lowest_charge = std::min(t.sum.lowest_charge, f.lowest_charge);
     ++t.runs;
   }
   return out;
 }
 
-std::vector<std::string> deployments_in_order(const RobustnessResult& r) {
-  std::vector<std::string> names;
+// Each deployment once, in the order given: its position and its name.
+std::vector<std::pair<std::size_t, std::string>> deployments_in_order(const RobustnessResult& r) {
+  std::vector<std::pair<std::size_t, std::string>> out;
   for (const RobustnessRun& run : r.runs)
-    if (std::find(names.begin(), names.end(), run.deployment) == names.end()) names.push_back(run.deployment);
-  return names;
+    if (std::none_of(out.begin(), out.end(), [&](const auto& d) { return d.first == run.deployment_index; }))
+      out.emplace_back(run.deployment_index, run.deployment);
+  return out;
 }
 
 }  // namespace
@@ -170,11 +178,11 @@ Json robustness_json(const RobustnessResult& r) {
   out["seeds"] = r.seeds;
   const auto totals = totals_of(r);
   Json rows = Json::array();
-  for (const std::string& d : deployments_in_order(r)) {
-    const Totals& base = totals.at({d, r.variants.front().name});
+  for (const auto& [index, d] : deployments_in_order(r)) {
+    const Totals& base = totals.at({index, r.variants.front().name});
     const int base_late = base.sum.too_late + base.sum.navigation_overrun;
     for (const RobustnessVariant& v : r.variants) {
-      const Totals& t = totals.at({d, v.name});
+      const Totals& t = totals.at({index, v.name});
       const int late = t.sum.too_late + t.sum.navigation_overrun;
       Json row = {{"deployment", d},
                   {"variant", v.name},
@@ -187,7 +195,7 @@ Json robustness_json(const RobustnessResult& r) {
                               {"other", t.sum.other_failures}}},
                   {"dropped", t.sum.dropped},
                   {"waiting_h", t.sum.waiting_s / 3600},
-                  {"lowest_charge", t.lowest_charge},
+                  {"lowest_charge", t.sum.lowest_charge},
                   {"days_flat", t.sum.days_flat},
                   {"completed_ratio", ratio(t.sum.completed, base.sum.completed)},
                   {"late_and_overrun_ratio", ratio(late, base_late)}};

@@ -25,10 +25,12 @@ namespace rondo::app {
 struct RobustnessVariant {
   std::string name;
   std::optional<double> risk_alpha{};  // the chance constraint; nothing: expected values
-  bool idle_charging = false;          // charge only when idle at the dock: no hard threshold
+  bool idle_charging = false;          // charge only when idle at the dock: no hard threshold, no planning
+  bool planned_charging = false;       // charges planned by the schedule (ExecutorOptions::battery_planning)
 };
 
-// The variants compared: expected values first (the baseline), then one per α, then idle charging.
+// The variants compared: expected values first (the baseline), then one per α, then idle charging
+// and planned charging.
 std::vector<RobustnessVariant> robustness_variants(const std::vector<double>& alphas);
 
 // What one run gave, from its report.
@@ -46,6 +48,7 @@ struct RunFiguresSummary {
 };
 
 struct RobustnessRun {
+  std::size_t deployment_index = 0;  // in RobustnessOptions::deployments (two may share a name)
   std::string deployment;
   std::string variant;
   std::uint64_t seed = 0;

@@ -96,7 +96,7 @@ ScheduleAnswer BackgroundScheduler::solve(ScheduleJob& job, std::stop_token stop
   const TokenStop cancelled(std::move(stop));
   const schedule::AnyStop either({&budget, &cancelled});
   ScheduleAnswer answer{.generation = job.generation,
-                        .result = solve_pending(request, scheduler_, options_.polls, &either, rng_)};
+                        .result = solve_planned(job.problem, scheduler_, options_.polls, &either, rng_)};
   answer.seconds = steady_seconds() - start;
   answer.travel_policies = travel_->cached_count();
   return answer;

@@ -45,7 +45,7 @@ struct ScheduleJob {
 
 struct ScheduleAnswer {
   std::uint64_t generation = 0;
-  schedule::TryScheduleResult result;
+  PlannedAnswer result;
   double seconds = 0;  // wall time the solve took
   std::size_t travel_policies = 0;  // the worker's TravelCache::cached_count() after the solve
 };

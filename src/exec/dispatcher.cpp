@@ -23,6 +23,8 @@ Decision Dispatcher::next(map::NodeIndex here, Time now) {
     std::erase(on_demand, *id);
     return {.kind = Decision::Kind::kRun, .task = *id};
   }
+  if (const std::optional<PlannedCharge> c = charge_due(now))
+    return {.kind = Decision::Kind::kCharge, .until = c->end, .level = c->target, .length = c->end - c->start};
   if (planned.empty()) return {.kind = here == options_.dock ? Decision::Kind::kStay : Decision::Kind::kDock};
   const TaskId id = planned.front();
   const TaskRecord& r = book_.at(id);
@@ -55,6 +57,22 @@ Decision Dispatcher::next(map::NodeIndex here, Time now) {
   planned.erase(planned.begin());
   if (now < depart) return {.kind = Decision::Kind::kWait, .task = id, .until = depart};
   return {.kind = Decision::Kind::kRun, .task = id};
+}
+
+std::optional<PlannedCharge> Dispatcher::charge_due(Time now) {
+  while (!charges.empty()) {
+    const PlannedCharge c = charges.front();
+    bool due = planned.empty() || (c.before && planned.front() == *c.before);
+    if (!due && !(c.before && std::find(planned.begin(), planned.end(), *c.before) != planned.end())) {
+      // The task it was planned before has gone: by time.
+      const TaskRecord& r = book_.at(planned.front());
+      due = !r.planned_start || *r.planned_start >= c.start;
+    }
+    if (!due) return std::nullopt;
+    charges.erase(charges.begin());
+    if (c.end > now) return c;  // else: its time has passed
+  }
+  return std::nullopt;
 }
 
 void Dispatcher::forget(const TaskId& id) {

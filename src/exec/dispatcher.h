@@ -28,12 +28,24 @@ struct Decision {
     kDock,       // go to the dock (idle, or a long wait ahead)
     kIdleUntil,  // on the dock with a long wait ahead: look again at `until`
     kStay,       // nothing to do, on the dock
+    kCharge,     // a planned charge: on the charger until `level` or `until`, whichever comes first
   };
   Kind kind = Kind::kStay;
   TaskId task{};
   Time until{};
   Outcome outcome = Outcome::kNone;
   std::string reason{};
+  double level = 1;        // kCharge: the level to reach
+  Duration length{0};      // kCharge: planned on the charger
+};
+
+// A charge the schedule planned (charge_planning.h): at the dock from `start` to `end`, before
+// the task `before` (nothing: after the last task), to reach about `target`.
+struct PlannedCharge {
+  Time start{};
+  Time end{};
+  double target = 1;
+  std::optional<TaskId> before{};
 };
 
 class Dispatcher {
@@ -46,9 +58,12 @@ class Dispatcher {
   std::vector<TaskId> planned;   // standard tasks to run, in the schedule's order
   std::deque<TaskId> on_demand;  // on-demand tasks waiting for the robot
   std::vector<TaskId> deferred;  // dropped for now: offered again at every reschedule
+  std::vector<PlannedCharge> charges;  // the schedule's charges, in its order
 
   // The next thing to do from `here` at `now`. A decision about a task takes it off its queue.
   Decision next(map::NodeIndex here, Time now);
+  // The next planned charge, when it comes before the next planned task.
+  std::optional<PlannedCharge> charge_due(Time now);
   // The first on-demand task not held back for a blocked way at `now` (TaskRecord::not_before).
   std::optional<TaskId> ready_on_demand(Time now) const;
   // Takes a task off every queue.

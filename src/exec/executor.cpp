@@ -8,12 +8,14 @@
 
 #include "assumptions.h"
 #include "battery_watch.h"
+#include "charge_planning.h"
 #include "deliveries.h"
 #include "dispatcher.h"
 #include "door_models.h"
 #include "loading_times.h"
 #include "opportunities.h"
 #include "scheduling.h"
+#include "rondo/map/map_geometry.h"
 #include "rondo/schedule/default_scheduler.h"
 #include "task_run.h"
 
@@ -63,6 +65,8 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
       opportunities_(std::make_unique<Opportunities>()),
       door_models_(std::make_unique<DoorModels>(zone_)) {
   battery_ = std::make_unique<BatteryWatch>(map_);
+  drift_ = std::make_unique<PlanDrift>();
+  if (options_.battery_planning) metres_home_ = map::shortest_metres_to(map_, options_.dock);
   robot_.set_listener(this);
   if (options_.forget_finished)
     book_.forget_finished([this] { clock_.schedule_at(clock_.now(), [this] { sweep_finished(); }); });

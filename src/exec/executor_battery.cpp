@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "battery_watch.h"
@@ -28,12 +29,88 @@ double Executor::resume_level() const {
 }
 
 bool Executor::below_threshold() const {
+  if (battery_->level() < home_level()) return true;
   return options_.battery_threshold > 0 && battery_->level() < options_.battery_threshold;
 }
 
+double Executor::home_level() const {
+  if (!options_.battery_planning) return 0;
+  const map::NodeIndex here = robot_.location();
+  const double metres = here < metres_home_.size() && std::isfinite(metres_home_[here]) ? metres_home_[here] : 0;
+  const Duration travel = std::min<Duration>(travel_->travel(here, options_.dock, clock_.now()), hours(24));
+  const BatteryPrediction p = battery_->estimator().predict(
+      {.metres = metres, .hours_moving = to_seconds(travel) / 3600.0});
+  return options_.battery_reserve + p.mean + options_.battery_margin * p.standard_error;
+}
+
 Duration Executor::time_to_charge() const {
-  const double hours = battery_->estimator().hours_to_charge(battery_->level(), resume_level());
-  return hours > 0 ? from_seconds(hours * 3600) : Duration{0};
+  const bool planned = planned_charge_ && !low_battery_;
+  const double to = planned ? planned_charge_->target : resume_level();
+  const double hours = battery_->estimator().hours_to_charge(battery_->level(), to);
+  Duration d = hours > 0 ? from_seconds(hours * 3600) : Duration{0};
+  if (planned) d = std::clamp(planned_charge_->until - clock_.now(), Duration{0}, d);
+  return d;
+}
+
+double Executor::level_when_free(Time free) const {
+  if (low_battery_) return resume_level();
+  if (planned_charge_) return std::max(planned_charge_->target, battery_->level());
+  double level = battery_->level();
+  // The running task (and the on-demand ones before the plan) until then, counted as acting.
+  if (run_ && !run_->waiting())
+    level -= battery_->estimator().predict({.hours_acting = to_seconds(free - clock_.now()) / 3600.0}).mean;
+  return std::clamp(level, 0.0, 1.0);
+}
+
+void Executor::start_planned_charge(Time until, Duration length, double target) {
+  const Time now = clock_.now();
+  planned_charge_ = PlannedChargeRun{.since = now, .until = until, .length = length,
+                                     .target = std::max(target, resume_level())};
+  book_.note_robot("charging", Outcome::kCharging,
+                   fmt::format("a planned charge: battery {} at {}, on the charger until {} or about {}",
+                               percent(battery_->level()), map_.node(robot_.location()).name,
+                               zone_.format_clock(until), percent(planned_charge_->target)));
+}
+
+bool Executor::charging_as_planned() {
+  PlannedChargeRun& c = *planned_charge_;
+  const Time now = clock_.now();
+  if (!c.on_charger && robot_.location() == options_.dock) {
+    // Reached the charger: it stays as long as planned, however long the way took.
+    c.on_charger = true;
+    c.until = std::max(c.until, now + c.length);
+  }
+  // The way to the charger takes longer than the charge itself: given up (the hard threshold stays).
+  const bool missed = !c.on_charger && now >= c.until + c.length;
+  if (battery_->level() < c.target && (c.on_charger ? now < c.until : !missed)) return true;
+  if (missed)
+    book_.note_robot("charge missed", Outcome::kCharging,
+                     fmt::format("battery {}: the robot did not reach the charger in {} since {}: dispatch resumes",
+                                 percent(battery_->level()), duration_text(now - c.since), zone_.format_clock(c.since)));
+  else
+    book_.note_robot("charged", Outcome::kCharging,
+                     fmt::format("battery {} after the planned charge ({} since {}): dispatch resumes",
+                                 percent(battery_->level()), duration_text(now - c.since), zone_.format_clock(c.since)));
+  planned_charge_.reset();
+  reschedule({}, "charged as planned");
+  return false;
+}
+
+bool Executor::reoffer_for_battery() {
+  const Time now = clock_.now();
+  const bool waiting = std::any_of(dispatcher_->deferred.begin(), dispatcher_->deferred.end(), [&](const TaskId& id) {
+    const TaskRecord& r = book_.at(id);
+    return r.dropped_for_now && r.dropped_for_now->first == Outcome::kCharging;
+  });
+  if (!waiting || !options_.battery_planning) return false;
+  if (now < battery_retry_) {
+    look_again_at(battery_retry_);
+    return false;
+  }
+  battery_retry_ = now + options_.slot_width;
+  reschedule({}, fmt::format("battery {} on the charger: tasks dropped for the battery offered again",
+                             percent(battery_->level())));
+  return true;
 }
 
 BatteryFigures Executor::battery_figures() const {
@@ -46,17 +123,22 @@ void Executor::enter_low_battery() {
   low_battery_ = true;
   ++low_battery_count_;
   low_since_ = clock_.now();
+  const double home = home_level();
+  const std::string below =
+      battery_->level() < home
+          ? fmt::format("below {}, what the way to the charger needs to keep the reserve {}", percent(home),
+                        percent(options_.battery_reserve))
+          : fmt::format("below the hard threshold {}", percent(options_.battery_threshold));
   book_.note_robot("battery low", Outcome::kCharging,
-                   fmt::format("battery {} at {}, below the hard threshold {}: the robot goes to charge at the "
-                               "next interruptible moment and starts nothing new until {} (about {} on the "
-                               "charger)",
-                               percent(battery_->level()), map_.node(robot_.location()).name,
-                               percent(options_.battery_threshold), percent(resume_level()),
-                               duration_text(time_to_charge())));
+                   fmt::format("battery {} at {}, {}: the robot goes to charge at the next interruptible moment and "
+                               "starts nothing new until {} (about {} on the charger)",
+                               percent(battery_->level()), map_.node(robot_.location()).name, below,
+                               percent(resume_level()), duration_text(time_to_charge())));
 }
 
 void Executor::check_battery() {
   if (low_battery_ || !started_ || !below_threshold()) return;
+  planned_charge_.reset();
   enter_low_battery();
   reschedule({}, "battery low");  // the plan starts after the charge (free_at)
   if (run_) return charge_now();
@@ -75,7 +157,8 @@ void Executor::charge_now() {
 bool Executor::must_charge() {
   read_battery();
   if (!low_battery_) {
-    if (!below_threshold()) return false;
+    if (!below_threshold()) return planned_charge_ && charging_as_planned();
+    planned_charge_.reset();  // the hard threshold takes over
     enter_low_battery();  // found low between two tasks
     reschedule({}, "battery low");
     return true;

@@ -51,7 +51,12 @@ void Executor::next() {
         continue;
       case Decision::Kind::kDock: return go_to_dock();
       case Decision::Kind::kIdleUntil: return look_again_at(d.until);
-      case Decision::Kind::kStay: return;
+      case Decision::Kind::kCharge:
+        start_planned_charge(d.until, d.length, d.level);
+        return charge();
+      case Decision::Kind::kStay:
+        if (reoffer_for_battery()) continue;
+        return;
     }
   }
 }

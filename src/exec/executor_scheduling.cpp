@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "battery_watch.h"
 #include "dispatcher.h"
 #include "rondo/exec/executor.h"
 #include "scheduling.h"
@@ -31,7 +32,9 @@ std::pair<map::NodeIndex, Time> Executor::free_at() const {
     here = task.end_node.empty() ? start : *map_.find_node(task.end_node);
   };
   if (run_ && !run_->waiting()) run(book_.at(run_->id()), run_->acting_until());
-  if (low_battery_) {  // below the hard threshold: to the dock, and charged back to the resume level
+  // Below the hard threshold (to the dock, and charged back to the resume level), or in a planned
+  // charge (until its target or its end).
+  if (low_battery_ || planned_charge_) {
     t += travel_->travel(here, options_.dock, t) + time_to_charge();
     here = options_.dock;
   }
@@ -61,9 +64,8 @@ void Executor::reschedule(std::vector<TaskId> new_ids, const std::string& why) {
   if (options_.background_scheduling) return reschedule_in_background(std::move(new_ids), why);
   std::optional<ScheduleCall> call = prepare_schedule(new_ids, why);
   if (!call) return;
-  const schedule::TryScheduleResult result =
-      solve_pending(call->problem.request, *scheduler_, options_.scheduler_polls, nullptr, rng_);
-  finish_schedule(call->pending.ids, std::move(new_ids), result, why);
+  const PlannedAnswer answer = solve_planned(call->problem, *scheduler_, options_.scheduler_polls, nullptr, rng_);
+  finish_schedule(call->pending.ids, std::move(new_ids), answer, why);
 }
 
 std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_ids, const std::string& why) {
@@ -93,9 +95,18 @@ std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_
     // An on-demand task is never given up for scheduled work.
     running = schedule::RunningTask{run_->id(), t.priority, t.kind == TaskKind::kStandard && interruptible_now()};
   }
-  const ScheduleInputs in{.map = map_, .travel = *travel_, .book = book_, .zone = zone_, .scheduler = *scheduler_,
+  ScheduleInputs in{.map = map_, .travel = *travel_, .book = book_, .zone = zone_, .scheduler = *scheduler_,
                           .polls = options_.scheduler_polls, .rng = rng_, .capacity = options_.capacity,
                           .on_board = on_board_when_free(), .risk_alpha = options_.risk_alpha};
+  if (options_.battery_planning) {
+    read_battery();
+    drift_->observe(clock_.now(), battery_->level());
+    in.battery = BatteryInputs{.estimator = battery_->estimator(), .level = level_when_free(free),
+                               .reserve = options_.battery_reserve, .margin = options_.battery_margin,
+                               .drift_per_hour = drift_->per_hour(),
+                               .drift_variance_per_hour = drift_->variance_per_hour(),
+                               .dock = options_.dock, .dock_when_waiting_over = options_.dock_when_waiting_over};
+  }
   auto problem = pending_problem(in, pending, here, free, running);
   if (!problem) {  // the pending tasks do not make a well-formed problem: keep the plan as it is
     book_.note_schedule("not rescheduled", Outcome::kNone, fmt::format("{}: {}", why, problem.error().message));
@@ -105,21 +116,51 @@ std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_
 }
 
 void Executor::finish_schedule(const std::vector<TaskId>& ids, std::vector<TaskId> new_ids,
-                               const schedule::TryScheduleResult& result, const std::string& why) {
+                               const PlannedAnswer& answer, const std::string& why) {
+  const schedule::TryScheduleResult& result = answer.result;
   stats_.schedules += result.attempts;
   if (result.outcome == schedule::TryScheduleOutcome::kPreemptRunning) {
     preempt_for(Outcome::kOutranked, "outranked by new tasks: " + result.preempt_reason, std::move(new_ids));
     return;
   }
-  apply_schedule(ids, result.schedule, why);
+  apply_schedule(ids, answer, why);
   after_schedule(why);
 }
 
-void Executor::apply_schedule(const std::vector<TaskId>& ids, const schedule::Schedule& s, const std::string& why) {
+void Executor::apply_charges(const std::vector<TaskId>& ids, const PlannedAnswer& answer, const std::string& why) {
+  const std::vector<schedule::ScheduledTask>& entries = answer.result.schedule.entries;
+  std::vector<PlannedCharge> charges;
+  for (std::size_t pos = 0; pos < entries.size(); ++pos) {
+    if (entries[pos].task < ids.size()) continue;
+    PlannedCharge c{.start = entries[pos].start, .end = entries[pos].end,
+                    .target = pos < answer.levels.size() ? std::min(answer.levels[pos], 1.0) : 1.0};
+    for (std::size_t next = pos + 1; next < entries.size() && !c.before; ++next)
+      if (entries[next].task < ids.size()) c.before = ids[entries[next].task];
+    charges.push_back(c);
+  }
+  std::vector<PlannedCharge>& old = dispatcher_->charges;
+  const bool moved = charges.size() != old.size() ||
+                     !std::equal(charges.begin(), charges.end(), old.begin(), [](const auto& a, const auto& b) {
+                       return a.before == b.before && std::chrono::abs(a.start - b.start) < minutes(15);
+                     });
+  if (moved)
+    for (const PlannedCharge& c : charges)
+      book_.note_schedule("charge planned", Outcome::kCharging,
+                          fmt::format("a charge at the dock {}–{} to about {:.0f} %{} ({})",
+                                      zone_.format_clock(c.start).substr(0, 5), zone_.format_clock(c.end),
+                                      c.target * 100, c.before ? ", before task " + *c.before : "", why));
+  old = std::move(charges);
+  drift_->planned(answer.points);
+}
+
+void Executor::apply_schedule(const std::vector<TaskId>& ids, const PlannedAnswer& answer, const std::string& why) {
+  const schedule::Schedule& s = answer.result.schedule;
+  apply_charges(ids, answer, why);
   std::vector<TaskId>& planned = dispatcher_->planned;
   std::vector<TaskId>& deferred = dispatcher_->deferred;
   planned.clear();
   for (const schedule::ScheduledTask& e : s.entries) {
+    if (e.task >= ids.size()) continue;  // a charge
     const TaskId& id = ids[e.task];
     TaskRecord& r = book_.at(id);
     // The event log shows every (re)scheduling that moved a task, and why it happened.
@@ -138,6 +179,7 @@ void Executor::apply_schedule(const std::vector<TaskId>& ids, const schedule::Sc
     planned.push_back(id);  // a task being waited for too: kick() reconsiders it
   }
   for (const schedule::DroppedTask& d : s.dropped) {
+    if (d.task >= ids.size()) continue;  // a charge
     const TaskId& id = ids[d.task];
     if (run_ && run_->waiting() && run_->id() == id) end_wait();
     TaskRecord& r = book_.at(id);
@@ -145,10 +187,14 @@ void Executor::apply_schedule(const std::vector<TaskId>& ids, const schedule::Sc
     r.planned_end.reset();
     // Dropped for now: offered again at every reschedule while its window can still be met.
     // While the robot must charge, what does not fit does not fit for the charge.
-    const Outcome outcome = low_battery_ ? Outcome::kCharging : drop_outcome(d.cause);
+    // So does what the battery left out (planned charging).
+    const bool for_battery =
+        std::find(answer.for_battery.begin(), answer.for_battery.end(), d.task) != answer.for_battery.end();
+    const Outcome outcome = low_battery_ || for_battery ? Outcome::kCharging : drop_outcome(d.cause);
     const std::string reason =
-        low_battery_ ? fmt::format("while the robot charges (about {} more): {}", duration_text(time_to_charge()), d.reason)
-                     : d.reason;
+        low_battery_  ? fmt::format("while the robot charges (about {} more): {}", duration_text(time_to_charge()), d.reason)
+        : for_battery ? (answer.refused ? d.reason : "no room beside the charge the battery needs: " + d.reason)
+                      : d.reason;
     if (r.state != TaskState::kQueued) book_.transition(id, TaskState::kQueued, outcome, reason);
     if (!r.dropped_for_now) {
       book_.note(id, "dropped for now", outcome, reason);

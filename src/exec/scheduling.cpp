@@ -3,6 +3,7 @@
 #include <map>
 #include <memory>
 
+#include "rondo/map/map_geometry.h"
 #include "rondo/schedule/stop_condition.h"
 
 namespace rondo::exec {
@@ -66,6 +67,19 @@ Result<PendingProblem> pending_problem(const ScheduleInputs& in, const PendingTa
     for (const TaskId& a : t.after)
       if (const auto it = index.find(a); it != index.end()) pt.after.push_back(it->second);
   }
+  std::optional<ChargePlan> battery;
+  if (in.battery) {
+    const BatteryInputs& b = *in.battery;
+    battery = ChargePlan{.estimator = b.estimator, .level = b.level, .reserve = b.reserve, .margin = b.margin,
+                         .drift_per_hour = b.drift_per_hour, .drift_variance_per_hour = b.drift_variance_per_hour,
+                         .dock = location_of(in.map.node(b.dock).name),
+                         .dock_when_waiting_over = b.dock_when_waiting_over};
+    battery->metres.reserve(nodes.size() * nodes.size());
+    for (map::NodeIndex from : nodes) {
+      const std::vector<double> d = map::shortest_metres(in.map, from);
+      for (map::NodeIndex to : nodes) battery->metres.push_back(d[to]);
+    }
+  }
   problem.robot.capacity = in.capacity;
   for (const OnBoard& o : in.on_board)
     problem.robot.on_board.push_back({.job = o.job, .appearance = o.appearance, .load = o.load});
@@ -77,7 +91,8 @@ Result<PendingProblem> pending_problem(const ScheduleInputs& in, const PendingTa
   RONDO_RETURN_IF_ERROR(schedule::validate(problem));
   PendingProblem out{.request = {.problem = std::move(problem), .new_tasks = {}, .zone = in.zone},
                      .nodes = std::move(nodes),
-                     .risk_alpha = in.risk_alpha};
+                     .risk_alpha = in.risk_alpha,
+                     .battery = std::move(battery)};
   schedule::TryScheduleRequest& request = out.request;
   for (std::size_t i = pending.old_count; i < pending.ids.size(); ++i) request.new_tasks.push_back(i);
   for (std::size_t i = pending.first_reoffered; i < pending.ids.size(); ++i) request.cannot_preempt.push_back(i);
@@ -103,6 +118,12 @@ schedule::TryScheduleResult solve_pending(schedule::TryScheduleRequest& request,
   result = schedule::try_schedule(request, scheduler, schedule::AnyStop(parts), rng);
   result.attempts += attempts;
   return result;
+}
+
+PlannedAnswer solve_planned(PendingProblem& problem, schedule::Scheduler& scheduler, std::int64_t polls,
+                            const schedule::StopCondition* also, std::mt19937_64& rng) {
+  return plan_charges(problem.request, problem.battery ? &*problem.battery : nullptr,
+                      [&](schedule::TryScheduleRequest& r) { return solve_pending(r, scheduler, polls, also, rng); });
 }
 
 }  // namespace rondo::exec

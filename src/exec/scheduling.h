@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "rondo/core/timezone.h"
+#include "charge_planning.h"
 #include "deliveries.h"
 #include "rondo/exec/map_travel.h"
 #include "rondo/exec/outcome.h"
@@ -42,6 +43,18 @@ struct PendingTasks {
   std::size_t first_reoffered = 0;
 };
 
+// Planned charging's view of the battery when a problem is built (ExecutorOptions::battery_planning).
+struct BatteryInputs {
+  BatteryEstimator estimator{};
+  double level = 1;  // predicted when the robot is next free
+  double reserve = 0.2;
+  double margin = 2;
+  double drift_per_hour = 0;  // PlanDrift
+  double drift_variance_per_hour = 0;
+  map::NodeIndex dock = 0;
+  Duration dock_when_waiting_over = minutes(15);
+};
+
 struct ScheduleInputs {
   const map::TopoMap& map;
   const TravelCache& travel;
@@ -53,6 +66,7 @@ struct ScheduleInputs {
   std::int64_t capacity = 0;              // 0 = unlimited
   std::vector<OnBoard> on_board{};        // when the robot is next free
   std::optional<double> risk_alpha{};     // ExecutorOptions::risk_alpha
+  std::optional<BatteryInputs> battery{};  // planned charging, when on
 };
 
 // A scheduling problem built from the book (on the clock's thread), ready to solve anywhere: the
@@ -62,6 +76,7 @@ struct PendingProblem {
   schedule::TryScheduleRequest request;
   std::vector<map::NodeIndex> nodes;
   std::optional<double> risk_alpha{};  // the window travel's level is 1 − risk_alpha
+  std::optional<ChargePlan> battery{};  // planned charging: the dock is one of `nodes`
 };
 
 // The problem's travel, and its window travel under a chance constraint, over `cache` and `nodes`.
@@ -90,6 +105,10 @@ Result<PendingProblem> pending_problem(const ScheduleInputs& in, const PendingTa
 schedule::TryScheduleResult solve_pending(schedule::TryScheduleRequest& request, schedule::Scheduler& scheduler,
                                           std::int64_t polls, const schedule::StopCondition* also,
                                           std::mt19937_64& rng);
+
+// solve_pending, with charges planned when `problem.battery` is set (charge_planning.h).
+PlannedAnswer solve_planned(PendingProblem& problem, schedule::Scheduler& scheduler, std::int64_t polls,
+                            const schedule::StopCondition* also, std::mt19937_64& rng);
 
 // The outcome code of a scheduler's drop.
 Outcome drop_outcome(schedule::DropCause cause);

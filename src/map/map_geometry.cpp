@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
+#include <utility>
 
 namespace rondo::map {
 namespace {
@@ -39,6 +43,32 @@ double edge_length(const TopoMap& map, EdgeIndex edge) {
   const Pose& b = map.node(map.to_index(edge)).pose;
   return std::hypot(b.x - a.x, b.y - a.y);
 }
+
+namespace {
+
+std::vector<double> dijkstra(const TopoMap& map, NodeIndex from, bool towards) {
+  std::vector<double> best(map.node_count(), std::numeric_limits<double>::infinity());
+  using Item = std::pair<double, NodeIndex>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
+  best.at(from) = 0;
+  open.emplace(0.0, from);
+  while (!open.empty()) {
+    const auto [d, n] = open.top();
+    open.pop();
+    if (d > best[n]) continue;
+    for (const EdgeIndex e : towards ? map.in_edges(n) : map.out_edges(n)) {
+      const NodeIndex to = towards ? map.from_index(e) : map.to_index(e);
+      const double via = d + edge_length(map, e);
+      if (via < best[to]) best[to] = via, open.emplace(via, to);
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+std::vector<double> shortest_metres(const TopoMap& map, NodeIndex from) { return dijkstra(map, from, false); }
+std::vector<double> shortest_metres_to(const TopoMap& map, NodeIndex to) { return dijkstra(map, to, true); }
 
 Duration nominal_travel_time(const TopoMap& map, EdgeIndex edge, const TravelTimeOptions& options) {
   const Edge& e = map.edge(edge);

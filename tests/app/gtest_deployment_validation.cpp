@@ -217,6 +217,9 @@ TEST(RunCommand, BatteryLevelsAreStatesOfChargeInOrderAndRiskAlphaIsInItsRange) 
       {"battery_reseve: 0.2", "battery_reseve"},                           // unknown key
       {"risk_alpha: 0.7", "risk_alpha"},                                   // above the median
       {"risk_alpha: 0", "risk_alpha"},
+      {"battery_planning: often", "battery_planning"},                     // not a boolean
+      {"battery_margin: -1", "battery_margin"},
+      {"battery_margin: 11", "battery_margin"},
   };
   for (const auto& [bad, field] : cases) {
     const auto dir = fresh_dir("battery-bad");

@@ -42,11 +42,12 @@ TEST(Robustness, OneDayOfTheExampleUnderEveryVariantWithRatiosAgainstExpectedVal
                                 "--alphas", "0.2", "--jobs", "2", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Json j = Json::parse(r.out);
-  ASSERT_EQ(j["rows"].size(), 3U);  // expected, alpha 0.2, idle charging
+  ASSERT_EQ(j["rows"].size(), 4U);  // expected, alpha 0.2, idle charging, planned charging
   EXPECT_EQ(j["rows"][0]["variant"], "expected");
   EXPECT_DOUBLE_EQ(j["rows"][0]["completed_ratio"].get<double>(), 1.0);
   EXPECT_EQ(j["rows"][1]["alpha"].get<double>(), 0.2);
-  EXPECT_EQ(j["runs"].size(), 3U);
+  EXPECT_EQ(j["rows"][3]["variant"], "planned charging");
+  EXPECT_EQ(j["runs"].size(), 4U);
   for (const Json& run : j["runs"]) EXPECT_GT(run["added"].get<int>(), 0);
   // The same seed and variant give the same figures: the evaluation is deterministic.
   const auto again = test::run_cli({"eval", "robustness", "examples/g4s/deployment.yaml", "--days", "1", "--seeds",

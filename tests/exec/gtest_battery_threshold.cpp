@@ -31,6 +31,7 @@ ExecutorOptions battery_options() {
   o.battery_reserve = 0.2;
   o.battery_threshold = 0.1;
   o.battery_resume = 0.5;
+  o.battery_planning = false;  // the threshold alone (planned charging: gtest_planned_charging.cpp)
   return o;
 }
 

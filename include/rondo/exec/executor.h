@@ -69,8 +69,10 @@ namespace rondo::exec {
 
 struct ScheduleAnswer;
 struct ScheduleCall;
+struct PlannedAnswer;
 class AssumptionMap;
 class BatteryWatch;
+class PlanDrift;
 class Deliveries;
 class DoorModels;
 class LoadingTimes;
@@ -234,8 +236,19 @@ class Executor final : public RobotListener {
   // the battery (executor_battery.cpp)
   void read_battery();  // a reading for the BatteryWatch
   double resume_level() const;
-  bool below_threshold() const;  // by the last reading
-  Duration time_to_charge() const;  // from the last reading to the resume level, as learned
+  bool below_threshold() const;  // by the last reading (or below home_level(), when charging is planned)
+  // Planned charging: the reserve, plus what the way to the dock from here is predicted to take,
+  // plus the margin; 0 when charging is not planned.
+  double home_level() const;
+  // From the last reading to the resume level (or a planned charge's target, by its end), as learned.
+  Duration time_to_charge() const;
+  // The state of charge predicted when the robot is next free (at `free`, by free_at()).
+  double level_when_free(Time free) const;
+  // Planned charging: on the charger until the planned charge's target or its end.
+  void start_planned_charge(Time until, Duration length, double target);
+  bool charging_as_planned();  // in must_charge(): false (and noted) once it is done
+  // Tasks dropped for the battery are offered again while the robot stands on the charger.
+  bool reoffer_for_battery();
   void enter_low_battery();
   // After a robot callback: below the threshold, the robot goes to charge.
   void check_battery();
@@ -283,7 +296,9 @@ class Executor final : public RobotListener {
 
   // scheduling (executor_scheduling.cpp)
   void reschedule(std::vector<TaskId> new_ids, const std::string& why);
-  void apply_schedule(const std::vector<TaskId>& ids, const schedule::Schedule& s, const std::string& why);
+  void apply_schedule(const std::vector<TaskId>& ids, const PlannedAnswer& answer, const std::string& why);
+  // The charges of a new schedule, for the dispatcher (noted when they moved).
+  void apply_charges(const std::vector<TaskId>& ids, const PlannedAnswer& answer, const std::string& why);
   std::pair<map::NodeIndex, Time> free_at() const;  // where and when the robot is next free
   // The deferred tasks that can still meet their windows (the others end dropped, for good).
   std::vector<TaskId> reoffer_deferred();
@@ -291,7 +306,7 @@ class Executor final : public RobotListener {
   // solve), and the scheduler's answer carried out.
   std::optional<ScheduleCall> prepare_schedule(std::vector<TaskId>& new_ids, const std::string& why);
   void finish_schedule(const std::vector<TaskId>& ids, std::vector<TaskId> new_ids,
-                       const schedule::TryScheduleResult& result, const std::string& why);
+                       const PlannedAnswer& answer, const std::string& why);
 
   // background scheduling (executor_background.cpp; options_.background_scheduling)
   struct Background;
@@ -381,6 +396,17 @@ class Executor final : public RobotListener {
   bool low_battery_ = false;  // below the hard threshold, not yet charged back to the resume level
   int low_battery_count_ = 0;
   Time low_since_{};
+  struct PlannedChargeRun {
+    Time since;
+    Time until;       // the planned end; moved on by the time it took to reach the charger
+    Duration length;  // planned on the charger
+    double target = 1;
+    bool on_charger = false;
+  };
+  std::optional<PlannedChargeRun> planned_charge_;  // a planned charge under way
+  Time battery_retry_{};
+  std::unique_ptr<PlanDrift> drift_;  // what the battery's plans missed so far
+  std::vector<double> metres_home_;   // from every node to the dock, for home_level()  // the next reschedule that re-offers tasks dropped for the battery
   // assumptions and opportunities
   std::unique_ptr<AssumptionMap> assumption_map_;
   std::vector<Assumption> assumptions_;

@@ -34,10 +34,15 @@ struct ExecutorOptions {
   // `battery_threshold` the robot goes to charge at the next interruptible moment, whatever the
   // schedule says, and starts nothing new until the battery is back at `battery_resume` (0: at
   // `battery_reserve`); 0 turns the threshold off. `battery_reserve` is the level a schedule is
-  // to keep (the scheduler does not plan charging yet).
+  // to keep: with `battery_planning`, a schedule whose predicted state of charge falls below the
+  // reserve plus `battery_margin` standard errors of the predicted drop gets a charge at the dock
+  // where it costs least, or gives up what cannot be done without one (docs/executor.md,
+  // "Planned charging"). Off: the robot charges when it is idle at the dock and below the threshold.
   double battery_reserve = 0.2;
   double battery_threshold = 0.1;
   double battery_resume = 0;
+  bool battery_planning = false;
+  double battery_margin = 2;
   // The chance constraint (docs/scheduling.md, "Slack sized by risk"): a task is planned only
   // where its departure leaves the (1 − risk_alpha)-quantile of its route's learned travel time
   // before its latest start, so it starts in its window with probability >= 1 − risk_alpha.

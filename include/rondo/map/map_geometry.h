@@ -15,6 +15,7 @@
 #pragma once
 
 #include <string_view>
+#include <vector>
 
 #include "rondo/core/time.h"
 #include "rondo/map/topo_map.h"
@@ -39,6 +40,12 @@ double edge_length(const TopoMap& map, EdgeIndex edge);
 // The no-data estimate of crossing `edge`: edge_length / speed + the overhead of its action kind.
 // Precondition: options.default_speed > 0 (a non-positive speed is treated as 0.5 m/s).
 Duration nominal_travel_time(const TopoMap& map, EdgeIndex edge, const TravelTimeOptions& options = {});
+
+// The shortest distance along edges from `from` to every node, in metres (edge_length summed;
+// infinity where no way leads). Dijkstra, O(E log V).
+std::vector<double> shortest_metres(const TopoMap& map, NodeIndex from);
+// The same towards `to`: from every node to it.
+std::vector<double> shortest_metres_to(const TopoMap& map, NodeIndex to);
 
 // The axis-aligned box around all node positions.
 struct BoundingBox {
