@@ -11,6 +11,7 @@
 #include "battery_watch.h"
 #include "dispatcher.h"
 #include "rondo/exec/executor.h"
+#include "rondo/map/map_geometry.h"
 #include "task_run.h"
 #include "text.h"
 
@@ -40,7 +41,14 @@ double Executor::home_level() const {
   const Duration travel = std::min<Duration>(travel_->travel(here, options_.dock, clock_.now()), hours(24));
   const BatteryPrediction p = battery_->estimator().predict(
       {.metres = metres, .hours_moving = to_seconds(travel) / 3600.0});
-  return options_.battery_reserve + p.mean + options_.battery_margin * p.standard_error;
+  // Readings come between edges: one more edge away from the dock must still leave the way back.
+  double next_edge = 0;
+  for (const map::EdgeIndex e : map_.out_edges(here))
+    next_edge = std::max(next_edge, battery_->estimator()
+                                        .predict({.metres = map::edge_length(map_, e),
+                                                  .hours_moving = to_seconds(map::nominal_travel_time(map_, e)) / 3600.0})
+                                        .mean);
+  return options_.battery_reserve + p.mean + next_edge + options_.battery_margin * p.standard_error;
 }
 
 Duration Executor::time_to_charge() const {
@@ -60,6 +68,31 @@ double Executor::level_when_free(Time free) const {
   if (run_ && !run_->waiting())
     level -= battery_->estimator().predict({.hours_acting = to_seconds(free - clock_.now()) / 3600.0}).mean;
   return std::clamp(level, 0.0, 1.0);
+}
+
+std::optional<Executor::BatteryShort> Executor::battery_short_for(const TaskId& id) const {
+  if (!options_.battery_planning) return std::nullopt;
+  const Task& task = book_.at(id).task;
+  const map::NodeIndex here = robot_.location();
+  const map::NodeIndex start = task.start_node.empty() ? here : *map_.find_node(task.start_node);
+  const map::NodeIndex end = task.end_node.empty() ? start : *map_.find_node(task.end_node);
+  const auto finite = [](double m) { return std::isfinite(m) ? m : 0.0; };
+  const auto hours_of = [](Duration d) { return to_seconds(std::min<Duration>(d, hours(24))) / 3600.0; };
+  const Time now = clock_.now();
+  const Duration there = travel_->travel(here, start, now);
+  const Duration work = book_.at(id).remaining();
+  const Duration back = travel_->travel(end, options_.dock, now + std::min<Duration>(there, hours(24)) + work);
+  const BatteryPrediction p = battery_->estimator().predict(
+      {.metres = finite(map::shortest_metres(map_, here)[start]) + (end < metres_home_.size() ? finite(metres_home_[end]) : 0),
+       .hours_moving = hours_of(there) + hours_of(back),
+       .hours_acting = hours_of(work)});
+  const double left = battery_->level() - p.mean;
+  const double keep = options_.battery_reserve + options_.battery_margin * p.standard_error;
+  if (left >= keep) return std::nullopt;
+  return BatteryShort{.needed = battery_->level() + (keep - left),
+                      .why = fmt::format("task {} would leave about {} after the way back to the charger, below the "
+                                         "{} to keep",
+                                         id, percent(std::max(left, 0.0)), percent(keep))};
 }
 
 void Executor::start_planned_charge(Time until, Duration length, double target) {
@@ -119,16 +152,16 @@ BatteryFigures Executor::battery_figures() const {
   return f;
 }
 
-void Executor::enter_low_battery() {
+void Executor::enter_low_battery(const std::string& why) {
   low_battery_ = true;
   ++low_battery_count_;
   low_since_ = clock_.now();
   const double home = home_level();
   const std::string below =
-      battery_->level() < home
-          ? fmt::format("below {}, what the way to the charger needs to keep the reserve {}", percent(home),
-                        percent(options_.battery_reserve))
-          : fmt::format("below the hard threshold {}", percent(options_.battery_threshold));
+      !why.empty()               ? why
+      : battery_->level() < home ? fmt::format("below {}, what the way to the charger needs to keep the reserve {}",
+                                               percent(home), percent(options_.battery_reserve))
+                                 : fmt::format("below the hard threshold {}", percent(options_.battery_threshold));
   book_.note_robot("battery low", Outcome::kCharging,
                    fmt::format("battery {} at {}, {}: the robot goes to charge at the next interruptible moment and "
                                "starts nothing new until {} (about {} on the charger)",

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "battery_watch.h"
 #include "dispatcher.h"
 #include "rondo/exec/executor.h"
 #include "task_run.h"
@@ -43,7 +44,23 @@ void Executor::next() {
   for (;;) {
     Decision d = dispatcher_->next(here, now);
     switch (d.kind) {
-      case Decision::Kind::kRun: return start_run(d.task, std::nullopt);
+      case Decision::Kind::kRun:
+        if (book_.at(d.task).task.kind == TaskKind::kOnDemand) {
+          // Planned charging: an on-demand task the battery cannot afford runs after a charge to
+          // what it needs (one that even a full battery could not afford runs at once).
+          const std::optional<BatteryShort> short_of = battery_short_for(d.task);
+          if (short_of && short_of->needed <= 1) {
+            dispatcher_->on_demand.push_front(d.task);
+            book_.note(d.task, "waits for the charge", Outcome::kCharging, short_of->why);
+            const double hours = std::max(0.0, battery_->estimator().hours_to_charge(battery_->level(), short_of->needed));
+            const Duration on_charger = from_seconds(hours * 3600) + minutes(1);
+            start_planned_charge(now + travel_->travel(here, options_.dock, now) + on_charger, on_charger,
+                                 short_of->needed);
+            reschedule({}, "charging for on-demand task " + d.task);
+            return charge();
+          }
+        }
+        return start_run(d.task, std::nullopt);
       case Decision::Kind::kWait: return start_run(d.task, d.until);
       case Decision::Kind::kFail:
         book_.transition(d.task, TaskState::kFailed, d.outcome, d.reason);

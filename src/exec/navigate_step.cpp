@@ -121,6 +121,18 @@ void NavigateStep::on_edge_finished(const EdgeAttempt& a) {
                     .edge = a.edge});
       }
     }
+    // A trip to the charger when the battery matters: an edge more likely than not to fail again is
+    // not tried again and again on the battery it is going to save; the executor looks again later.
+    if (purpose_ == Purpose::kDock && ctx_.options.battery_planning &&
+        ctx_.models.outcome(a.edge, ctx_.clock.now()).success_probability < 0.5) {
+      monitor_.cancel();
+      return end({.status = StepEnd::Status::kFailed,
+                  .outcome = Outcome::kNoRouteNow,
+                  .reason = fmt::format("no route to the charger now: {} failed and is more likely than not to fail "
+                                        "again",
+                                        ctx_.map.edge(a.edge).id),
+                  .edge = a.edge});
+    }
   }
   advance();
 }

@@ -1,7 +1,8 @@
 // Planned charging (ExecutorOptions::battery_planning, docs/executor.md "Planned charging") on a
 // ScriptedRobot (scripted_robot.h): a charge inserted before the task that would run the battery
-// below the reserve, a task refused for the battery when no charge fits before it, and the robot
-// sent home when the way to the charger is all the battery has left above the reserve.
+// below the reserve, a task refused for the battery when no charge fits before it, the robot sent
+// home when the way to the charger is all the battery has left above the reserve, and an on-demand
+// task the battery cannot afford held until a charge.
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
@@ -96,6 +97,25 @@ TEST(PlannedCharging, TheRobotGoesHomeWhenTheWayToTheChargerIsAllThatIsLeftAbove
   EXPECT_NE(last_reason(s, store::Subject::kRobot, "battery low").find("what the way to the charger needs"),
             std::string::npos)
       << last_reason(s, store::Subject::kRobot, "battery low");
+}
+
+TEST(PlannedCharging, AnOnDemandTaskTheBatteryCannotAffordRunsAfterACharge) {
+  ScriptedExecutor s(planned_options());
+  s.robot().battery_level = 0.3;
+  s.robot().on_charger = true;
+  s.executor().start();
+  s.settle();
+  // Two hours of talking (0.2 at 0.1 an hour) from 0.3 would end below the reserve.
+  ASSERT_TRUE(s.executor().add_task(on_demand("R", "Office", hours(2)), "test").ok());
+  s.settle();
+  EXPECT_FALSE(s.robot().busy());
+  EXPECT_EQ(s.state("R"), "queued");
+  EXPECT_EQ(s.code_of("R", "waits for the charge"), "charging");
+  EXPECT_NE(last_reason(s, store::Subject::kRobot, "charging").find("a planned charge"), std::string::npos);
+  // Charged to what it needs (about 0.41): it runs.
+  s.robot().battery_level = 0.6;
+  for (int minute = 1; minute <= 16 && !s.robot().busy(); ++minute) s.run_until(fmt::format("08:{:02}", minute));
+  EXPECT_EQ(s.executor().current_task(), std::optional<TaskId>("R"));
 }
 
 }  // namespace

@@ -249,7 +249,15 @@ class Executor final : public RobotListener {
   bool charging_as_planned();  // in must_charge(): false (and noted) once it is done
   // Tasks dropped for the battery are offered again while the robot stands on the charger.
   bool reoffer_for_battery();
-  void enter_low_battery();
+  // `why`: what sent it (by default the reading below the threshold or below home_level()).
+  void enter_low_battery(const std::string& why = {});
+  // Planned charging: the level `id` needs now (there, its work and the way back to the charger,
+  // above the reserve and the margin), and why, when the battery has less; nothing when it can.
+  struct BatteryShort {
+    double needed = 0;
+    std::string why;
+  };
+  std::optional<BatteryShort> battery_short_for(const TaskId& id) const;
   // After a robot callback: below the threshold, the robot goes to charge.
   void check_battery();
   // The running task gives way to the charge now if it is interruptible (else it finishes first).
