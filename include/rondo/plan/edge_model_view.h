@@ -18,6 +18,7 @@
 
 #include "rondo/core/time.h"
 #include "rondo/map/topo_map.h"
+#include "rondo/plan/travel_time_distribution.h"
 
 namespace rondo::plan {
 
@@ -54,6 +55,9 @@ class EdgeModelView {
   // The defaults: answers that depend on the time of week only.
   virtual Time conditioned_until(map::EdgeIndex /*edge*/) const { return Time{}; }
   virtual Duration memory() const { return Duration{0}; }
+  // The attempt-duration laws the travel-time distribution uses (null: each attempt lasts its
+  // expected seconds). They change only together with version().
+  virtual const AttemptLaws* attempt_laws() const { return nullptr; }
   // Precondition: since <= version(). Empty when since == version().
   virtual std::optional<std::vector<map::EdgeIndex>> changed_since(std::uint64_t since) const {
     if (since == version()) return std::vector<map::EdgeIndex>{};

@@ -65,6 +65,11 @@ class LearnedEdgeModels final : public EdgeModelView {
   // The edges observe()d since `since` when no set() came after it; nullopt otherwise.
   std::optional<std::vector<map::EdgeIndex>> changed_since(std::uint64_t since) const override;
 
+  const AttemptLaws* attempt_laws() const override { return attempt_laws_.get(); }
+  // The attempt-duration laws (null: none). Takes effect for caches with the next set(), which
+  // moves version() on: call it just before set().
+  void set_attempt_laws(std::shared_ptr<const AttemptLaws> laws) { attempt_laws_ = std::move(laws); }
+
   // Swaps the snapshot (null: prior only), re-matches the edges and moves version() on.
   void set(std::shared_ptr<const learn::EdgeModels> models);
 
@@ -89,6 +94,7 @@ class LearnedEdgeModels final : public EdgeModelView {
   Reading reading_;
   std::vector<std::string> edge_ids_;  // of the map, by edge index
   std::shared_ptr<const learn::EdgeModels> models_;
+  std::shared_ptr<const AttemptLaws> attempt_laws_;
   std::optional<learn::LiveEdgeModels> live_;  // online reading with a snapshot
   std::uint64_t snapshot_version_ = 1;         // version() of the last set()
   std::vector<std::uint64_t> edge_version_;    // per map edge: version() of its last observe()

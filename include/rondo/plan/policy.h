@@ -66,8 +66,9 @@ class Policy {
 
   // The distribution of the time to reach the target from `from` (see travel_time_distribution.h
   // for the method and its accuracy). An unreachable target gives a distribution with all its mass
-  // at +inf.
-  TravelTimeDistribution travel_time_distribution(NodeIndex from, const DistributionOptions& options = {}) const;
+  // at +inf. With `laws`, each step's attempts follow them scaled by its attempt seconds.
+  TravelTimeDistribution travel_time_distribution(NodeIndex from, const DistributionOptions& options = {},
+                                                  const AttemptLaws* laws = nullptr) const;
 
   // Whether this policy stays optimal, with expected_seconds() unchanged, after the expected
   // crossing time τ/p of `edge` (from `from` to `to`) becomes `crossing` (+inf: unusable). That
