@@ -1,5 +1,6 @@
-// The attempt-duration laws of the travel-time distribution (plan::AttemptLaws), learned from the
-// traversal log at refit time: every attempt's duration divided by its edge's expected attempt
+// The pooled attempt-duration laws of the travel-time distribution (plan::AttemptLaws), for edges
+// without a fitted model of their own (those use their own duration tables, LearnedEdgeModels::
+// attempt_laws), learned from the traversal log at refit time under risk_alpha: every attempt's duration divided by its edge's expected attempt
 // seconds at its start (the fitted models'), pooled over all edges, separately for successful and
 // failed attempts, and cut into `points` groups of equal count, each group a point at its mean
 // with weight 1/points (so each law keeps the sample's mean).

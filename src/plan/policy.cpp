@@ -49,20 +49,12 @@ std::vector<PolicyStep> Policy::route(NodeIndex from) const {
 }
 
 TravelTimeDistribution Policy::travel_time_distribution(NodeIndex from, const DistributionOptions& options,
-                                                        const AttemptLaws* laws) const {
+                                                        const LegLaws& laws) const {
   if (!reaches_target(from)) return TravelTimeDistribution::unreachable();
   std::vector<RouteLeg> legs;
   for (const PolicyStep& s : route(from)) {
     legs.push_back({s.success_probability, s.attempt_seconds});
-    if (!laws) continue;
-    auto scaled = [&](const std::vector<DurationPoint>& law) {
-      std::vector<DurationPoint> out;
-      out.reserve(law.size());
-      for (const DurationPoint& d : law) out.push_back({d.seconds * s.attempt_seconds, d.weight});
-      return out;
-    };
-    legs.back().success_law = scaled(laws->success);
-    legs.back().failure_law = scaled(laws->failure);
+    if (laws) laws(s, legs.back());
   }
   return TravelTimeDistribution::of_route(legs, options);
 }

@@ -55,9 +55,11 @@ class EdgeModelView {
   // The defaults: answers that depend on the time of week only.
   virtual Time conditioned_until(map::EdgeIndex /*edge*/) const { return Time{}; }
   virtual Duration memory() const { return Duration{0}; }
-  // The attempt-duration laws the travel-time distribution uses (null: each attempt lasts its
-  // expected seconds). They change only together with version().
-  virtual const AttemptLaws* attempt_laws() const { return nullptr; }
+  // The attempt-duration laws the travel-time distribution uses: fills `leg`'s success_law and
+  // failure_law for an attempt of `edge` starting at `at` (leg.attempt_seconds already set to its
+  // expected seconds). Leaves them empty (each attempt lasts its expected seconds) by default. They
+  // change only together with version().
+  virtual void attempt_laws(map::EdgeIndex /*edge*/, Time /*at*/, RouteLeg& /*leg*/) const {}
   // Precondition: since <= version(). Empty when since == version().
   virtual std::optional<std::vector<map::EdgeIndex>> changed_since(std::uint64_t since) const {
     if (since == version()) return std::vector<map::EdgeIndex>{};

@@ -65,10 +65,14 @@ class LearnedEdgeModels final : public EdgeModelView {
   // The edges observe()d since `since` when no set() came after it; nullopt otherwise.
   std::optional<std::vector<map::EdgeIndex>> changed_since(std::uint64_t since) const override;
 
-  const AttemptLaws* attempt_laws() const override { return attempt_laws_.get(); }
-  // The attempt-duration laws (null: none). Takes effect for caches with the next set(), which
-  // moves version() on: call it just before set().
+  // With laws set: an edge with its own model gets its own duration tables of the time-of-day bin
+  // of `at` (kLawPoints points each, the means of equal groups of the tables' knots); any other
+  // edge the pooled laws scaled by leg.attempt_seconds. Without: nothing.
+  void attempt_laws(map::EdgeIndex edge, Time at, RouteLeg& leg) const override;
+  // The pooled attempt-duration laws (null: no laws at all). Takes effect for caches with the next
+  // set(), which moves version() on: call it just before set().
   void set_attempt_laws(std::shared_ptr<const AttemptLaws> laws) { attempt_laws_ = std::move(laws); }
+  static constexpr std::size_t kLawPoints = 7;
 
   // Swaps the snapshot (null: prior only), re-matches the edges and moves version() on.
   void set(std::shared_ptr<const learn::EdgeModels> models);
