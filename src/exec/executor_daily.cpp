@@ -8,6 +8,7 @@
 #include "rondo/exec/executor.h"
 #include "rondo/learn/edge_models.h"
 #include "rondo/store/traversal_log.h"
+#include "attempt_laws.h"
 
 namespace rondo::exec {
 namespace {
@@ -72,6 +73,12 @@ void Executor::refit() {
   if (!fitted) {
     book_.write_error(fitted.error().message);
     return;
+  }
+  if (options_.risk_alpha) {
+    // The chance constraint's travel-time distribution: attempt durations with their own laws.
+    auto laws = std::make_shared<const plan::AttemptLaws>(learn_attempt_laws(**fitted, *log));
+    models_->set_attempt_laws(laws);
+    offline_models_->set_attempt_laws(laws);
   }
   models_->set(*fitted);
   if (options_.online_model) offline_models_->set(*fitted);

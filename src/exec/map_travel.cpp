@@ -114,7 +114,9 @@ Duration TravelCache::quantile_at_slot(map::NodeIndex from, map::NodeIndex to, T
     // A coarser grid than the default: the bracket is still an upper bound, within ~1.6 % of the
     // expected time per expected attempt, and a route's distribution costs a quarter.
     const plan::TravelTimeDistribution d =
-        e.policy.travel_time_distribution(from, {.cells = 1024, .horizon_factor = 16.0});
+        e.policy.travel_time_distribution(
+            from, {.cells = 1024, .horizon_factor = 16.0},
+            [&](const plan::PolicyStep& s, plan::RouteLeg& leg) { models_->attempt_laws(s.edge, slot_start, leg); });
     // A quantile beyond the grid (16 x the expected time) is read as the grid's end: a reachable
     // target stays reachable for the window check.
     const double upper = d.quantile(level).upper;

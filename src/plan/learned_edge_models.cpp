@@ -72,6 +72,44 @@ std::optional<std::vector<map::EdgeIndex>> LearnedEdgeModels::changed_since(std:
   return changed;
 }
 
+namespace {
+
+// kLawPoints equal groups of the table's knots, each a point at the group's mean.
+std::vector<DurationPoint> table_law(const learn::QuantileTable& table) {
+  const std::vector<double>& knots = table.values();
+  std::vector<DurationPoint> law;
+  const std::size_t n = knots.size();
+  const std::size_t groups = LearnedEdgeModels::kLawPoints;
+  for (std::size_t g = 0; g < groups; ++g) {
+    const std::size_t begin = n * g / groups;
+    const std::size_t end = n * (g + 1) / groups;
+    if (end <= begin) continue;
+    double sum = 0.0;
+    for (std::size_t i = begin; i < end; ++i) sum += knots[i];
+    law.push_back({sum / static_cast<double>(end - begin), static_cast<double>(end - begin)});
+  }
+  return law;
+}
+
+}  // namespace
+
+void LearnedEdgeModels::attempt_laws(map::EdgeIndex edge, Time at, RouteLeg& leg) const {
+  if (!attempt_laws_) return;
+  const std::size_t i = index_.at(edge);
+  const learn::EpisodeEdgeModel* own = i == kUnknown ? nullptr : models_->model(i);
+  if (own) {
+    const auto& tables = own->durations();
+    const auto bin = static_cast<std::size_t>(own->priors()->duration_bin(at));
+    if (bin < tables.success.size() && bin < tables.failure.size()) {
+      leg.success_law = table_law(tables.success[bin]);
+      leg.failure_law = table_law(tables.failure[bin]);
+      return;
+    }
+  }
+  for (const DurationPoint& d : attempt_laws_->success) leg.success_law.push_back({d.seconds * leg.attempt_seconds, d.weight});
+  for (const DurationPoint& d : attempt_laws_->failure) leg.failure_law.push_back({d.seconds * leg.attempt_seconds, d.weight});
+}
+
 EdgeOutcome LearnedEdgeModels::outcome(map::EdgeIndex edge, Time at) const {
   const std::size_t i = index_.at(edge);
   if (i == kUnknown) return prior_.outcome(edge, at);

@@ -48,10 +48,14 @@ std::vector<PolicyStep> Policy::route(NodeIndex from) const {
   return out;
 }
 
-TravelTimeDistribution Policy::travel_time_distribution(NodeIndex from, const DistributionOptions& options) const {
+TravelTimeDistribution Policy::travel_time_distribution(NodeIndex from, const DistributionOptions& options,
+                                                        const LegLaws& laws) const {
   if (!reaches_target(from)) return TravelTimeDistribution::unreachable();
   std::vector<RouteLeg> legs;
-  for (const PolicyStep& s : route(from)) legs.push_back({s.success_probability, s.attempt_seconds});
+  for (const PolicyStep& s : route(from)) {
+    legs.push_back({s.success_probability, s.attempt_seconds});
+    if (laws) laws(s, legs.back());
+  }
   return TravelTimeDistribution::of_route(legs, options);
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 namespace rondo::plan {
 namespace {
@@ -15,12 +17,63 @@ constexpr double kSlack = 1e-9;
 
 enum class Rounding { kDown, kUp };
 
+std::size_t rounded_cells(double seconds, double cell, Rounding rounding) {
+  const double exact = seconds / cell;
+  const double r = rounding == Rounding::kDown ? std::floor(exact + kSlack) : std::ceil(exact - kSlack);
+  return r <= 0 ? 0 : (r > 1e18 ? std::numeric_limits<std::size_t>::max() : static_cast<std::size_t>(r));
+}
+
+// A law rounded to whole cells: (cells, weight) with points beyond the grid left out (their mass
+// never arrives within it). An empty law is the single point `fallback`.
+std::vector<std::pair<std::size_t, double>> rounded_law(const std::vector<DurationPoint>& law, double fallback,
+                                                        double cell, std::size_t cells, Rounding rounding) {
+  std::vector<std::pair<std::size_t, double>> out;
+  if (law.empty()) {
+    const std::size_t m = rounded_cells(fallback, cell, rounding);
+    if (m <= cells) out.emplace_back(m, 1.0);
+    return out;
+  }
+  for (const DurationPoint& point : law) {
+    const std::size_t m = rounded_cells(point.seconds, cell, rounding);
+    if (m <= cells) out.emplace_back(m, point.weight);
+  }
+  return out;
+}
+
+// next = pmf * X, X the leg's crossing time (laws already normalised by of_route):
+// g[x] = p (f * S)[x] + (1 − p) Σ_j F_j g[x − j], the j = 0 term moved to the left side.
+void add_leg_with_laws(const RouteLeg& leg, double cell, Rounding rounding, const std::vector<double>& pmf,
+                       std::vector<double>& next) {
+  const std::size_t cells = pmf.size() - 1;
+  const auto success = rounded_law(leg.success_law, leg.attempt_seconds, cell, cells, rounding);
+  const auto failure = rounded_law(leg.failure_law, leg.attempt_seconds, cell, cells, rounding);
+  const double p = leg.success_probability;
+  double at_zero = 0.0;
+  for (const auto& [m, w] : failure)
+    if (m == 0) at_zero += w;
+  const double scale = 1.0 / (1.0 - (1.0 - p) * at_zero);  // p > 0, so at_zero (1 − p) < 1
+  std::fill(next.begin(), next.end(), 0.0);
+  for (const auto& [m, w] : success)
+    for (std::size_t x = m; x <= cells; ++x) next[x] += p * w * pmf[x - m];
+  for (std::size_t x = 0; x <= cells; ++x) {
+    double v = next[x];
+    for (const auto& [m, w] : failure)
+      if (m > 0 && m <= x) v += (1.0 - p) * w * next[x - m];
+    next[x] = v * scale;
+  }
+}
+
 // The cumulative distribution over grid points 0..cells of Σ N_k m_k, m_k = τ_k/h rounded.
 std::vector<double> rounded_cdf(std::span<const RouteLeg> legs, double cell, std::size_t cells, Rounding rounding) {
   std::vector<double> pmf(cells + 1, 0.0);
   std::vector<double> next(cells + 1, 0.0);
   pmf[0] = 1.0;
   for (const RouteLeg& leg : legs) {
+    if (!leg.success_law.empty() || !leg.failure_law.empty()) {
+      add_leg_with_laws(leg, cell, rounding, pmf, next);
+      pmf.swap(next);
+      continue;
+    }
     const double exact = leg.attempt_seconds / cell;
     const double rounded = rounding == Rounding::kDown ? std::floor(exact + kSlack) : std::ceil(exact - kSlack);
     if (rounded <= 0) continue;                  // N × 0 = 0: the distribution does not move
@@ -43,6 +96,25 @@ std::vector<double> rounded_cdf(std::span<const RouteLeg> legs, double cell, std
   return pmf;
 }
 
+// Drops points without a positive finite weight and scales the rest to sum 1; false when a point
+// has a negative or non-finite duration.
+bool normalise(std::vector<DurationPoint>& law) {
+  std::erase_if(law, [](const DurationPoint& d) { return !(d.weight > 0.0) || !std::isfinite(d.weight); });
+  double total = 0.0;
+  for (const DurationPoint& d : law) {
+    if (!std::isfinite(d.seconds) || d.seconds < 0) return false;
+    total += d.weight;
+  }
+  for (DurationPoint& d : law) d.weight /= total;
+  return true;
+}
+
+double mean(const std::vector<DurationPoint>& law) {
+  double m = 0.0;
+  for (const DurationPoint& d : law) m += d.seconds * d.weight;
+  return m;
+}
+
 }  // namespace
 
 TravelTimeDistribution TravelTimeDistribution::unreachable() {
@@ -55,11 +127,21 @@ TravelTimeDistribution TravelTimeDistribution::unreachable() {
 TravelTimeDistribution TravelTimeDistribution::of_route(std::span<const RouteLeg> legs,
                                                         const DistributionOptions& options) {
   double expected = 0.0;
-  for (const RouteLeg& leg : legs) {
-    if (!(leg.success_probability > 0.0) || !std::isfinite(leg.attempt_seconds) || leg.attempt_seconds < 0) {
+  std::vector<RouteLeg> clamped(legs.begin(), legs.end());
+  for (RouteLeg& leg : clamped) {
+    if (!(leg.success_probability > 0.0) || !std::isfinite(leg.attempt_seconds) || leg.attempt_seconds < 0 ||
+        !normalise(leg.success_law) || !normalise(leg.failure_law)) {
       return unreachable();
     }
-    expected += leg.attempt_seconds / std::min(leg.success_probability, 1.0);
+    leg.success_probability = std::min(leg.success_probability, 1.0);
+    const double p = leg.success_probability;
+    if (leg.success_law.empty() && leg.failure_law.empty()) {
+      expected += leg.attempt_seconds / p;
+    } else {
+      const double s = leg.success_law.empty() ? leg.attempt_seconds : mean(leg.success_law);
+      const double f = leg.failure_law.empty() ? leg.attempt_seconds : mean(leg.failure_law);
+      expected += s + (p < 1.0 ? f * (1.0 - p) / p : 0.0);
+    }
   }
   if (!std::isfinite(expected)) return unreachable();
   TravelTimeDistribution d;
@@ -71,8 +153,6 @@ TravelTimeDistribution TravelTimeDistribution::of_route(std::span<const RouteLeg
     d.slow_cdf_ = {1.0};
     return d;
   }
-  std::vector<RouteLeg> clamped(legs.begin(), legs.end());
-  for (RouteLeg& leg : clamped) leg.success_probability = std::min(leg.success_probability, 1.0);
   d.cells_ = std::max<std::size_t>(options.cells, 16);
   d.cell_ = std::max(options.horizon_factor, 2.0) * expected / static_cast<double>(d.cells_);
   d.fast_cdf_ = rounded_cdf(clamped, d.cell_, d.cells_, Rounding::kDown);

@@ -2,6 +2,7 @@
 // for edges it does not know, and set() moving version() on so that TravelPlanner drops its caches.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "rondo/learn/edge_models.h"
@@ -158,6 +159,46 @@ TEST(LearnedEdgeModels, OfflineIgnoresObservations) {
   EXPECT_EQ(offline.version(), v);
   EXPECT_EQ(offline.outcome(0, t + seconds(30)), (EdgeOutcome{fitted->success_probability(0, t + seconds(30)),
                                                               fitted->expected_seconds(0, t + seconds(30))}));
+}
+
+}  // namespace
+}  // namespace rondo::plan
+
+namespace rondo::plan {
+namespace {
+
+// With laws set, an edge with its own model answers its own duration tables (successful attempts
+// 30 s, failed ones 90 s here); an edge on the prior model the pooled laws scaled by its τ.
+// Without laws, nothing.
+TEST(LearnedEdgeModels, AttemptLawsFromTheEdgesTablesOrThePooledLaws) {
+  const map::TopoMap m = testing::small_map({"A", "B", "C"}, {"A>B", "B>C"});
+  std::vector<learn::EdgeSpec> specs = {{"A_B", 2.0}, {"B_C", 2.0}};
+  auto log = attempts("A_B", 60, 30.0, 0);
+  for (auto& t : attempts("A_B", 30, 90.0, 1)) {
+    t.start += minutes(3);
+    log.push_back(t);
+  }
+  std::sort(log.begin(), log.end(), [](const Traversal& a, const Traversal& b) { return a.start < b.start; });
+  LearnedEdgeModels view(m, fit(specs, log));
+  RouteLeg none{.success_probability = 0.5, .attempt_seconds = 10.0};
+  view.attempt_laws(0, kStart, none);
+  EXPECT_TRUE(none.success_law.empty());
+  EXPECT_TRUE(none.failure_law.empty());
+
+  view.set_attempt_laws(std::make_shared<const AttemptLaws>(
+      AttemptLaws{.success = {{1.0, 1.0}}, .failure = {{0.5, 1.0}, {2.0, 1.0}}}));
+  view.set(view.models());
+  RouteLeg own{.success_probability = 0.5, .attempt_seconds = 10.0};
+  view.attempt_laws(0, kStart + minutes(30), own);
+  ASSERT_EQ(own.success_law.size(), LearnedEdgeModels::kLawPoints);
+  ASSERT_EQ(own.failure_law.size(), LearnedEdgeModels::kLawPoints);
+  for (const DurationPoint& d : own.success_law) EXPECT_NEAR(d.seconds, 30.0, 1e-6);
+  for (const DurationPoint& d : own.failure_law) EXPECT_NEAR(d.seconds, 90.0, 1e-6);
+
+  RouteLeg pooled{.success_probability = 0.5, .attempt_seconds = 10.0};
+  view.attempt_laws(1, kStart, pooled);
+  EXPECT_EQ(pooled.success_law, (std::vector<DurationPoint>{{10.0, 1.0}}));
+  EXPECT_EQ(pooled.failure_law, (std::vector<DurationPoint>{{5.0, 1.0}, {20.0, 1.0}}));
 }
 
 }  // namespace

@@ -66,8 +66,9 @@ class TravelCache {
   Duration travel(map::NodeIndex from, map::NodeIndex to, Time depart) const;
   // The `level`-quantile of the travel time from `from` to `to` at the start of the slot that
   // contains `depart`: the policy's route with each edge's attempts geometric in its success
-  // probability (plan::TravelTimeDistribution, its upper bracket, so never below the true
-  // quantile). Interpolated between slot starts and FIFO-repaired as travel() is. Each (slot,
+  // probability and each attempt's duration from the models' laws (EdgeModelView::attempt_laws:
+  // successful and failed attempts apart; none: the expected seconds), as plan::
+  // TravelTimeDistribution gives it (its upper bracket, so never below the model's quantile). Interpolated between slot starts and FIFO-repaired as travel() is. Each (slot,
   // target, source) is computed once per level and kept with its policy.
   Duration quantile_at_slot(map::NodeIndex from, map::NodeIndex to, Time slot_start, double level) const;
   Duration quantile_travel(map::NodeIndex from, map::NodeIndex to, Time depart, double level) const;

@@ -224,6 +224,8 @@ class EpisodeEdgeModel {
   double quantile_seconds(Time t, double q, const EpisodeStats& live, bool use_state) const;
 
   const EpisodeStats& stats() const { return stats_; }
+  // The per-bin duration tables of successful and failed attempts (bin: priors()->duration_bin).
+  const DurationTables& durations() const { return durations_; }
   const std::shared_ptr<const EpisodePriors>& priors() const { return priors_; }
   // Whether q(t) has the time-of-week term, and why.
   const WeeklyChoice& weekly() const { return weekly_; }

@@ -18,6 +18,7 @@
 
 #include "rondo/core/time.h"
 #include "rondo/map/topo_map.h"
+#include "rondo/plan/travel_time_distribution.h"
 
 namespace rondo::plan {
 
@@ -54,6 +55,11 @@ class EdgeModelView {
   // The defaults: answers that depend on the time of week only.
   virtual Time conditioned_until(map::EdgeIndex /*edge*/) const { return Time{}; }
   virtual Duration memory() const { return Duration{0}; }
+  // The attempt-duration laws the travel-time distribution uses: fills `leg`'s success_law and
+  // failure_law for an attempt of `edge` starting at `at` (leg.attempt_seconds already set to its
+  // expected seconds). Leaves them empty (each attempt lasts its expected seconds) by default. They
+  // change only together with version().
+  virtual void attempt_laws(map::EdgeIndex /*edge*/, Time /*at*/, RouteLeg& /*leg*/) const {}
   // Precondition: since <= version(). Empty when since == version().
   virtual std::optional<std::vector<map::EdgeIndex>> changed_since(std::uint64_t since) const {
     if (since == version()) return std::vector<map::EdgeIndex>{};

@@ -65,6 +65,15 @@ class LearnedEdgeModels final : public EdgeModelView {
   // The edges observe()d since `since` when no set() came after it; nullopt otherwise.
   std::optional<std::vector<map::EdgeIndex>> changed_since(std::uint64_t since) const override;
 
+  // With laws set: an edge with its own model gets its own duration tables of the time-of-day bin
+  // of `at` (kLawPoints points each, the means of equal groups of the tables' knots); any other
+  // edge the pooled laws scaled by leg.attempt_seconds. Without: nothing.
+  void attempt_laws(map::EdgeIndex edge, Time at, RouteLeg& leg) const override;
+  // The pooled attempt-duration laws (null: no laws at all). Takes effect for caches with the next
+  // set(), which moves version() on: call it just before set().
+  void set_attempt_laws(std::shared_ptr<const AttemptLaws> laws) { attempt_laws_ = std::move(laws); }
+  static constexpr std::size_t kLawPoints = 7;
+
   // Swaps the snapshot (null: prior only), re-matches the edges and moves version() on.
   void set(std::shared_ptr<const learn::EdgeModels> models);
 
@@ -89,6 +98,7 @@ class LearnedEdgeModels final : public EdgeModelView {
   Reading reading_;
   std::vector<std::string> edge_ids_;  // of the map, by edge index
   std::shared_ptr<const learn::EdgeModels> models_;
+  std::shared_ptr<const AttemptLaws> attempt_laws_;
   std::optional<learn::LiveEdgeModels> live_;  // online reading with a snapshot
   std::uint64_t snapshot_version_ = 1;         // version() of the last set()
   std::vector<std::uint64_t> edge_version_;    // per map edge: version() of its last observe()

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -66,8 +67,10 @@ class Policy {
 
   // The distribution of the time to reach the target from `from` (see travel_time_distribution.h
   // for the method and its accuracy). An unreachable target gives a distribution with all its mass
-  // at +inf.
-  TravelTimeDistribution travel_time_distribution(NodeIndex from, const DistributionOptions& options = {}) const;
+  // at +inf. With `laws`, each step's leg ({p, τ}) is handed to it to fill its duration laws.
+  using LegLaws = std::function<void(const PolicyStep&, RouteLeg&)>;
+  TravelTimeDistribution travel_time_distribution(NodeIndex from, const DistributionOptions& options = {},
+                                                  const LegLaws& laws = {}) const;
 
   // Whether this policy stays optimal, with expected_seconds() unchanged, after the expected
   // crossing time τ/p of `edge` (from `from` to `to`) becomes `crossing` (+inf: unusable). That

@@ -17,8 +17,16 @@
 // the default grid (4096 cells over 16 × the expected time) quantiles are bracketed to within
 // about 0.4% of the expected time per expected attempt; when every τ is a whole number of cells the
 // bracket closes and the answer is exact. Mass beyond the horizon is kept as a tail and never
-// counted as "within budget". The attempt duration itself is treated as fixed (the models give
-// only its mean).
+// counted as "within budget".
+//
+// Attempt durations. Without laws, every attempt of an edge lasts its attempt_seconds. A leg may
+// instead carry two small discrete laws: the duration of a successful attempt and that of a failed
+// one (weighted points, seconds). Crossing the edge then takes F_1 + ... + F_(N−1) + S, with N
+// geometric as above, the F_i from the failure law and S from the success law, all independent.
+// Its law X satisfies X = S with probability p, F + X' otherwise, so g = f * X is found by
+// g[x] = p (f * S)[x] + (1 − p) Σ_j F_j g[x − j] (a point of F at 0 cells is moved to the left
+// side), O(cells × points) per edge. Every point is rounded down and up to whole cells, which keeps
+// the bracket guaranteed. A leg with only one of the two laws uses attempt_seconds for the other.
 #pragma once
 
 #include <cstddef>
@@ -27,10 +35,30 @@
 
 namespace rondo::plan {
 
+// One point of a discrete duration law: `seconds` (>= 0, finite) with weight `weight` (> 0; a law's
+// weights are normalised, points with other weights are dropped).
+struct DurationPoint {
+  double seconds = 0.0;
+  double weight = 0.0;
+  bool operator==(const DurationPoint&) const = default;
+};
+
 // One edge of a route, as the distribution sees it.
 struct RouteLeg {
   double success_probability = 1.0;  // in (0, 1]
   double attempt_seconds = 0.0;      // >= 0, finite
+  // Optional laws of one successful / one failed attempt's duration; empty: attempt_seconds.
+  std::vector<DurationPoint> success_law{};
+  std::vector<DurationPoint> failure_law{};
+};
+
+// Duration laws shared by every edge, as multiples of an edge's expected attempt seconds: leg k
+// gets the points {seconds × τ_k, weight}. Learned from the traversal log at refit time
+// (exec/attempt_laws.h). Empty laws leave attempt_seconds fixed.
+struct AttemptLaws {
+  std::vector<DurationPoint> success{};  // one successful attempt / τ
+  std::vector<DurationPoint> failure{};  // one failed attempt / τ
+  bool operator==(const AttemptLaws&) const = default;
 };
 
 struct DistributionOptions {
@@ -60,7 +88,8 @@ class TravelTimeDistribution {
   static TravelTimeDistribution unreachable();
 
   bool reachable() const { return reachable_; }
-  // E[T] = Σ τ_k / p_k, exact (not from the grid); +inf when unreachable.
+  // E[T] = Σ τ_k / p_k, exact (not from the grid); +inf when unreachable. With laws, each leg
+  // contributes E[S] + E[F] (1 − p) / p instead.
   double expected_seconds() const { return expected_; }
   // Bounds on P(T <= budget_seconds).
   ProbabilityBounds probability_within(double budget_seconds) const;
