@@ -152,16 +152,16 @@ BatteryFigures Executor::battery_figures() const {
   return f;
 }
 
-void Executor::enter_low_battery(const std::string& why) {
+void Executor::enter_low_battery() {
   low_battery_ = true;
   ++low_battery_count_;
   low_since_ = clock_.now();
   const double home = home_level();
   const std::string below =
-      !why.empty()               ? why
-      : battery_->level() < home ? fmt::format("below {}, what the way to the charger needs to keep the reserve {}",
-                                               percent(home), percent(options_.battery_reserve))
-                                 : fmt::format("below the hard threshold {}", percent(options_.battery_threshold));
+      battery_->level() < home
+          ? fmt::format("below {}, what the way to the charger needs to keep the reserve {}", percent(home),
+                        percent(options_.battery_reserve))
+          : fmt::format("below the hard threshold {}", percent(options_.battery_threshold));
   book_.note_robot("battery low", Outcome::kCharging,
                    fmt::format("battery {} at {}, {}: the robot goes to charge at the next interruptible moment and "
                                "starts nothing new until {} (about {} on the charger)",

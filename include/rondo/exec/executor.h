@@ -249,8 +249,8 @@ class Executor final : public RobotListener {
   bool charging_as_planned();  // in must_charge(): false (and noted) once it is done
   // Tasks dropped for the battery are offered again while the robot stands on the charger.
   bool reoffer_for_battery();
-  // `why`: what sent it (by default the reading below the threshold or below home_level()).
-  void enter_low_battery(const std::string& why = {});
+  // Below the threshold or below home_level(): the robot goes to charge (noted, counted).
+  void enter_low_battery();
   // Planned charging: the level `id` needs now (there, its work and the way back to the charger,
   // above the reserve and the margin), and why, when the battery has less; nothing when it can.
   struct BatteryShort {
