@@ -9,6 +9,7 @@
 #include <string>
 
 #include "battery_watch.h"
+#include "charge_planning.h"
 #include "dispatcher.h"
 #include "rondo/exec/executor.h"
 #include "rondo/map/map_geometry.h"
@@ -17,6 +18,8 @@
 
 namespace rondo::exec {
 namespace {
+
+constexpr int kWayHomeDoublings = 4;  // a closed way home is tried again after at most 2^4 slots
 
 // A state of charge for people: "14.9 %".
 std::string percent(double level) { return fmt::format("{:.1f} %", level * 100); }
@@ -36,19 +39,36 @@ bool Executor::below_threshold() const {
 
 double Executor::home_level() const {
   if (!options_.battery_planning) return 0;
-  const map::NodeIndex here = robot_.location();
-  const double metres = here < metres_home_.size() && std::isfinite(metres_home_[here]) ? metres_home_[here] : 0;
-  const Duration travel = std::min<Duration>(travel_->travel(here, options_.dock, clock_.now()), hours(24));
-  const BatteryPrediction p = battery_->estimator().predict(
-      {.metres = metres, .hours_moving = to_seconds(travel) / 3600.0});
+  const BatteryPrediction p = way_home();
   // Readings come between edges: one more edge away from the dock must still leave the way back.
   double next_edge = 0;
-  for (const map::EdgeIndex e : map_.out_edges(here))
-    next_edge = std::max(next_edge, battery_->estimator()
-                                        .predict({.metres = map::edge_length(map_, e),
-                                                  .hours_moving = to_seconds(map::nominal_travel_time(map_, e)) / 3600.0})
-                                        .mean);
-  return options_.battery_reserve + p.mean + next_edge + options_.battery_margin * p.standard_error;
+  for (const map::EdgeIndex e : map_.out_edges(robot_.location())) next_edge = std::max(next_edge, edge_cost(e));
+  return options_.battery_reserve + p.mean + next_edge + margin_over(p, way_home_hours());
+}
+
+// The margin the plans keep (ChargePlan): `battery_margin` standard deviations of the prediction,
+// from the rates' standard error and what plans missed per hour (PlanDrift) over `hours`.
+double Executor::margin_over(const BatteryPrediction& p, double hours) const {
+  return options_.battery_margin *
+         std::sqrt(p.standard_error * p.standard_error + drift_->variance_per_hour() * std::max(hours, 0.0));
+}
+
+double Executor::way_home_hours() const {
+  return to_seconds(std::min<Duration>(travel_->travel(robot_.location(), options_.dock, clock_.now()), hours(24))) /
+         3600.0;
+}
+
+BatteryPrediction Executor::way_home() const {
+  const map::NodeIndex here = robot_.location();
+  const double metres = here < metres_home_.size() && std::isfinite(metres_home_[here]) ? metres_home_[here] : 0;
+  return battery_->estimator().predict({.metres = metres, .hours_moving = way_home_hours()});
+}
+
+double Executor::edge_cost(map::EdgeIndex e) const {
+  return battery_->estimator()
+      .predict({.metres = map::edge_length(map_, e),
+                .hours_moving = to_seconds(map::nominal_travel_time(map_, e)) / 3600.0})
+      .mean;
 }
 
 Duration Executor::time_to_charge() const {
@@ -86,8 +106,9 @@ std::optional<Executor::BatteryShort> Executor::battery_short_for(const TaskId& 
       {.metres = finite(map::shortest_metres(map_, here)[start]) + (end < metres_home_.size() ? finite(metres_home_[end]) : 0),
        .hours_moving = hours_of(there) + hours_of(back),
        .hours_acting = hours_of(work)});
-  const double left = battery_->level() - p.mean;
-  const double keep = options_.battery_reserve + options_.battery_margin * p.standard_error;
+  const double hours = hours_of(there) + hours_of(work) + hours_of(back);
+  const double left = battery_->level() - p.mean - drift_->per_hour() * hours;
+  const double keep = options_.battery_reserve + margin_over(p, hours);
   if (left >= keep) return std::nullopt;
   return BatteryShort{.needed = battery_->level() + (keep - left),
                       .why = fmt::format("task {} would leave about {} after the way back to the charger, below the "
@@ -144,6 +165,47 @@ bool Executor::reoffer_for_battery() {
   reschedule({}, fmt::format("battery {} on the charger: tasks dropped for the battery offered again",
                              percent(battery_->level())));
   return true;
+}
+
+// The way to the charger found closed while the battery is planned: every attempt costs some of
+// the battery it is meant to save, and a robot shut out overnight (a door locked after hours) would
+// spend the night trying. So the next trip waits twice as long after each failed one (a slot, then
+// 2, 4, 8 and at most 16 slots; at once the longest when the battery above what the way home needs
+// would not pay for two more attempts), and at least until the first slot start at which the
+// snapshot's model (what time of day and week say, without the live model's memory of the last
+// failure) holds the edge likely passable, looked for up to three days ahead.
+Time Executor::retry_way_home(map::EdgeIndex edge) {
+  const Time now = clock_.now();
+  if (!way_home_closed_ || way_home_closed_->edge != edge) way_home_closed_ = WayHomeClosed{.edge = edge};
+  WayHomeClosed& w = *way_home_closed_;
+  ++w.failures;
+  const BatteryPrediction home = way_home();
+  const double spare = battery_->level() - (options_.battery_reserve + home.mean + margin_over(home, way_home_hours()));
+  const int doublings = spare < 2 * edge_cost(edge) ? kWayHomeDoublings : std::min(w.failures - 1, kWayHomeDoublings);
+  Time at = now + options_.slot_width * (1 << doublings);
+  std::string learned;
+  for (Time t = planner_->slot_start(now) + options_.slot_width; t <= now + hours(72); t += options_.slot_width) {
+    const double p = offline_models_->outcome(edge, t).success_probability;
+    if (p < kLikelyPassable) continue;
+    if (t > at) {
+      at = t;
+      learned = fmt::format(", when it is likely passable again (p = {:.2f}, learned)", p);
+    }
+    break;
+  }
+  w.retry_at = at;
+  book_.note_robot("way home closed", Outcome::kNoRouteNow,
+                   fmt::format("battery {} at {}: {} failed on the way to the charger ({} in a row); the next try at "
+                               "{}{}",
+                               percent(battery_->level()), map_.node(robot_.location()).name, map_.edge(edge).id,
+                               w.failures, zone_.format_clock(at), learned));
+  return at;
+}
+
+void Executor::way_home_crossed(const EdgeAttempt& a) {
+  if (!way_home_closed_) return;
+  if ((a.succeeded() && a.edge == way_home_closed_->edge) || robot_.location() == options_.dock)
+    way_home_closed_.reset();
 }
 
 BatteryFigures Executor::battery_figures() const {

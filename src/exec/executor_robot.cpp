@@ -50,6 +50,7 @@ void Executor::on_edge_finished(const EdgeAttempt& a) {
   battery_->edge_finished(a);
   read_battery();
   learn_from(a);
+  way_home_crossed(a);
   save_robot_state();
   if (run_) {
     if (Step* s = run_->current()) s->on_edge_finished(a);

@@ -45,23 +45,11 @@ void Executor::next() {
     Decision d = dispatcher_->next(here, now);
     switch (d.kind) {
       case Decision::Kind::kRun:
-        if (book_.at(d.task).task.kind == TaskKind::kOnDemand) {
-          // Planned charging: an on-demand task the battery cannot afford runs after a charge to
-          // what it needs (one that even a full battery could not afford runs at once).
-          const std::optional<BatteryShort> short_of = battery_short_for(d.task);
-          if (short_of && short_of->needed <= 1) {
-            dispatcher_->on_demand.push_front(d.task);
-            book_.note(d.task, "waits for the charge", Outcome::kCharging, short_of->why);
-            const double hours = std::max(0.0, battery_->estimator().hours_to_charge(battery_->level(), short_of->needed));
-            const Duration on_charger = from_seconds(hours * 3600) + minutes(1);
-            start_planned_charge(now + travel_->travel(here, options_.dock, now) + on_charger, on_charger,
-                                 short_of->needed);
-            reschedule({}, "charging for on-demand task " + d.task);
-            return charge();
-          }
-        }
+        if (charge_first(d.task)) return charge();
         return start_run(d.task, std::nullopt);
-      case Decision::Kind::kWait: return start_run(d.task, d.until);
+      case Decision::Kind::kWait:
+        if (charge_first(d.task)) return charge();
+        return start_run(d.task, d.until);
       case Decision::Kind::kFail:
         book_.transition(d.task, TaskState::kFailed, d.outcome, d.reason);
         reschedule({}, "task " + d.task + " failed");
@@ -76,6 +64,28 @@ void Executor::next() {
         return;
     }
   }
+}
+
+// Planned charging: a task the battery cannot afford now (the way there, its work and the way back
+// to the charger, above the reserve and the margin) runs after a charge to what it needs, and
+// stays first in its queue. The plan's predictions were made earlier and may have missed (longer
+// actions, a night shut out); this is the last look before the robot sets out. One that even a
+// full battery could not afford runs at once.
+bool Executor::charge_first(const TaskId& id) {
+  const std::optional<BatteryShort> short_of = battery_short_for(id);
+  if (!short_of || short_of->needed > 1) return false;
+  const Time now = clock_.now();
+  if (book_.at(id).task.kind == TaskKind::kOnDemand)
+    dispatcher_->on_demand.push_front(id);
+  else
+    dispatcher_->planned.insert(dispatcher_->planned.begin(), id);
+  book_.note(id, "waits for the charge", Outcome::kCharging, short_of->why);
+  const double hours = std::max(0.0, battery_->estimator().hours_to_charge(battery_->level(), short_of->needed));
+  const Duration on_charger = from_seconds(hours * 3600) + minutes(1);
+  start_planned_charge(now + travel_->travel(robot_.location(), options_.dock, now) + on_charger, on_charger,
+                       short_of->needed);
+  reschedule({}, "charging for task " + id);
+  return true;
 }
 
 void Executor::start_run(const TaskId& id, std::optional<Time> wait_until) {
@@ -131,6 +141,7 @@ void Executor::retire_trip() { retired_steps_.push_back(std::move(trip_)); }
 
 void Executor::go_to_dock() {
   if (robot_.location() == options_.dock) return;
+  if (way_home_closed_ && clock_.now() < way_home_closed_->retry_at) return look_again_at(way_home_closed_->retry_at);
   trip_ = std::make_unique<NavigateStep>(
       steps_, StepHooks{.ended = [this](StepEnd e) { trip_ended(std::move(e)); },
                         .overrun = [](Outcome, const std::string&) {}},
@@ -139,10 +150,13 @@ void Executor::go_to_dock() {
 }
 
 // A trip of the executor's own that fails (no way to the dock now) is dropped, and the executor
-// looks again after a slot.
+// looks again after a slot, or, when the battery is planned, when the way is likely open again.
 void Executor::trip_ended(StepEnd e) {
   retire_trip();
-  if (e.status == StepEnd::Status::kFailed) return look_again_at(clock_.now() + options_.slot_width);
+  if (e.status == StepEnd::Status::kFailed) {
+    if (options_.battery_planning && e.edge) return look_again_at(retry_way_home(*e.edge));
+    return look_again_at(clock_.now() + options_.slot_width);
+  }
   next();
 }
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "rondo/learn/edge_models.h"
+#include "closure_models.h"
 #include "rondo/plan/learned_edge_models.h"
 #include "rondo/store/traversal_log.h"
 #include "scenario.h"
@@ -21,42 +21,6 @@ namespace rondo::exec::testing {
 namespace {
 
 using ::testing::HasSubstr;
-
-// Two weeks before the test's Monday: every edge crossed at every even hour from 08:00 to 18:00,
-// and Hall_Office closed each day from 10:00 to 10:40, found so at 10:00 and retried at once 8
-// times (the shape of a closure in a robot's own log).
-std::shared_ptr<plan::LearnedEdgeModels> models_where_hall_office_stays_closed(const map::TopoMap& map,
-                                                                               const TimeZone& zone) {
-  std::vector<Traversal> log;
-  const Time monday = zone.parse_time("2026-11-23T00:00").value();
-  for (int day = 14; day >= 1; --day) {
-    const Time midnight = monday - hours(24 * day);
-    for (map::EdgeIndex e = 0; e < map.edge_count(); ++e) {
-      const std::string& id = map.edge(e).id;
-      for (int h = 8; h <= 18; h += 2) {
-        if (id == "Hall_Office" && h == 10) {
-          Time t = midnight + hours(h);
-          for (int i = 0; i < 9; ++i, t += seconds(20))
-            log.push_back(
-                {.edge_id = id, .from = "Hall", .to = "Office", .start = t, .duration = seconds(20), .success = false});
-          continue;
-        }
-        log.push_back({.edge_id = id,
-                       .from = map.edge(e).from,
-                       .to = map.edge(e).to,
-                       .start = midnight + hours(h),
-                       .duration = seconds(20),
-                       .success = true});
-      }
-    }
-  }
-  std::sort(log.begin(), log.end(), [](const Traversal& a, const Traversal& b) { return a.start < b.start; });
-  learn::EdgeModelsOptions options;
-  options.episode.zone = zone;
-  auto fitted = learn::EdgeModels::fit(plan::edge_specs(map), log, options).value();
-  return std::make_shared<plan::LearnedEdgeModels>(map, fitted, plan::DistancePriorOptions{},
-                                                   plan::LearnedEdgeModels::Reading::kOnline);
-}
 
 struct Blocked : ScriptedExecutor {
   explicit Blocked(ExecutorOptions::BlockedEdge policy, Duration on_demand_patience = hours(4))
@@ -70,7 +34,7 @@ struct Blocked : ScriptedExecutor {
   static ExecutorParts parts() {
     static const map::TopoMap map = scenario_map();
     ExecutorParts p;
-    p.models = models_where_hall_office_stays_closed(map, TimeZone::named("Europe/London").value());
+    p.models = models_where_edge_stays_closed(map, TimeZone::named("Europe/London").value(), "Hall_Office", 10);
     return p;
   }
   // Starts a task at the Office (by default A, window 08:00-12:00), drives to the Hall and fails

@@ -50,6 +50,8 @@ class ScriptedExecutor {
   Executor& executor() { return *executor_; }
   ScriptedRobot& robot() { return robot_; }
   store::Store& store() { return store_; }
+  SimClock& clock() { return clock_; }
+  const map::TopoMap& map() const { return map_; }
   Time at(const std::string& local) const { return zone_.parse_time("2026-11-23T" + local).value(); }
   void run_until(const std::string& local) { clock_.run_until(at(local)); }
   void settle() { clock_.run_until(clock_.now()); }  // delivers what was posted, time stands still

@@ -240,6 +240,10 @@ class Executor final : public RobotListener {
   // Planned charging: the reserve, plus what the way to the dock from here is predicted to take,
   // plus the margin; 0 when charging is not planned.
   double home_level() const;
+  BatteryPrediction way_home() const;        // from here to the dock, now
+  double way_home_hours() const;             // expected, at most a day
+  double margin_over(const BatteryPrediction& p, double hours) const;  // as the plans keep it
+  double edge_cost(map::EdgeIndex e) const;  // the battery one crossing of `e` takes, expected
   // From the last reading to the resume level (or a planned charge's target, by its end), as learned.
   Duration time_to_charge() const;
   // The state of charge predicted when the robot is next free (at `free`, by free_at()).
@@ -258,6 +262,9 @@ class Executor final : public RobotListener {
     std::string why;
   };
   std::optional<BatteryShort> battery_short_for(const TaskId& id) const;
+  // In next(): when `id` is short of battery, it goes back first in its queue and a charge to
+  // what it needs starts (true; then charge()).
+  bool charge_first(const TaskId& id);
   // After a robot callback: below the threshold, the robot goes to charge.
   void check_battery();
   // The running task gives way to the charge now if it is interruptible (else it finishes first).
@@ -285,6 +292,9 @@ class Executor final : public RobotListener {
   void requeue_waiting(Outcome outcome, const std::string& reason);
   void go_to_dock();
   void trip_ended(StepEnd end);
+  // A trip to the dock failed on `edge` with planned charging on: when to try again (noted).
+  Time retry_way_home(map::EdgeIndex edge);
+  void way_home_crossed(const EdgeAttempt& a);  // clears way_home_closed_ once the way is open
   void look_again_at(Time at);
   void preempt_for(Outcome outcome, const std::string& reason, std::vector<TaskId> then_schedule);
   void requeue_preempted(const TaskId& id, Outcome outcome, const std::string& reason);
@@ -412,9 +422,17 @@ class Executor final : public RobotListener {
     bool on_charger = false;
   };
   std::optional<PlannedChargeRun> planned_charge_;  // a planned charge under way
-  Time battery_retry_{};
+  Time battery_retry_{};               // the next reschedule that re-offers tasks dropped for the battery
   std::unique_ptr<PlanDrift> drift_;  // what the battery's plans missed so far
-  std::vector<double> metres_home_;   // from every node to the dock, for home_level()  // the next reschedule that re-offers tasks dropped for the battery
+  std::vector<double> metres_home_;   // from every node to the dock, for home_level()
+  // Planned charging: the way to the dock found closed (a trip failed on `edge`). No trip starts
+  // before `retry_at`; cleared when the robot crosses the edge or reaches the dock.
+  struct WayHomeClosed {
+    map::EdgeIndex edge = 0;
+    int failures = 0;
+    Time retry_at{};
+  };
+  std::optional<WayHomeClosed> way_home_closed_;
   // assumptions and opportunities
   std::unique_ptr<AssumptionMap> assumption_map_;
   std::vector<Assumption> assumptions_;
