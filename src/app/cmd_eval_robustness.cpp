@@ -22,7 +22,7 @@ struct EvalRobustnessArgs {
   std::optional<int> days;
   std::string seeds = "1-5";
   std::vector<double> alphas{0.3, 0.2, 0.1};
-  std::vector<double> route_thresholds{60};  // seconds
+  std::vector<double> route_thresholds{30};  // seconds
   std::vector<std::string> only;
   int jobs = 2;
   bool json = false;

@@ -47,7 +47,7 @@ TEST(Robustness, OneDayOfTheExampleUnderEveryVariantWithRatiosAgainstExpectedVal
   EXPECT_DOUBLE_EQ(j["rows"][0]["completed_ratio"].get<double>(), 1.0);
   EXPECT_EQ(j["rows"][1]["alpha"].get<double>(), 0.2);
   EXPECT_EQ(j["rows"][3]["variant"], "planned charging");
-  EXPECT_EQ(j["rows"][4]["variant"], "along route 60s");
+  EXPECT_EQ(j["rows"][4]["variant"], "along route 30s");
   EXPECT_EQ(j["runs"].size(), 5U);
   for (const Json& run : j["runs"]) EXPECT_GT(run["added"].get<int>(), 0);
   // The same seed and variant give the same figures: the evaluation is deterministic.
