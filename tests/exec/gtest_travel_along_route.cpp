@@ -18,6 +18,7 @@
 #include "rondo/schedule/checker.h"
 #include "rondo/schedule/default_scheduler.h"
 #include "rondo/schedule/stop_condition.h"
+#include "scenario.h"
 #include "schedule/brute_force.h"
 
 namespace rondo::exec {
@@ -155,6 +156,20 @@ TEST(TravelAlongTheRoute, TheDefaultSchedulerAndBruteForceAgree) {
   }
   EXPECT_GE(feasible, 4);
   EXPECT_GE(differ, 1);  // the route's reading matters in these problems
+}
+
+// The executor's option reaches its travel: the scheduler's problems read the arrivals along the
+// route, and nothing is searched without it.
+TEST(TravelAlongTheRoute, TheExecutorsOptionReachesItsTravel) {
+  for (const std::optional<Duration> threshold : {std::optional<Duration>{}, std::optional<Duration>{seconds(30)}}) {
+    testing::Scenario s(testing::kCalmWorld, ExecutorOptions{.route_threshold = threshold});
+    s.executor().start();
+    ASSERT_TRUE(s.executor().add_task(testing::task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(5)), "test"));
+    s.run_until("09:00");
+    EXPECT_EQ(s.final_state("A"), "succeeded");
+    EXPECT_EQ(s.executor().travel_cache().route_threshold(), threshold);
+    EXPECT_EQ(s.executor().travel_cache().route_searches() > 0, threshold.has_value());
+  }
 }
 
 }  // namespace
