@@ -108,10 +108,13 @@ RC_GTEST_PROP(TravelAlongTheRoute, IsFifoAndAboveTheLowerBound, ()) {
 // Small problems on a building with daily rhythms, over travel along the route.
 schedule::Problem problem_along_the_route(const TravelCache& cache, const map::TopoMap& map, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
-  auto pick = [&](std::int64_t lo, std::int64_t hi) { return std::uniform_int_distribution<std::int64_t>(lo, hi)(rng); };
+  auto pick = [&](std::int64_t lo, std::int64_t hi) {
+    return std::uniform_int_distribution<std::int64_t>(lo, hi)(rng);
+  };
   schedule::Problem p;
   p.robot = {.location = 0, .time = kDepart};
-  std::vector<map::NodeIndex> nodes{static_cast<map::NodeIndex>(pick(0, static_cast<std::int64_t>(map.node_count()) - 1))};
+  std::vector<map::NodeIndex> nodes{
+      static_cast<map::NodeIndex>(pick(0, static_cast<std::int64_t>(map.node_count()) - 1))};
   const std::size_t n = 5 + seed % 3;
   for (std::size_t i = 0; i < n; ++i) {
     nodes.push_back(static_cast<map::NodeIndex>(pick(0, static_cast<std::int64_t>(map.node_count()) - 1)));
@@ -140,11 +143,13 @@ TEST(TravelAlongTheRoute, TheDefaultSchedulerAndBruteForceAgree) {
     ASSERT_TRUE(schedule::validate(p).ok()) << seed;
     const auto truth = schedule::testing::brute_force(p);
     const schedule::Schedule ours = schedule::DefaultScheduler{}.solve(p, schedule::NeverStop{});
-    EXPECT_TRUE(schedule::check_schedule(p, ours).ok()) << "seed " << seed << ": " << schedule::check_schedule(p, ours).summary();
+    EXPECT_TRUE(schedule::check_schedule(p, ours).ok())
+        << "seed " << seed << ": " << schedule::check_schedule(p, ours).summary();
     const auto& travel = dynamic_cast<const SchedulerTravel&>(*p.travel);
     for (std::size_t i = 0; i < travel.location_count(); ++i)
       for (std::size_t j = 0; j < travel.location_count(); ++j)
-        if (along.travel(travel.node(i), travel.node(j), kDepart) != slot.travel(travel.node(i), travel.node(j), kDepart))
+        if (along.travel(travel.node(i), travel.node(j), kDepart) !=
+            slot.travel(travel.node(i), travel.node(j), kDepart))
           ++differ;
     if (!truth.objective) {
       EXPECT_EQ(ours.status, schedule::SolveStatus::kInfeasible) << "seed " << seed;
