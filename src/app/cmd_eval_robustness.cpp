@@ -1,10 +1,12 @@
-// `rondo eval robustness DEPLOYMENT... [--days N] [--seeds SPEC] [--alphas LIST] [--jobs J] [--json]`:
-// each deployment lived under expected-value scheduling, the chance constraint at each α, and
-// idle charging, for every seed; totals and ratios against the expected-value baseline
+// `rondo eval robustness DEPLOYMENT... [--days N] [--seeds SPEC] [--alphas LIST] [--route-thresholds LIST]
+// [--variants NAMES] [--jobs J] [--json]`: each deployment lived under expected-value scheduling,
+// the chance constraint at each α, idle and planned charging, and travel along the route at each
+// threshold, for every seed; totals and ratios against the expected-value baseline
 // (robustness.h, docs/scheduling.md "Slack sized by risk").
 #include <fmt/format.h>
 
 #include <charconv>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,6 +22,8 @@ struct EvalRobustnessArgs {
   std::optional<int> days;
   std::string seeds = "1-5";
   std::vector<double> alphas{0.3, 0.2, 0.1};
+  std::vector<double> route_thresholds{30};  // seconds
+  std::vector<std::string> only;
   int jobs = 2;
   bool json = false;
 };
@@ -77,6 +81,13 @@ void run_eval_robustness(const EvalRobustnessArgs& args, CommandContext& ctx) {
   for (double a : args.alphas)
     if (!(a > 0 && a <= 0.5)) return (void)fail(ctx, Error::invalid(fmt::format("--alphas: {} is not in (0, 0.5]", a)));
   options.alphas = args.alphas;
+  options.route_thresholds.clear();
+  for (double t : args.route_thresholds) {
+    if (!(t >= 1 && t <= 3600))
+      return (void)fail(ctx, Error::invalid(fmt::format("--route-thresholds: {} is not from 1 to 3600 seconds", t)));
+    options.route_thresholds.push_back(milliseconds(static_cast<std::int64_t>(std::llround(t * 1000))));
+  }
+  options.only = args.only;
   options.jobs = args.jobs;
   auto result = evaluate_robustness(options);
   if (!result) return (void)fail(ctx, result.error());
@@ -99,6 +110,13 @@ void add_eval_robustness_command(CLI::App* eval, CommandContext& ctx) {
   robustness->add_option("--alphas", args->alphas, "Values of the chance constraint's α to compare")
       ->delimiter(',')
       ->capture_default_str();
+  robustness->add_option("--route-thresholds", args->route_thresholds,
+                         "Thresholds in seconds of the variants along the route (ExecutorOptions::route_threshold)")
+      ->delimiter(',')
+      ->capture_default_str();
+  robustness->add_option("--variants", args->only,
+                         "Run only these variants (names as in the table, comma-separated), and 'expected'")
+      ->delimiter(',');
   robustness->add_option("--jobs", args->jobs, "Runs at once")->capture_default_str()->check(CLI::Range(1, 64));
   robustness->add_flag("--json", args->json, "Print JSON instead of a table");
   robustness->callback([args, &ctx] { run_eval_robustness(*args, ctx); });

@@ -67,7 +67,8 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
                                        "on_demand_patience", "person_patience", "refit_at",
                                        "refit_window", "online_model", "slot_width", "scheduler_polls", "capacity",
                                        "return_to", "return_within", "battery_reserve", "battery_threshold",
-                                       "battery_resume", "battery_planning", "battery_margin", "risk_alpha"}));
+                                       "battery_resume", "battery_planning", "battery_margin", "risk_alpha",
+                                       "route_threshold"}));
   if (auto v = f.optional("navigation_overrun")) { RONDO_ASSIGN_OR_RETURN(o.navigation_overrun, positive(*v)); }
   if (auto v = f.optional("navigation_slack")) { RONDO_ASSIGN_OR_RETURN(o.navigation_slack, non_negative_duration(*v)); }
   if (auto v = f.optional("action_overrun")) { RONDO_ASSIGN_OR_RETURN(o.action_overrun, positive(*v)); }
@@ -131,6 +132,13 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
     RONDO_ASSIGN_OR_RETURN(const double a, v->as_number());
     if (!(a > 0 && a <= 0.5)) return v->error("must be above 0 and at most 0.5 (or null: expected values)");
     o.risk_alpha = a;
+  }
+  if (f.has("route_threshold") && !f.optional("route_threshold")) o.route_threshold.reset();
+  if (auto v = f.optional("route_threshold")) {
+    RONDO_ASSIGN_OR_RETURN(const Duration d, v->as_duration());
+    if (d < seconds(1) || d > hours(1))
+      return v->error("must be a duration from 1s to 1h (or null: the departure slot's travel alone)");
+    o.route_threshold = d;
   }
   return decode_battery_levels(f, o);
 }

@@ -35,6 +35,7 @@ Deployment variant_of(const Deployment& base, const RobustnessVariant& v, std::u
   d.executor.risk_alpha = v.risk_alpha;
   if (v.idle_charging) d.executor.battery_threshold = 0, d.executor.battery_planning = false;
   if (v.planned_charging) d.executor.battery_planning = true;
+  if (v.route_threshold) d.executor.route_threshold = v.route_threshold;
   return d;
 }
 
@@ -49,11 +50,14 @@ double ratio(double x, double base) { return base > 0 ? x / base : (x > 0 ? INFI
 
 }  // namespace
 
-std::vector<RobustnessVariant> robustness_variants(const std::vector<double>& alphas) {
+std::vector<RobustnessVariant> robustness_variants(const std::vector<double>& alphas,
+                                                   const std::vector<Duration>& route_thresholds) {
   std::vector<RobustnessVariant> v{{.name = "expected"}};
   for (double a : alphas) v.push_back({.name = fmt::format("alpha {:g}", a), .risk_alpha = a});
   v.push_back({.name = "idle charging", .idle_charging = true});
   v.push_back({.name = "planned charging", .planned_charging = true});
+  for (Duration d : route_thresholds)
+    v.push_back({.name = fmt::format("along route {:g}s", to_seconds(d)), .route_threshold = d});
   return v;
 }
 
@@ -77,7 +81,14 @@ RunFiguresSummary summarize_report(const Json& report) {
 }
 
 Result<RobustnessResult> evaluate_robustness(const RobustnessOptions& options) {
-  RobustnessResult result{.variants = robustness_variants(options.alphas), .runs = {}, .seeds = options.seeds};
+  RobustnessResult result{.variants = robustness_variants(options.alphas, options.route_thresholds), .runs = {},
+                          .seeds = options.seeds};
+  if (!options.only.empty()) {
+    const std::string baseline = result.variants.front().name;
+    std::erase_if(result.variants, [&](const RobustnessVariant& v) {
+      return v.name != baseline && std::find(options.only.begin(), options.only.end(), v.name) == options.only.end();
+    });
+  }
   struct Job {
     std::size_t index;
     const Deployment* deployment;

@@ -37,7 +37,7 @@ BackgroundScheduler::BackgroundScheduler(Clock& clock, const map::TopoMap& map, 
       models_(std::make_shared<plan::LearnedEdgeModels>(map, nullptr)),
       planner_(std::make_unique<plan::TravelPlanner>(map_, models_,
                                                      planner_options(options_.slot_width))),
-      travel_(std::make_unique<TravelCache>(map_, models_, *planner_, options_.slot_width)),
+      travel_(std::make_unique<TravelCache>(map_, models_, *planner_, options_.slot_width, options_.route_threshold)),
       rng_(options.seed),
       worker_([this](std::stop_token stop) { work(std::move(stop)); }) {}
 

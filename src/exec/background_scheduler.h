@@ -57,6 +57,7 @@ class BackgroundScheduler {
     Duration budget = seconds(2);               // wall time per solve
     Duration min_interval = milliseconds(100);  // wall time from one problem to the next
     Duration slot_width = minutes(15);          // of the worker's planner (ExecutorOptions::slot_width)
+    std::optional<Duration> route_threshold{};  // of the worker's travel (ExecutorOptions::route_threshold)
     std::uint64_t seed = 1;                     // of the worker's tie-breaking
   };
   BackgroundScheduler(Clock& clock, const map::TopoMap& map, schedule::Scheduler& scheduler, Options options,

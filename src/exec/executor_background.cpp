@@ -67,6 +67,7 @@ void Executor::reschedule_in_background(std::vector<TaskId> new_ids, const std::
                                      .budget = options_.background_budget,
                                      .min_interval = options_.background_interval,
                                      .slot_width = options_.slot_width,
+                                     .route_threshold = options_.route_threshold,
                                      .seed = options_.seed},
         [this](ScheduleAnswer answer) { background_answered(std::move(answer)); },
         [this] {

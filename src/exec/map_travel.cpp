@@ -18,11 +18,53 @@ Duration to_duration(double seconds) {
   return Duration{static_cast<std::int64_t>(std::llround(seconds * 1000.0))};
 }
 
+// Departures only move forward: entries a day older than the slot asked for are not asked again.
+template <class Entries>
+void drop_behind(Entries& entries, Time slot_start) {
+  if (!entries.empty() && entries.begin()->first.first < slot_start - kTravelKeepBehind)
+    entries.erase(entries.begin(), entries.lower_bound({slot_start - kTravelKeepBehind, 0}));
+}
+
+// Erases the entries read longest ago (by generation; within one, the earlier key) until at most
+// `bound` are left; returns how many went.
+template <class Entries>
+std::size_t evict_least_recent(Entries& entries, std::size_t bound) {
+  if (entries.size() <= bound) return 0;
+  using Item = std::pair<std::uint64_t, typename Entries::iterator>;
+  std::vector<Item> order;
+  order.reserve(entries.size());
+  for (auto it = entries.begin(); it != entries.end(); ++it) order.emplace_back(it->second.used, it);
+  const std::size_t excess = entries.size() - bound;
+  std::nth_element(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(excess - 1), order.end(),
+                   [](const Item& a, const Item& b) {
+                     return a.first != b.first ? a.first < b.first : a.second->first < b.second->first;
+                   });
+  for (std::size_t i = 0; i < excess; ++i) entries.erase(order[i].second);
+  return excess;
+}
+
+template <class Sets>
+std::size_t count_bound(const Sets& recent) {
+  const std::size_t largest = *std::max_element(recent.begin(), recent.end());
+  return std::max(kTravelCacheFloor, kTravelCacheWorkingSets * largest);
+}
+
+// Whether the time-dependent value replaces the departure slot's: they differ by more than the
+// threshold (one reachable and the other not counts as more).
+bool along_the_route(double route_seconds, double slot_seconds, Duration threshold) {
+  if (std::isfinite(route_seconds) != std::isfinite(slot_seconds)) return true;
+  return std::isfinite(route_seconds) && std::abs(route_seconds - slot_seconds) > to_seconds(threshold);
+}
+
 }  // namespace
 
 TravelCache::TravelCache(const map::TopoMap& map, std::shared_ptr<const plan::EdgeModelView> models,
-                         plan::TravelPlanner& planner, Duration slot_width)
-    : map_(&map), models_(std::move(models)), planner_(&planner), slot_width_(slot_width) {}
+                         plan::TravelPlanner& planner, Duration slot_width, std::optional<Duration> route_threshold)
+    : map_(&map),
+      models_(std::move(models)),
+      planner_(&planner),
+      slot_width_(slot_width),
+      route_threshold_(route_threshold) {}
 
 bool TravelCache::refresh(Entry& entry, Time slot_start) const {
   const std::uint64_t now = models_->version();
@@ -42,12 +84,30 @@ bool TravelCache::refresh(Entry& entry, Time slot_start) const {
   return true;
 }
 
-TravelCache::Entry& TravelCache::touch(Entry& entry) const {
+template <class E>
+E& TravelCache::touch(E& entry, WorkingSets& sets) const {
   if (entry.used != generation_) {
     entry.used = generation_;
-    ++recent_sets_[generation_ % kRecentGenerations];
+    ++sets[generation_ % kRecentGenerations];
   }
   return entry;
+}
+
+const TravelCache::Route& TravelCache::route(map::NodeIndex from, Time slot_start) const {
+  const auto key = std::make_pair(slot_start, from);
+  auto it = routes_.find(key);
+  if (it == routes_.end()) {
+    drop_behind(routes_, slot_start);
+    it = routes_.emplace(key, Route{}).first;
+  }
+  Route& r = it->second;
+  // Any change may move an arrival (the edges are read in many slots): searched again.
+  if (r.arrival_seconds.empty() || r.version != models_->version()) {
+    ++route_searches_;
+    r.arrival_seconds = planner_->time_dependent_arrivals(from, slot_start);
+    r.version = models_->version();
+  }
+  return touch(r, recent_route_sets_);
 }
 
 TravelCache::Entry& TravelCache::entry(map::NodeIndex to, Time slot_start) const {
@@ -56,50 +116,41 @@ TravelCache::Entry& TravelCache::entry(map::NodeIndex to, Time slot_start) const
   if (it != policies_.end()) {
     if (refresh(it->second, slot_start)) {
       ++kept_;
-      return touch(it->second);
+      return touch(it->second, recent_sets_);
     }
     ++resolved_;
     ++solved_;
     it->second.policy = planner_->solve_policy(to, slot_start);
     it->second.version = models_->version();
     it->second.quantile_seconds.clear();
-    return touch(it->second);
+    return touch(it->second, recent_sets_);
   }
-  // Departures only move forward: entries a day older than the one asked for are not asked again.
-  if (!policies_.empty() && policies_.begin()->first.first < slot_start - kTravelKeepBehind)
-    policies_.erase(policies_.begin(), policies_.lower_bound({slot_start - kTravelKeepBehind, 0}));
+  drop_behind(policies_, slot_start);
   ++solved_;
-  return touch(policies_.emplace(key, Entry{planner_->solve_policy(to, slot_start), models_->version()}).first->second);
+  return touch(policies_.emplace(key, Entry{planner_->solve_policy(to, slot_start), models_->version()}).first->second,
+               recent_sets_);
 }
 
 void TravelCache::begin_problem() const {
   ++generation_;
   recent_sets_[generation_ % kRecentGenerations] = 0;
+  recent_route_sets_[generation_ % kRecentGenerations] = 0;
   evict_to_bound();
 }
 
 void TravelCache::evict_to_bound() const {
-  const std::size_t largest = *std::max_element(recent_sets_.begin(), recent_sets_.end());
-  const std::size_t bound = std::max(kTravelCacheFloor, kTravelCacheWorkingSets * largest);
-  if (policies_.size() <= bound) return;
-  // Least recently read first (by generation; within one, the earlier slot). A new generation has
-  // read nothing yet, and the previous one's entries sort last, within the bound (>= its size).
-  using Item = std::pair<std::uint64_t, decltype(policies_)::iterator>;
-  std::vector<Item> order;
-  order.reserve(policies_.size());
-  for (auto it = policies_.begin(); it != policies_.end(); ++it) order.emplace_back(it->second.used, it);
-  const std::size_t excess = policies_.size() - bound;
-  std::nth_element(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(excess - 1), order.end(),
-                   [](const Item& a, const Item& b) {
-                     return a.first != b.first ? a.first < b.first : a.second->first < b.second->first;
-                   });
-  for (std::size_t i = 0; i < excess; ++i) policies_.erase(order[i].second);
-  evicted_ += excess;
+  // A new generation has read nothing yet, and the previous one's entries sort last, within the
+  // bound (>= its size).
+  evicted_ += evict_least_recent(policies_, count_bound(recent_sets_));
+  evict_least_recent(routes_, count_bound(recent_route_sets_));
 }
 
 Duration TravelCache::at_slot(map::NodeIndex from, map::NodeIndex to, Time slot_start) const {
   if (from == to) return Duration{0};
-  return to_duration(policy(to, slot_start).expected_seconds(from));
+  const double slot_seconds = policy(to, slot_start).expected_seconds(from);
+  if (!route_threshold_) return to_duration(slot_seconds);
+  const double route_seconds = route(from, slot_start).arrival_seconds[to];
+  return to_duration(along_the_route(route_seconds, slot_seconds, *route_threshold_) ? route_seconds : slot_seconds);
 }
 
 Duration TravelCache::quantile_at_slot(map::NodeIndex from, map::NodeIndex to, Time slot_start, double level) const {

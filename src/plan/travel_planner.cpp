@@ -161,6 +161,40 @@ double TravelPlanner::edge_arrival(EdgeIndex edge, Time depart, double t, double
   return best;
 }
 
+TravelPlanner::TimedSearch TravelPlanner::time_dependent_search(NodeIndex from, Time depart,
+                                                                std::optional<NodeIndex> stop_at) {
+  const std::size_t n = map_->node_count();
+  TimedSearch search{.arrival = std::vector<double>(n, kInfinity), .via = std::vector<TimedStep>(n),
+                     .has_via = std::vector<bool>(n, false)};
+  std::vector<bool> done(n, false);
+  using Entry = std::pair<double, NodeIndex>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  search.arrival[from] = 0.0;
+  queue.emplace(0.0, from);
+  // Time-dependent Dijkstra: correct because every repaired edge arrival function is FIFO
+  // (non-decreasing) and never earlier than its start time.
+  while (!queue.empty()) {
+    const auto [t, u] = queue.top();
+    queue.pop();
+    if (done[u]) continue;
+    done[u] = true;
+    if (stop_at && u == *stop_at) break;
+    for (EdgeIndex e : map_->out_edges(u)) {
+      const NodeIndex v = map_->to_index(e);
+      if (done[v]) continue;
+      double start = t;
+      const double a = edge_arrival(e, depart, t, &start);
+      if (a < search.arrival[v]) {
+        search.arrival[v] = a;
+        search.via[v] = {.edge = e, .from = u, .to = v, .reach_seconds = t, .start_seconds = start, .arrive_seconds = a};
+        search.has_via[v] = true;
+        queue.emplace(a, v);
+      }
+    }
+  }
+  return search;
+}
+
 TimedRoute TravelPlanner::time_dependent_route(NodeIndex from, NodeIndex to, Time depart) {
   check_node(*map_, from);
   check_node(*map_, to);
@@ -170,42 +204,19 @@ TimedRoute TravelPlanner::time_dependent_route(NodeIndex from, NodeIndex to, Tim
     route.arrival_seconds = 0.0;
     return route;
   }
-  const std::size_t n = map_->node_count();
-  std::vector<double> arrival(n, kInfinity);
-  std::vector<TimedStep> via(n);
-  std::vector<bool> has_via(n, false);
-  std::vector<bool> done(n, false);
-  using Entry = std::pair<double, NodeIndex>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
-  arrival[from] = 0.0;
-  queue.emplace(0.0, from);
-  // Time-dependent Dijkstra: correct because every repaired edge arrival function is FIFO
-  // (non-decreasing) and never earlier than its start time.
-  while (!queue.empty()) {
-    const auto [t, u] = queue.top();
-    queue.pop();
-    if (done[u]) continue;
-    done[u] = true;
-    if (u == to) break;
-    for (EdgeIndex e : map_->out_edges(u)) {
-      const NodeIndex v = map_->to_index(e);
-      if (done[v]) continue;
-      double start = t;
-      const double a = edge_arrival(e, depart, t, &start);
-      if (a < arrival[v]) {
-        arrival[v] = a;
-        via[v] = {.edge = e, .from = u, .to = v, .reach_seconds = t, .start_seconds = start, .arrive_seconds = a};
-        has_via[v] = true;
-        queue.emplace(a, v);
-      }
-    }
-  }
-  if (!(arrival[to] < kInfinity)) return route;
+  const TimedSearch search = time_dependent_search(from, depart, to);
+  if (!(search.arrival[to] < kInfinity)) return route;
   route.reachable = true;
-  route.arrival_seconds = arrival[to];
-  for (NodeIndex at = to; at != from && has_via[at]; at = via[at].from) route.steps.push_back(via[at]);
+  route.arrival_seconds = search.arrival[to];
+  for (NodeIndex at = to; at != from && search.has_via[at]; at = search.via[at].from)
+    route.steps.push_back(search.via[at]);
   std::reverse(route.steps.begin(), route.steps.end());
   return route;
+}
+
+std::vector<double> TravelPlanner::time_dependent_arrivals(NodeIndex from, Time depart) {
+  check_node(*map_, from);
+  return time_dependent_search(from, depart, std::nullopt).arrival;
 }
 
 }  // namespace rondo::plan

@@ -10,10 +10,12 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "cli_runner.h"
+#include "deployment.h"
 #include "rondo/core/document.h"
 #include "test_files.h"
 
@@ -207,7 +209,7 @@ TEST(RunCommand, PersonPatienceIsAQuantileFromZeroTo098) {
   }
 }
 
-TEST(RunCommand, BatteryLevelsAreStatesOfChargeInOrderAndRiskAlphaIsInItsRange) {
+TEST(RunCommand, BatteryLevelsAreStatesOfChargeInOrderAndRiskAlphaAndRouteThresholdAreInTheirRanges) {
   const std::string refit = "refit_at: \"02:00\"        # nightly refit of the edge models";
   const std::pair<const char*, const char*> cases[] = {
       {"battery_threshold: 1.5", "battery_threshold"},  // not a state of charge
@@ -220,6 +222,9 @@ TEST(RunCommand, BatteryLevelsAreStatesOfChargeInOrderAndRiskAlphaIsInItsRange) 
       {"battery_planning: often", "battery_planning"},                     // not a boolean
       {"battery_margin: -1", "battery_margin"},
       {"battery_margin: 11", "battery_margin"},
+      {"route_threshold: often", "route_threshold"},  // not a duration
+      {"route_threshold: 0s", "route_threshold"},     // below 1s
+      {"route_threshold: 2h", "route_threshold"},     // above 1h
   };
   for (const auto& [bad, field] : cases) {
     const auto dir = fresh_dir("battery-bad");
@@ -229,6 +234,19 @@ TEST(RunCommand, BatteryLevelsAreStatesOfChargeInOrderAndRiskAlphaIsInItsRange) 
     EXPECT_THAT(r.err, HasSubstr(field)) << bad;
     EXPECT_THAT(r.err, HasSubstr("deployment.yaml:" + std::to_string(line_of(slurp(deployment), field)))) << bad;
     EXPECT_FALSE(std::filesystem::exists(dir / "run")) << bad;
+    std::filesystem::remove_all(dir);
+  }
+}
+
+TEST(Deployment, RouteThresholdIsADurationOrNullForOff) {
+  const std::string refit = "refit_at: \"02:00\"        # nightly refit of the edge models";
+  const std::pair<const char*, std::optional<Duration>> cases[] = {
+      {"", std::nullopt}, {"\n  route_threshold: 90s", seconds(90)}, {"\n  route_threshold: null", std::nullopt}};
+  for (const auto& [key, expected] : cases) {
+    const auto dir = fresh_dir("route-threshold");
+    const auto d = app::load_deployment(edited_example(dir, "deployment.yaml", refit, refit + key));
+    ASSERT_TRUE(d.ok()) << key << ": " << d.error().message;
+    EXPECT_EQ(d->executor.route_threshold, expected) << key;
     std::filesystem::remove_all(dir);
   }
 }

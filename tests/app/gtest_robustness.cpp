@@ -42,12 +42,13 @@ TEST(Robustness, OneDayOfTheExampleUnderEveryVariantWithRatiosAgainstExpectedVal
                                 "--alphas", "0.2", "--jobs", "2", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Json j = Json::parse(r.out);
-  ASSERT_EQ(j["rows"].size(), 4U);  // expected, alpha 0.2, idle charging, planned charging
+  ASSERT_EQ(j["rows"].size(), 5U);  // expected, alpha 0.2, idle charging, planned charging, along the route
   EXPECT_EQ(j["rows"][0]["variant"], "expected");
   EXPECT_DOUBLE_EQ(j["rows"][0]["completed_ratio"].get<double>(), 1.0);
   EXPECT_EQ(j["rows"][1]["alpha"].get<double>(), 0.2);
   EXPECT_EQ(j["rows"][3]["variant"], "planned charging");
-  EXPECT_EQ(j["runs"].size(), 4U);
+  EXPECT_EQ(j["rows"][4]["variant"], "along route 30s");
+  EXPECT_EQ(j["runs"].size(), 5U);
   for (const Json& run : j["runs"]) EXPECT_GT(run["added"].get<int>(), 0);
   // The same seed and variant give the same figures: the evaluation is deterministic.
   const auto again = test::run_cli({"eval", "robustness", "examples/g4s/deployment.yaml", "--days", "1", "--seeds",
@@ -56,10 +57,21 @@ TEST(Robustness, OneDayOfTheExampleUnderEveryVariantWithRatiosAgainstExpectedVal
   EXPECT_EQ(Json::parse(again.out)["rows"], j["rows"]);
 }
 
+TEST(Robustness, VariantsRunsTheNamedOnesBesideTheBaseline) {
+  const auto r = test::run_cli({"eval", "robustness", "examples/g4s/deployment.yaml", "--days", "1", "--seeds", "1",
+                                "--route-thresholds", "30,120", "--variants", "along route 120s", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  ASSERT_EQ(j["rows"].size(), 2U);
+  EXPECT_EQ(j["rows"][0]["variant"], "expected");
+  EXPECT_EQ(j["rows"][1]["variant"], "along route 120s");
+}
+
 TEST(Robustness, BadArgumentsAreExitCode2) {
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"eval", "robustness", "examples/g4s/deployment.yaml", "--seeds", "x"},
         std::vector<std::string>{"eval", "robustness", "examples/g4s/deployment.yaml", "--alphas", "0.9"},
+        std::vector<std::string>{"eval", "robustness", "examples/g4s/deployment.yaml", "--route-thresholds", "0"},
         std::vector<std::string>{"eval", "robustness", "no-such-deployment.yaml"}}) {
     const auto r = test::run_cli(args);
     EXPECT_EQ(r.exit_code, 2) << args.back();

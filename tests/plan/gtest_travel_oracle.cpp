@@ -6,6 +6,7 @@
 #include <rapidcheck/gtest.h>
 
 #include <memory>
+#include <vector>
 
 #include "random_map.h"
 #include "rondo/plan/distance_prior.h"
@@ -134,6 +135,19 @@ RC_GTEST_PROP(TimeDependentProperties, LeavingLaterNeverArrivesEarlier, ()) {
   const double a2 = oracle.time_dependent_expected_seconds(a, b, t2);
   RC_ASSERT((a1 == kInfinity) == (a2 == kInfinity));
   if (a1 < kInfinity) RC_ASSERT(to_seconds(t1 - kMorning) + a1 <= to_seconds(t2 - kMorning) + a2 + 1e-6);
+}
+
+// The one-to-all search is the same search run to the end: every node's arrival equals the route's.
+RC_GTEST_PROP(TimeDependentProperties, ArrivalsAtEveryNodeEqualTheRoutes, ()) {
+  const auto seed = *rc::gen::arbitrary<std::uint32_t>();
+  const map::TopoMap m = testing::building_map({.rows = 4, .columns = 5, .seed = seed, .door_fraction = 0.4});
+  auto models = std::make_shared<FunctionEdgeModels>(testing::daily_models(m, 60.0));
+  TravelPlanner oracle(m, models, {.slot_width = minutes(10)});
+  const NodeIndex a = *rc::gen::inRange<std::size_t>(0, m.node_count());
+  const Time t = kMorning + seconds(*rc::gen::inRange<std::int64_t>(0, 86400));
+  const std::vector<double> all = oracle.time_dependent_arrivals(a, t);
+  RC_ASSERT(all.size() == m.node_count());
+  for (NodeIndex b = 0; b < m.node_count(); ++b) RC_ASSERT(all[b] == oracle.time_dependent_expected_seconds(a, b, t));
 }
 
 }  // namespace

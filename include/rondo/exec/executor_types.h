@@ -48,6 +48,11 @@ struct ExecutorOptions {
   // before its latest start, so it starts in its window with probability >= 1 − risk_alpha.
   // Timing and the objective stay on expected values. Nothing: plan with expected values alone.
   std::optional<double> risk_alpha{};
+  // Travel times along the route (docs/planning.md, "Travel times along the route"): where the
+  // expected travel with each edge read when the robot reaches it differs from the departure
+  // slot's reading by more than this, the scheduler and the navigation monitor use the former
+  // (exec::TravelCache). Nothing: the departure slot alone (the published system).
+  std::optional<Duration> route_threshold{};
   int max_failed_edges = 25;                      // a navigation gives up after this many failed attempts
   // After a failed edge, when trying again is not worth it by the live model (the attempts left
   // before max_failed_edges are more likely than not all to fail, or the travel still to go would

@@ -6,6 +6,11 @@
 //   auto travel = std::make_shared<SchedulerTravel>(cache, std::vector<map::NodeIndex>{here, a, b});
 //   problem.travel = travel;                    // location i of the problem is node nodes[i]
 //
+// Along the route (optional: TravelCache's route_threshold; docs/planning.md, "Travel times along
+// the route"): the value at a slot start is the time-dependent arrival (each edge read in the slot
+// the robot reaches it, plan::TravelPlanner::time_dependent_arrivals) where it differs from the
+// departure slot's value by more than the threshold, and the departure slot's value otherwise.
+//
 // Interpolating between slot starts makes travel a continuous function of the departure time.
 // FIFO (leaving later never arrives earlier) needs every slope >= -1: the value at the next slot
 // start is raised to at least (value now - slot width) when needed, so FIFO always holds. An
@@ -17,6 +22,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "rondo/core/time.h"
@@ -55,12 +61,18 @@ inline constexpr std::size_t kTravelCacheWorkingSets = 2;
 // they always stay: eviction never makes the next, similar problem solve its policies again, and
 // never happens inside a solve. A service that sends the robot to many places (each target of
 // the day is an entry per slot) holds what its recent problems read, not every place of the day.
+//
+// With a route threshold, the time-dependent arrivals from each (slot start, source) asked for are
+// kept too, valid at one models' version (computed again when it moves on: one time-dependent
+// Dijkstra), under the same two bounds with their own working sets.
 class TravelCache {
  public:
-  // `planner` must read `models`; the map and the planner must outlive the cache.
+  // `planner` must read `models`; the map and the planner must outlive the cache. Without a
+  // `route_threshold`, every value is the departure slot's (the published system).
   TravelCache(const map::TopoMap& map, std::shared_ptr<const plan::EdgeModelView> models, plan::TravelPlanner& planner,
-              Duration slot_width);
-  // E(from, to) at the start of the slot that contains `depart`, as a Duration (kUnreachable).
+              Duration slot_width, std::optional<Duration> route_threshold = std::nullopt);
+  // E(from, to) at the start of the slot that contains `depart`, as a Duration (kUnreachable):
+  // along the route where that differs from the departure slot's by more than the threshold.
   Duration at_slot(map::NodeIndex from, map::NodeIndex to, Time slot_start) const;
   // E(from, to, depart) interpolated between slot starts, FIFO-repaired (see above).
   Duration travel(map::NodeIndex from, map::NodeIndex to, Time depart) const;
@@ -68,14 +80,18 @@ class TravelCache {
   // contains `depart`: the policy's route with each edge's attempts geometric in its success
   // probability and each attempt's duration from the models' laws (EdgeModelView::attempt_laws:
   // successful and failed attempts apart; none: the expected seconds), as plan::
-  // TravelTimeDistribution gives it (its upper bracket, so never below the model's quantile). Interpolated between slot starts and FIFO-repaired as travel() is. Each (slot,
-  // target, source) is computed once per level and kept with its policy.
+  // TravelTimeDistribution gives it (its upper bracket, so never below the model's quantile).
+  // Interpolated between slot starts and FIFO-repaired as travel() is. Each (slot, target, source)
+  // is computed once per level and kept with its policy. Always the departure slot's reading: the
+  // route threshold does not apply (a distribution along the time-dependent route is not built).
   Duration quantile_at_slot(map::NodeIndex from, map::NodeIndex to, Time slot_start, double level) const;
   Duration quantile_travel(map::NodeIndex from, map::NodeIndex to, Time depart, double level) const;
   // A lower bound of travel(from, to, t) over every t: the shortest path over per-edge minima of
   // the expected crossing time τ/p read at every slot start of one week. Exact for models that
   // repeat weekly (ours do: time-of-day and day-of-week bins); otherwise a schedule stays feasible
-  // (travel() decides feasibility) but a solver may prune too eagerly.
+  // (travel() decides feasibility) but a solver may prune too eagerly. Along the route it stays a
+  // bound: a time-dependent arrival is a path's sum of c_e(s_e) >= the edges' week minima, plus
+  // waiting >= 0; interpolation and the FIFO repair only mix and raise values that are all above it.
   Duration lower_bound(map::NodeIndex from, map::NodeIndex to) const;
   Time slot_start(Time t) const { return planner_->slot_start(t); }
   plan::TravelPlanner& planner() const { return *planner_; }
@@ -90,9 +106,19 @@ class TravelCache {
   // Entries read in the previous generation, and how many entries the count bound has evicted.
   std::size_t last_working_set() const { return recent_sets_[(generation_ - 1) % kRecentGenerations]; }
   std::size_t evicted_count() const { return evicted_; }
+  std::optional<Duration> route_threshold() const { return route_threshold_; }
+  // Kept (slot start, source) time-dependent arrivals, and how many searches filled them.
+  std::size_t route_count() const { return routes_.size(); }
+  std::size_t route_searches() const { return route_searches_; }
 
  private:
   static constexpr std::size_t kRecentGenerations = 8;
+  using WorkingSets = std::array<std::size_t, kRecentGenerations>;  // entries read, by generation
+  struct Route {
+    std::vector<double> arrival_seconds;  // time-dependent, from the source to every node
+    std::uint64_t version = 0;
+    std::uint64_t used = 0;
+  };
   struct Entry {
     plan::Policy policy;
     std::uint64_t version = 0;  // models->version() it is valid at
@@ -106,7 +132,10 @@ class TravelCache {
   // kept beside it; read in the current generation.
   Entry& entry(map::NodeIndex to, Time slot_start) const;
   const plan::Policy& policy(map::NodeIndex to, Time slot_start) const { return entry(to, slot_start).policy; }
-  Entry& touch(Entry& entry) const;
+  // The time-dependent arrivals from `from` at `slot_start`, valid at the current version.
+  const Route& route(map::NodeIndex from, Time slot_start) const;
+  template <class E>
+  E& touch(E& entry, WorkingSets& sets) const;
   // FIFO-repaired linear interpolation between the values at the slot starts around `depart`.
   template <class AtSlot>
   Duration interpolate(Time depart, const AtSlot& at_slot) const;
@@ -119,10 +148,13 @@ class TravelCache {
   std::shared_ptr<const plan::EdgeModelView> models_;
   plan::TravelPlanner* planner_;
   Duration slot_width_;
-  mutable std::map<std::pair<Time, map::NodeIndex>, Entry> policies_;
-  mutable std::size_t resolved_ = 0, kept_ = 0, evicted_ = 0, solved_ = 0;
+  std::optional<Duration> route_threshold_;
+  mutable std::map<std::pair<Time, map::NodeIndex>, Entry> policies_;  // by (slot start, target)
+  mutable std::map<std::pair<Time, map::NodeIndex>, Route> routes_;    // by (slot start, source)
+  mutable std::size_t resolved_ = 0, kept_ = 0, evicted_ = 0, solved_ = 0, route_searches_ = 0;
   mutable std::uint64_t generation_ = 1;
-  mutable std::array<std::size_t, kRecentGenerations> recent_sets_{};  // working sets by generation
+  mutable WorkingSets recent_sets_{};        // of policies_
+  mutable WorkingSets recent_route_sets_{};  // of routes_
   mutable std::uint64_t lower_version_ = 0;                            // of edge_min_seconds_
   mutable std::vector<double> edge_min_seconds_;                       // empty until first needed
   mutable std::map<map::NodeIndex, std::vector<double>> lower_from_;  // per source: seconds to all

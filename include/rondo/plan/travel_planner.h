@@ -89,6 +89,9 @@ class TravelPlanner {
   double time_dependent_expected_seconds(NodeIndex from, NodeIndex to, Time depart) {
     return time_dependent_route(from, to, depart).arrival_seconds;
   }
+  // The same reading from one source to every node: expected seconds from `depart` to the arrival
+  // at each node (+inf where unreachable; 0 at `from`), by the same search run to the end.
+  std::vector<double> time_dependent_arrivals(NodeIndex from, Time depart);
 
   // The start of the slot that contains t.
   Time slot_start(Time t) const;
@@ -118,6 +121,14 @@ class TravelPlanner {
   // Earliest expected arrival at the end of `edge` when reaching its start at `t` seconds after
   // `depart` (FIFO-repaired); also when to start trying it.
   double edge_arrival(EdgeIndex edge, Time depart, double t, double* start_out);
+  // The time-dependent Dijkstra from `from` at `depart` (docs/planning.md): arrival seconds per
+  // node and the step that reached it; stops once `stop_at` is settled, else runs to the end.
+  struct TimedSearch {
+    std::vector<double> arrival;
+    std::vector<TimedStep> via;
+    std::vector<bool> has_via;
+  };
+  TimedSearch time_dependent_search(NodeIndex from, Time depart, std::optional<NodeIndex> stop_at);
 
   const map::TopoMap* map_;
   std::shared_ptr<const EdgeModelView> models_;
