@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -208,6 +210,54 @@ std::vector<std::vector<QuantileTable>> offline_duration_tables(const std::vecto
   return out;
 }
 
+OfflineDurations::OfflineDurations(const std::vector<std::vector<Attempt>>& edges,
+                                   std::shared_ptr<const EpisodePriors> priors)
+    : priors_(std::move(priors)) {
+  if (auto packed = pack(edges))
+    packed_ = std::move(*packed);
+  else
+    edges_ = edges;
+}
+
+std::optional<std::vector<OfflineDurations::PackedEdge>> OfflineDurations::pack(
+    const std::vector<std::vector<Attempt>>& edges) {
+  std::vector<PackedEdge> out(edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    PackedEdge& p = out[e];
+    p.attempts.reserve(edges[e].size());
+    if (!edges[e].empty()) p.first = edges[e].front().start;
+    Time previous = p.first;
+    for (const Attempt& a : edges[e]) {
+      const std::int64_t step = (a.start - previous).count();
+      const std::int64_t duration = (a.end - a.start).count();
+      const double seconds = to_seconds(a.end - a.start);
+      // Only what unpacked() gives back exactly (the seconds' bits too: -0.0 is not 0.0).
+      if (step < INT32_MIN || step > INT32_MAX || duration < 0 || duration >= std::int64_t{kSuccessBit} ||
+          std::bit_cast<std::uint64_t>(seconds) != std::bit_cast<std::uint64_t>(a.seconds))
+        return std::nullopt;
+      p.attempts.push_back(
+          {static_cast<std::int32_t>(step), static_cast<std::uint32_t>(duration) | (a.success ? kSuccessBit : 0u)});
+      previous = a.start;
+    }
+  }
+  return out;
+}
+
+std::vector<std::vector<Attempt>> OfflineDurations::unpacked() const {
+  if (packed_.empty()) return std::move(edges_);
+  std::vector<std::vector<Attempt>> out(packed_.size());
+  for (std::size_t e = 0; e < packed_.size(); ++e) {
+    Time start = packed_[e].first;
+    out[e].reserve(packed_[e].attempts.size());
+    for (const Packed& p : packed_[e].attempts) {
+      start += Duration{p.step_ms};
+      const Duration d{static_cast<Duration::rep>(p.duration_ms & ~kSuccessBit)};
+      out[e].push_back({start, start + d, to_seconds(d), (p.duration_ms & kSuccessBit) != 0});
+    }
+  }
+  return out;
+}
+
 OfflineDurations::OfflineDurations(std::vector<std::vector<QuantileTable>> tables) : tables_(std::move(tables)) {
   std::call_once(once_, [] {});
   computed_ = true;
@@ -215,7 +265,8 @@ OfflineDurations::OfflineDurations(std::vector<std::vector<QuantileTable>> table
 
 const std::vector<QuantileTable>& OfflineDurations::of_edge(std::size_t edge) const {
   std::call_once(once_, [this] {
-    tables_ = offline_duration_tables(edges_, *priors_);
+    tables_ = offline_duration_tables(unpacked(), *priors_);
+    packed_ = {};
     edges_ = {};
     priors_.reset();
     computed_ = true;
@@ -225,6 +276,14 @@ const std::vector<QuantileTable>& OfflineDurations::of_edge(std::size_t edge) co
 
 bool OfflineDurations::computed() const {
   return computed_;
+}
+
+std::size_t OfflineDurations::input_bytes() const {
+  if (computed_) return 0;
+  std::size_t bytes = packed_.capacity() * sizeof(PackedEdge) + edges_.capacity() * sizeof(std::vector<Attempt>);
+  for (const PackedEdge& p : packed_) bytes += p.attempts.capacity() * sizeof(Packed);
+  for (const auto& e : edges_) bytes += e.capacity() * sizeof(Attempt);
+  return bytes;
 }
 
 }  // namespace rondo::learn

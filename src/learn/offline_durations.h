@@ -23,8 +23,10 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 #include "rondo/learn/edge_predictor.h"
@@ -42,20 +44,40 @@ std::vector<std::vector<QuantileTable>> offline_duration_tables(const std::vecto
 // (bit for bit the same), or tables already known (a loaded model). Thread-safe.
 class OfflineDurations {
  public:
-  OfflineDurations(std::vector<std::vector<Attempt>> edges, std::shared_ptr<const EpisodePriors> priors)
-      : edges_(std::move(edges)), priors_(std::move(priors)) {}
+  OfflineDurations(const std::vector<std::vector<Attempt>>& edges, std::shared_ptr<const EpisodePriors> priors);
   explicit OfflineDurations(std::vector<std::vector<QuantileTable>> tables);
 
   // Edge `edge`'s kDaySlots tables. Precondition: edge < the number of edges.
   const std::vector<QuantileTable>& of_edge(std::size_t edge) const;
   // Whether the tables have been computed (or were given).
   bool computed() const;
+  // Bytes the kept inputs take until then (their arrays; 0 once computed).
+  std::size_t input_bytes() const;
 
  private:
   mutable std::once_flag once_;
   mutable std::atomic<bool> computed_{false};
   mutable std::vector<std::vector<QuantileTable>> tables_;
-  // The fit's inputs, released once the tables are computed.
+  // The fit's inputs, released once the tables are computed. The executor's refit never reads the
+  // tables, so a service holds the inputs of its latest refit for good: every attempt of the
+  // learning window (14 days), which its memory grew with (docs/operations.md, "Memory over
+  // time", session 16). Attempts made from traversals (end = start + whole milliseconds, seconds =
+  // to_seconds of them) are kept in 8 bytes instead of an Attempt's 32: the milliseconds since the
+  // edge's previous attempt (or its `first`), and the duration's with the outcome in the top bit.
+  // unpacked() gives back the same Attempts bit for bit; a fit with any other attempt keeps them
+  // as they are (edges_).
+  struct Packed {
+    std::int32_t step_ms = 0;       // start - the previous attempt's start
+    std::uint32_t duration_ms = 0;  // end - start, with kSuccessBit when it succeeded
+  };
+  static constexpr std::uint32_t kSuccessBit = 1u << 31;
+  struct PackedEdge {
+    Time first{};
+    std::vector<Packed> attempts;
+  };
+  static std::optional<std::vector<PackedEdge>> pack(const std::vector<std::vector<Attempt>>& edges);
+  std::vector<std::vector<Attempt>> unpacked() const;
+  mutable std::vector<PackedEdge> packed_;
   mutable std::vector<std::vector<Attempt>> edges_;
   mutable std::shared_ptr<const EpisodePriors> priors_;
 };

@@ -89,6 +89,7 @@ struct Api {
   RequestMetrics metrics;
   std::atomic<bool> stopping{false};
   std::atomic<int> streams{0};
+  std::atomic<std::size_t> http_threads{0};  // running now (HttpPool)
   News news;
 
   // Runs `work` on the clock's thread and waits for its reply (503 when it does not come within

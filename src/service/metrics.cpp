@@ -116,9 +116,12 @@ Reply metrics_reply(Api& api) {
         "# HELP rondo_memory_heap_free_bytes Heap bytes free but not returned to the system.\n"
         "# TYPE rondo_memory_heap_free_bytes gauge\nrondo_memory_heap_free_bytes {}\n"
         "# HELP rondo_memory_sqlite_bytes Of the heap in use, what SQLite holds (page caches).\n"
-        "# TYPE rondo_memory_sqlite_bytes gauge\nrondo_memory_sqlite_bytes {}\n",
+        "# TYPE rondo_memory_sqlite_bytes gauge\nrondo_memory_sqlite_bytes {}\n"
+        "# HELP rondo_memory_http_threads HTTP threads running (started when needed, ended when idle).\n"
+        "# TYPE rondo_memory_http_threads gauge\nrondo_memory_http_threads {}\n",
         api.ctx.executor.tasks().size(), api.ctx.executor.navigations().size(), travel.cached_count(),
-        api.ctx.executor.stats().background_travel_policies, travel.planner().cached_slot_count(), heap.uordblks + heap.hblkhd, heap.fordblks, store::Store::sqlite_memory_bytes());
+        api.ctx.executor.stats().background_travel_policies, travel.planner().cached_slot_count(),
+        heap.uordblks + heap.hblkhd, heap.fordblks, store::Store::sqlite_memory_bytes(), api.http_threads.load());
     Reply r;
     r.text = std::move(out);
     r.content_type = "text/plain; version=0.0.4";

@@ -9,6 +9,7 @@
 #include <regex>
 
 #include "api.h"
+#include "http_pool.h"
 #include "rondo/store/batch.h"
 
 namespace rondo::service {
@@ -127,7 +128,7 @@ void Api::run_group() {
 }
 
 struct Server::Impl {
-  Impl(ServiceContext c, ServerOptions o) : api{std::move(c), std::move(o), {}, {false}, {0}, {}} {}
+  Impl(ServiceContext c, ServerOptions o) : api{std::move(c), std::move(o), {}, {false}, {0}, {0}, {}} {}
   Api api;
   httplib::Server http;
   std::vector<Route> routes;
@@ -184,7 +185,10 @@ Server::Server(ServiceContext context, ServerOptions options)
   for (const Route& r : impl_->routes) impl_->add(r);
   Impl& im = *impl_;
   const ServerOptions& o = im.api.options;
-  im.http.new_task_queue = [threads = o.threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
+  // Threads started as connections need them and ended when idle, up to o.threads (http_pool.h).
+  im.http.new_task_queue = [&im, threads = o.threads, idle = o.thread_idle_exit] {
+    return new HttpPool(static_cast<std::size_t>(threads), idle, &im.api.http_threads);
+  };
   // Answers are small and written in pieces (headers, then the body): without TCP_NODELAY a
   // piece can wait for the client's delayed ACK, about 40 ms on Linux (the VDA 5050 broker had the
   // same trouble, docs/vda5050.md).

@@ -79,6 +79,55 @@ TEST(OfflineDurations, AreComputedOnlyWhenRead) {
   EXPECT_EQ(given.of_edge(0)[95].values(), eager[1][95].values());
 }
 
+// What a refit gives it: attempts made from traversals (whole milliseconds, seconds = their
+// to_seconds). They are kept in 8 bytes each, not an Attempt's 32, and give the same tables.
+std::vector<std::vector<Attempt>> traversal_attempts(std::vector<std::vector<Attempt>> edges) {
+  for (auto& attempts : edges)
+    for (Attempt& a : attempts) a.seconds = to_seconds(a.end - a.start);
+  return edges;
+}
+
+std::size_t attempt_count(const std::vector<std::vector<Attempt>>& edges) {
+  std::size_t n = 0;
+  for (const auto& e : edges) n += e.size();
+  return n;
+}
+
+RC_GTEST_PROP(OfflineDurations, KeepTraversalAttemptsCompactlyAndGiveTheSameTables, ()) {
+  const EpisodeOptions options = random_options();
+  const int n = *rc::gen::inRange(1, 5);
+  const auto edges =
+      traversal_attempts(random_edges(n, *rc::gen::inRange(1, 10), *rc::gen::arbitrary<std::uint32_t>()));
+  const EpisodeFit fit = fit_episode_models(edges, options);
+  const auto eager = offline_duration_tables(edges, *fit.priors);
+  const OfflineDurations lazy(edges, fit.priors);
+  RC_ASSERT(lazy.input_bytes() <= 8 * attempt_count(edges) + 32 * edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    for (std::size_t k = 0; k < eager[e].size(); ++k) RC_ASSERT(lazy.of_edge(e)[k].values() == eager[e][k].values());
+  RC_ASSERT(lazy.input_bytes() == 0u);
+}
+
+TEST(OfflineDurations, KeepOtherAttemptsAsTheyAre) {
+  // A duration in seconds that is not whole milliseconds, a failure at once (-0.0 s), a start
+  // more than 24 days after the previous one: each is kept as given, and the tables are the same.
+  for (int kind = 0; kind < 3; ++kind) {
+    auto edges = traversal_attempts(random_edges(2, 3, 5));
+    Attempt& a = edges[1][3];
+    if (kind == 0) a.seconds += 0.0001;
+    if (kind == 1) a = {a.start, a.start, -0.0, false};
+    if (kind == 2)
+      edges[0].push_back(
+          {edges[0].back().start + hours(24 * 25), edges[0].back().start + hours(24 * 25) + seconds(9), 9.0, true});
+    const EpisodeFit fit = fit_episode_models(edges, {});
+    const auto eager = offline_duration_tables(edges, *fit.priors);
+    const OfflineDurations lazy(edges, fit.priors);
+    EXPECT_GE(lazy.input_bytes(), 32 * attempt_count(edges)) << kind;
+    for (std::size_t e = 0; e < edges.size(); ++e)
+      for (std::size_t k = 0; k < eager[e].size(); ++k)
+        EXPECT_EQ(lazy.of_edge(e)[k].values(), eager[e][k].values()) << kind << " " << e << " " << k;
+  }
+}
+
 TEST(OfflineDurations, ALoadedModelAnswersAsTheFittedOne) {
   std::vector<Traversal> log;
   const auto edges = random_edges(1, 5, 11);

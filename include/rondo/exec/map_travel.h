@@ -37,9 +37,13 @@ inline constexpr Duration kUnreachable = hours(24 * 365);
 // How far behind the slot asked for the travel caches keep what they hold (TravelCache's entries,
 // and the M_t of the executor's planners): a day.
 inline constexpr Duration kTravelKeepBehind = hours(24);
-// TravelCache's count bound (see there): at least this many entries (about 1.3 MB of policies on
+// TravelCache's count bound (see there): at least this many entries (about 0.3 MB of policies on
 // the G4S map), and otherwise this many times the largest working set of its recent problems.
-inline constexpr std::size_t kTravelCacheFloor = 256;
+// The working sets set the bound whenever they are larger; the floor only keeps a few problems'
+// worth when they are small. It was 256: a service whose problems read fewer entries then filled
+// its cache up to 256 over its first hours of wall time, for no answer it needed (docs/
+// operations.md, "Memory over time", session 16; `rondo run`'s reports are the same either way).
+inline constexpr std::size_t kTravelCacheFloor = 64;
 inline constexpr std::size_t kTravelCacheWorkingSets = 2;
 
 // Expected node-to-node seconds per slot start, shared by every problem of one executor. It keeps

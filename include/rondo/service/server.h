@@ -60,6 +60,9 @@ struct ServerOptions {
   // HTTP threads. An event stream holds one for as long as it is open, so at most half of them
   // stream (more streams get 503) and the rest always answer requests.
   int threads = 64;
+  // They are started when a connection finds none idle, and one idle this long ends: the service
+  // holds the threads its recent load needed, not all of them (src/service/http_pool.h).
+  Duration thread_idle_exit = seconds(30);
 };
 
 // One route of the API: its method and OpenAPI path ("/api/v1/tasks/{id}").
