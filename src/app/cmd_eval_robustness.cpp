@@ -1,4 +1,5 @@
-// `rondo eval robustness DEPLOYMENT... [--days N] [--seeds SPEC] [--alphas LIST] [--route-thresholds LIST]
+// `rondo eval robustness DEPLOYMENT... [--days N] [--seeds SPEC] [--alphas LIST] [--navigation-alphas LIST]
+// [--route-thresholds LIST]
 // [--variants NAMES] [--jobs J] [--json]`: each deployment lived under expected-value scheduling,
 // the chance constraint at each α, idle and planned charging, and travel along the route at each
 // threshold, for every seed; totals and ratios against the expected-value baseline
@@ -22,6 +23,7 @@ struct EvalRobustnessArgs {
   std::optional<int> days;
   std::string seeds = "1-5";
   std::vector<double> alphas{0.3, 0.2, 0.1};
+  std::vector<double> navigation_alphas;
   std::vector<double> route_thresholds{30};  // seconds
   std::vector<std::string> only;
   int jobs = 2;
@@ -81,6 +83,10 @@ void run_eval_robustness(const EvalRobustnessArgs& args, CommandContext& ctx) {
   for (double a : args.alphas)
     if (!(a > 0 && a <= 0.5)) return (void)fail(ctx, Error::invalid(fmt::format("--alphas: {} is not in (0, 0.5]", a)));
   options.alphas = args.alphas;
+  for (double a : args.navigation_alphas)
+    if (!(a > 0 && a <= 0.5))
+      return (void)fail(ctx, Error::invalid(fmt::format("--navigation-alphas: {} is not in (0, 0.5]", a)));
+  options.navigation_alphas = args.navigation_alphas;
   options.route_thresholds.clear();
   for (double t : args.route_thresholds) {
     if (!(t >= 1 && t <= 3600))
@@ -110,6 +116,10 @@ void add_eval_robustness_command(CLI::App* eval, CommandContext& ctx) {
   robustness->add_option("--alphas", args->alphas, "Values of the chance constraint's α to compare")
       ->delimiter(',')
       ->capture_default_str();
+  robustness->add_option("--navigation-alphas", args->navigation_alphas,
+                         "For each α, variants whose navigation monitor stops journeys past these levels' quantiles "
+                         "(ExecutorOptions::navigation_alpha)")
+      ->delimiter(',');
   robustness->add_option("--route-thresholds", args->route_thresholds,
                          "Thresholds in seconds of the variants along the route (ExecutorOptions::route_threshold)")
       ->delimiter(',')

@@ -33,6 +33,7 @@ Deployment variant_of(const Deployment& base, const RobustnessVariant& v, std::u
   d.seed = seed;
   if (days) d.days = *days;
   d.executor.risk_alpha = v.risk_alpha;
+  d.executor.navigation_alpha = v.navigation_alpha;
   if (v.idle_charging) d.executor.battery_threshold = 0, d.executor.battery_planning = false;
   if (v.planned_charging) d.executor.battery_planning = true;
   if (v.route_threshold) d.executor.route_threshold = v.route_threshold;
@@ -51,9 +52,14 @@ double ratio(double x, double base) { return base > 0 ? x / base : (x > 0 ? INFI
 }  // namespace
 
 std::vector<RobustnessVariant> robustness_variants(const std::vector<double>& alphas,
-                                                   const std::vector<Duration>& route_thresholds) {
+                                                   const std::vector<Duration>& route_thresholds,
+                                                   const std::vector<double>& navigation_alphas) {
   std::vector<RobustnessVariant> v{{.name = "expected"}};
-  for (double a : alphas) v.push_back({.name = fmt::format("alpha {:g}", a), .risk_alpha = a});
+  for (double a : alphas) {
+    v.push_back({.name = fmt::format("alpha {:g}", a), .risk_alpha = a});
+    for (double n : navigation_alphas)
+      v.push_back({.name = fmt::format("alpha {:g} nav {:g}", a, n), .risk_alpha = a, .navigation_alpha = n});
+  }
   v.push_back({.name = "idle charging", .idle_charging = true});
   v.push_back({.name = "planned charging", .planned_charging = true});
   for (Duration d : route_thresholds)
@@ -81,8 +87,10 @@ RunFiguresSummary summarize_report(const Json& report) {
 }
 
 Result<RobustnessResult> evaluate_robustness(const RobustnessOptions& options) {
-  RobustnessResult result{.variants = robustness_variants(options.alphas, options.route_thresholds), .runs = {},
-                          .seeds = options.seeds};
+  RobustnessResult result{
+      .variants = robustness_variants(options.alphas, options.route_thresholds, options.navigation_alphas),
+      .runs = {},
+      .seeds = options.seeds};
   if (!options.only.empty()) {
     const std::string baseline = result.variants.front().name;
     std::erase_if(result.variants, [&](const RobustnessVariant& v) {
@@ -211,6 +219,7 @@ Json robustness_json(const RobustnessResult& r) {
                   {"completed_ratio", ratio(t.sum.completed, base.sum.completed)},
                   {"late_and_overrun_ratio", ratio(late, base_late)}};
       if (v.risk_alpha) row["alpha"] = *v.risk_alpha;
+      if (v.navigation_alpha) row["navigation_alpha"] = *v.navigation_alpha;
       rows.push_back(std::move(row));
     }
   }

@@ -25,15 +25,18 @@ namespace rondo::app {
 struct RobustnessVariant {
   std::string name;
   std::optional<double> risk_alpha{};  // the chance constraint; nothing: expected values
+  std::optional<double> navigation_alpha{};  // the monitor's level under it; nothing: risk_alpha
   bool idle_charging = false;          // charge only when idle at the dock: no hard threshold, no planning
   bool planned_charging = false;       // charges planned by the schedule (ExecutorOptions::battery_planning)
   std::optional<Duration> route_threshold{};  // travel along the route (ExecutorOptions::route_threshold)
 };
 
-// The variants compared: expected values first (the baseline), then one per α, then idle charging
-// and planned charging, then one along the route per threshold ("along route 30s").
+// The variants compared: expected values first (the baseline), then one per α and, for each α, one
+// per navigation α ("alpha 0.1 nav 0.02"), then idle charging and planned charging, then one along
+// the route per threshold ("along route 30s").
 std::vector<RobustnessVariant> robustness_variants(const std::vector<double>& alphas,
-                                                   const std::vector<Duration>& route_thresholds = {});
+                                                   const std::vector<Duration>& route_thresholds = {},
+                                                   const std::vector<double>& navigation_alphas = {});
 
 // What one run gave, from its report.
 struct RunFiguresSummary {
@@ -63,6 +66,7 @@ struct RobustnessOptions {
   std::vector<std::uint64_t> seeds{1, 2, 3, 4, 5};
   std::optional<int> days{};           // nothing: each deployment's own
   std::vector<double> alphas{0.3, 0.2, 0.1};
+  std::vector<double> navigation_alphas{};
   std::vector<Duration> route_thresholds{seconds(30)};  // 30 s: chosen on validation seeds 101-105
   // When not empty, only the variants of these names run (and the baseline, always).
   std::vector<std::string> only{};

@@ -38,4 +38,24 @@ plan::AttemptLaws learn_attempt_laws(const learn::EdgeModels& models, std::span<
   return {.success = group_means(success, points), .failure = group_means(failure, points)};
 }
 
+std::vector<plan::StoppedAttempts> learn_stopped_attempts(const map::TopoMap& map, std::span<const Traversal> log,
+                                                          std::span<const store::Observation> stopped,
+                                                          std::size_t points) {
+  std::vector<std::vector<double>> seconds(map.edge_count());
+  for (const store::Observation& o : stopped) {
+    if (o.what != kStoppedAttempt || !std::isfinite(o.value) || !(o.value > 0.0)) continue;
+    if (const auto e = map.find_edge(o.where)) seconds[*e].push_back(o.value);
+  }
+  std::vector<std::size_t> ended(map.edge_count(), 0);
+  for (const Traversal& t : log)
+    if (const auto e = map.find_edge(t.edge_id)) ++ended[*e];
+  std::vector<plan::StoppedAttempts> out(map.edge_count());
+  for (map::EdgeIndex e = 0; e < map.edge_count(); ++e) {
+    if (seconds[e].empty()) continue;
+    const auto n = static_cast<double>(seconds[e].size());
+    out[e] = {.share = n / (n + static_cast<double>(ended[e])), .law = group_means(seconds[e], points)};
+  }
+  return out;
+}
+
 }  // namespace rondo::exec

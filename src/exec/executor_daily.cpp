@@ -76,7 +76,14 @@ void Executor::refit() {
   }
   if (options_.risk_alpha) {
     // The chance constraint's travel-time distribution: attempt durations with their own laws.
-    auto laws = std::make_shared<const plan::AttemptLaws>(learn_attempt_laws(**fitted, *log));
+    plan::AttemptLaws learned = learn_attempt_laws(**fitted, *log);
+    store::ObservationQuery q{.what = kStoppedAttempt};
+    q.from = window.from;
+    if (auto stopped = store::find_observations(store_, q))
+      learned.stopped = learn_stopped_attempts(map_, *log, *stopped);
+    else
+      book_.write_error(stopped.error().message);
+    auto laws = std::make_shared<const plan::AttemptLaws>(std::move(learned));
     models_->set_attempt_laws(laws);
     offline_models_->set_attempt_laws(laws);
   }

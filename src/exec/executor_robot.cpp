@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "attempt_laws.h"
 #include "battery_watch.h"
 #include "dispatcher.h"
 #include "loading_times.h"
@@ -32,6 +33,15 @@ void Executor::learn_from(const EdgeAttempt& a) {
     ++stats_.navigation_attempts;
     if (a.succeeded()) ++stats_.navigation_successes;
     return;
+  }
+  // An attempt the navigation monitor stopped had run this long and would have run longer: kept
+  // apart from the traversal log (it says nothing of whether the way was passable) as a lower
+  // bound of the edge's long attempts, for the travel-time distribution (attempt_laws.h).
+  if (a.outcome == EdgeOutcome::kCancelled && run_ && run_->stop_kind() == TaskRun::Stop::kOverrun &&
+      a.duration > Duration{0}) {
+    const store::Observation o{.what = kStoppedAttempt, .where = edge.id, .when = a.start,
+                               .value = to_seconds(a.duration), .text = run_->id()};
+    if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
   }
   // A cancelled attempt or one cut by a fault says nothing about the way: the event log only.
   const Outcome code = a.outcome == EdgeOutcome::kCancelled ? Outcome::kCancelled : Outcome::kRobotFault;

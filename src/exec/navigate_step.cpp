@@ -41,8 +41,9 @@ void NavigateStep::start() {
                                         o.navigation_overrun, o.navigation_slack);
   if (o.risk_alpha) {
     // Under the chance constraint the schedule left this journey its (1 − α)-quantile before the
-    // task's latest start: a journey within it is the learned spread of travel times, not a fault.
-    const double level = 1.0 - *o.risk_alpha;
+    // task's latest start: a journey within the learned spread of travel times is not a fault, and
+    // is stopped only past the (1 − navigation_alpha)-quantile.
+    const double level = 1.0 - o.navigation_alpha.value_or(*o.risk_alpha);
     const Duration q = ctx_.travel.quantile_travel(here, target_, now, level);
     if (q < kUnreachable && q + o.navigation_slack > limit.after)
       limit = {.after = q + o.navigation_slack,

@@ -1,5 +1,6 @@
 #include "rondo/plan/learned_edge_models.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace rondo::plan {
@@ -91,23 +92,51 @@ std::vector<DurationPoint> table_law(const learn::QuantileTable& table) {
   return law;
 }
 
+// A stopped attempt becomes a third way an attempt goes, with its share c of the edge's attempts:
+// it succeeds with p (1 − c) (p, the model's, is learned from ended attempts only), and an attempt
+// that does not succeed is a stopped one, lasting the stopped law, with probability p c / (1 −
+// p (1 − c)), else a failed one. c is taken at most kMaxStoppedShare, so an edge whose attempts
+// were all stopped still leads somewhere.
+void with_stopped(const StoppedAttempts& stopped, RouteLeg& leg) {
+  if (!(stopped.share > 0.0) || stopped.law.empty()) return;
+  const double c = std::min(stopped.share, LearnedEdgeModels::kMaxStoppedShare);
+  const double p = std::clamp(leg.success_probability, 0.0, 1.0);
+  const double unsuccessful = 1.0 - p * (1.0 - c);
+  if (!(unsuccessful > 0.0)) return;
+  const auto total = [](const std::vector<DurationPoint>& law) {
+    double sum = 0.0;
+    for (const DurationPoint& d : law) sum += d.weight;
+    return sum;
+  };
+  std::vector<DurationPoint>& failure = leg.failure_law;
+  if (failure.empty()) failure.push_back({leg.attempt_seconds, 1.0});
+  const double failed = total(failure);
+  const double cut = total(stopped.law);
+  if (!(failed > 0.0) || !(cut > 0.0)) return;
+  for (DurationPoint& d : failure) d.weight *= (1.0 - p) / unsuccessful / failed;
+  for (const DurationPoint& d : stopped.law) failure.push_back({d.seconds, d.weight * p * c / unsuccessful / cut});
+  std::erase_if(failure, [](const DurationPoint& d) { return !(d.weight > 0.0); });
+  leg.success_probability = p * (1.0 - c);
+}
+
 }  // namespace
 
 void LearnedEdgeModels::attempt_laws(map::EdgeIndex edge, Time at, RouteLeg& leg) const {
   if (!attempt_laws_) return;
   const std::size_t i = index_.at(edge);
   const learn::EpisodeEdgeModel* own = i == kUnknown ? nullptr : models_->model(i);
-  if (own) {
-    const auto& tables = own->durations();
-    const auto bin = static_cast<std::size_t>(own->priors()->duration_bin(at));
-    if (bin < tables.success.size() && bin < tables.failure.size()) {
-      leg.success_law = table_law(tables.success[bin]);
-      leg.failure_law = table_law(tables.failure[bin]);
-      return;
-    }
+  const auto* tables = own ? &own->durations() : nullptr;
+  const auto bin = own ? static_cast<std::size_t>(own->priors()->duration_bin(at)) : 0;
+  if (tables && bin < tables->success.size() && bin < tables->failure.size()) {
+    leg.success_law = table_law(tables->success[bin]);
+    leg.failure_law = table_law(tables->failure[bin]);
+  } else {
+    for (const DurationPoint& d : attempt_laws_->success)
+      leg.success_law.push_back({d.seconds * leg.attempt_seconds, d.weight});
+    for (const DurationPoint& d : attempt_laws_->failure)
+      leg.failure_law.push_back({d.seconds * leg.attempt_seconds, d.weight});
   }
-  for (const DurationPoint& d : attempt_laws_->success) leg.success_law.push_back({d.seconds * leg.attempt_seconds, d.weight});
-  for (const DurationPoint& d : attempt_laws_->failure) leg.failure_law.push_back({d.seconds * leg.attempt_seconds, d.weight});
+  if (edge < attempt_laws_->stopped.size()) with_stopped(attempt_laws_->stopped[edge], leg);
 }
 
 EdgeOutcome LearnedEdgeModels::outcome(map::EdgeIndex edge, Time at) const {

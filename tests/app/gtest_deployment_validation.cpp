@@ -219,6 +219,8 @@ TEST(RunCommand, BatteryLevelsAreStatesOfChargeInOrderAndRiskAlphaAndRouteThresh
       {"battery_reseve: 0.2", "battery_reseve"},                           // unknown key
       {"risk_alpha: 0.7", "risk_alpha"},                                   // above the median
       {"risk_alpha: 0", "risk_alpha"},
+      {"navigation_alpha: 0.6", "navigation_alpha"},
+      {"navigation_alpha: never", "navigation_alpha"},
       {"battery_planning: often", "battery_planning"},                     // not a boolean
       {"battery_margin: -1", "battery_margin"},
       {"battery_margin: 11", "battery_margin"},

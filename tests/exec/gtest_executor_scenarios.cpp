@@ -7,6 +7,8 @@
 #include <cmath>
 #include <set>
 
+#include "attempt_laws.h"
+#include "rondo/store/observations.h"
 #include "rondo/store/task_table.h"
 #include "rondo/store/traversal_log.h"
 #include "scenario.h"
@@ -76,17 +78,26 @@ TEST(ExecutorScenario, ANonInterruptibleTaskIsNotPreemptedTheOnDemandTaskRunsRig
   EXPECT_EQ(s.code_of("A", "queued"), "added");  // never back in the queue
 }
 
-TEST(ExecutorScenario, ANavigationOverrunIsPreemptedAndTheTaskFailsWithThatReason) {
-  Scenario s(std::string(kCalmWorld) + R"(
+// Hall_Office takes 10 x its time; task A (5 min at the Office, 08:00 to 10:00) is run to 10:00
+// with no navigation slack.
+std::string slow_office_world() {
+  return std::string(kCalmWorld) + R"(
 effects:
   - name: a crowd in the corridor
     edges: [Hall_Office]
     duration_factor: 10
-)",
-             {.navigation_slack = Duration{0}});
+)";
+}
+
+void run_a_to_the_slow_office(Scenario& s) {
   s.executor().start();
   ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(5)), "test"));
   s.run_until("10:00");
+}
+
+TEST(ExecutorScenario, ANavigationOverrunIsPreemptedAndTheTaskFailsWithThatReason) {
+  Scenario s(slow_office_world(), {.navigation_slack = Duration{0}});
+  ASSERT_NO_FATAL_FAILURE(run_a_to_the_slow_office(s));
 
   EXPECT_EQ(s.final_state("A"), "failed");
   EXPECT_THAT(s.reason_of("A", "failed"), HasSubstr("navigation overrun"));
@@ -95,6 +106,41 @@ effects:
   EXPECT_GE(took, seconds(79));
   EXPECT_LE(took, seconds(81));
   EXPECT_TRUE(s.order_of("acting").empty());
+}
+
+// The attempt the monitor cut is not a failure of the edge (the traversal log has no attempt of
+// it) but a stopped one, kept as an observation with the seconds it had run: a lower bound of the
+// edge's long attempts for the travel-time distribution (attempt_laws.h).
+TEST(ExecutorScenario, AnAttemptTheNavigationMonitorCutIsKeptAsStoppedNotAsAFailure) {
+  Scenario s(slow_office_world(), {.navigation_slack = Duration{0}});
+  ASSERT_NO_FATAL_FAILURE(run_a_to_the_slow_office(s));
+
+  ASSERT_EQ(s.final_state("A"), "failed");
+  EXPECT_TRUE(store::find_traversals(s.store(), {.edge_id = "Hall_Office"}).value().empty());
+  const auto seen = store::find_observations(s.store(), {.what = kStoppedAttempt}).value();
+  ASSERT_EQ(seen.size(), 1u);
+  EXPECT_EQ(seen[0].where, "Hall_Office");
+  EXPECT_EQ(seen[0].text, "A");
+  // It ran from its start to the cut: the journey's 80 s limit less the edges crossed before it.
+  const Time cut = event_time(s, "A", "failed");
+  EXPECT_NEAR(seen[0].value, to_seconds(cut - seen[0].when), 1.0);
+  EXPECT_GT(seen[0].value, 0.0);
+  EXPECT_LT(seen[0].value, 80.0);
+}
+
+// Under the chance constraint the stopped attempt is learned at the nightly refit: the next day
+// the journey's quantile holds it, so the monitor lets the slow edge finish and the task is done.
+TEST(ExecutorScenario, UnderRiskAlphaAStoppedAttemptRaisesTheNextDaysLimit) {
+  Scenario s(slow_office_world(), {.navigation_slack = Duration{0}, .risk_alpha = 0.1});
+  ASSERT_NO_FATAL_FAILURE(run_a_to_the_slow_office(s));
+  ASSERT_EQ(s.final_state("A"), "failed");
+  ASSERT_EQ(store::find_observations(s.store(), {.what = kStoppedAttempt}).value().size(), 1u);
+
+  const Time next_day = s.at("08:00") + hours(24);
+  ASSERT_TRUE(s.executor().add_task(task("B", "Office", next_day, next_day + hours(2), minutes(5)), "test"));
+  s.clock().run_until(next_day + hours(2));
+  EXPECT_EQ(s.final_state("B"), "succeeded");
+  EXPECT_EQ(store::find_traversals(s.store(), {.edge_id = "Hall_Office"}).value().size(), 1u);
 }
 
 TEST(ExecutorScenario, AnActionOverrunIsPreemptedAndTheTaskFailsWithThatReason) {

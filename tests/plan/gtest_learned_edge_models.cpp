@@ -201,5 +201,47 @@ TEST(LearnedEdgeModels, AttemptLawsFromTheEdgesTablesOrThePooledLaws) {
   EXPECT_EQ(pooled.failure_law, (std::vector<DurationPoint>{{5.0, 1.0}, {20.0, 1.0}}));
 }
 
+// Stopped attempts (the share c of an edge's attempts, AttemptLaws::stopped) are a third way an
+// attempt goes: success p (1 − c); of the rest, the stopped share p c / (1 − p (1 − c)) lasts the
+// stopped law, whichever failure law (own tables or pooled) the edge has. Other edges keep theirs.
+TEST(LearnedEdgeModels, StoppedAttemptsLowerTheSuccessAndJoinTheFailureLaw) {
+  const map::TopoMap m = testing::small_map({"A", "B", "C"}, {"A>B", "B>C"});
+  LearnedEdgeModels view(m, nullptr);
+  AttemptLaws laws{.success = {{1.0, 1.0}}, .failure = {{0.5, 1.0}}};
+  laws.stopped.resize(1);  // only edge 0 (A>B)
+  laws.stopped[0] = {.share = 0.25, .law = {{200.0, 3.0}}};
+  view.set_attempt_laws(std::make_shared<const AttemptLaws>(laws));
+  view.set(nullptr);
+
+  RouteLeg stopped{.success_probability = 0.8, .attempt_seconds = 10.0};
+  view.attempt_laws(0, kStart, stopped);
+  EXPECT_DOUBLE_EQ(stopped.success_probability, 0.6);
+  EXPECT_EQ(stopped.success_law, (std::vector<DurationPoint>{{10.0, 1.0}}));
+  ASSERT_EQ(stopped.failure_law.size(), 2u);
+  EXPECT_DOUBLE_EQ(stopped.failure_law[0].seconds, 5.0);
+  EXPECT_DOUBLE_EQ(stopped.failure_law[0].weight, 0.5);  // 0.2 of 0.4
+  EXPECT_DOUBLE_EQ(stopped.failure_law[1].seconds, 200.0);
+  EXPECT_DOUBLE_EQ(stopped.failure_law[1].weight, 0.5);  // 0.8 x 0.25 of 0.4
+
+  // The route's 0.8-quantile now reaches the stopped attempts; without them it stays short.
+  RouteLeg plain{.success_probability = 0.8, .attempt_seconds = 10.0};
+  view.attempt_laws(1, kStart, plain);
+  EXPECT_DOUBLE_EQ(plain.success_probability, 0.8);
+  EXPECT_EQ(plain.failure_law, (std::vector<DurationPoint>{{5.0, 1.0}}));
+  const std::vector<RouteLeg> with{stopped};
+  const std::vector<RouteLeg> without{plain};
+  EXPECT_GE(TravelTimeDistribution::of_route(with).quantile(0.8).lower, 200.0);
+  EXPECT_LE(TravelTimeDistribution::of_route(without).quantile(0.8).upper, 30.0);
+
+  // A share of 1 (every attempt stopped) counts as kMaxStoppedShare: the edge still leads somewhere.
+  laws.stopped[0].share = 1.0;
+  view.set_attempt_laws(std::make_shared<const AttemptLaws>(laws));
+  view.set(nullptr);
+  RouteLeg all{.success_probability = 1.0, .attempt_seconds = 10.0};
+  view.attempt_laws(0, kStart, all);
+  EXPECT_DOUBLE_EQ(all.success_probability, 1.0 - LearnedEdgeModels::kMaxStoppedShare);
+  EXPECT_EQ(all.failure_law, (std::vector<DurationPoint>{{200.0, 1.0}}));  // no failures: stopped only
+}
+
 }  // namespace
 }  // namespace rondo::plan

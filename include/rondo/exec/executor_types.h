@@ -48,6 +48,12 @@ struct ExecutorOptions {
   // before its latest start, so it starts in its window with probability >= 1 − risk_alpha.
   // Timing and the objective stay on expected values. Nothing: plan with expected values alone.
   std::optional<double> risk_alpha{};
+  // Under the chance constraint, the navigation monitor lets a journey run to the (1 −
+  // navigation_alpha)-quantile of its learned travel time + navigation_slack before it stops it
+  // (when that is later than the overrun factor's limit): the share of journeys that follow the
+  // learned distribution and are stopped all the same, its false alarms. Nothing: risk_alpha.
+  // Without risk_alpha it does nothing (no distribution is learned).
+  std::optional<double> navigation_alpha{};
   // Travel times along the route (docs/planning.md, "Travel times along the route"): where the
   // expected travel with each edge read when the robot reaches it differs from the departure
   // slot's reading by more than this, the scheduler and the navigation monitor use the former

@@ -57,8 +57,9 @@ class EdgeModelView {
   virtual Duration memory() const { return Duration{0}; }
   // The attempt-duration laws the travel-time distribution uses: fills `leg`'s success_law and
   // failure_law for an attempt of `edge` starting at `at` (leg.attempt_seconds already set to its
-  // expected seconds). Leaves them empty (each attempt lasts its expected seconds) by default. They
-  // change only together with version().
+  // expected seconds; it may also lower leg.success_probability, for attempts that end neither
+  // way). Leaves them empty (each attempt lasts its expected seconds) by default. They change only
+  // together with version().
   virtual void attempt_laws(map::EdgeIndex /*edge*/, Time /*at*/, RouteLeg& /*leg*/) const {}
   // Precondition: since <= version(). Empty when since == version().
   virtual std::optional<std::vector<map::EdgeIndex>> changed_since(std::uint64_t since) const {

@@ -67,8 +67,12 @@ class LearnedEdgeModels final : public EdgeModelView {
 
   // With laws set: an edge with its own model gets its own duration tables of the time-of-day bin
   // of `at` (kLawPoints points each, the means of equal groups of the tables' knots); any other
-  // edge the pooled laws scaled by leg.attempt_seconds. Without: nothing.
+  // edge the pooled laws scaled by leg.attempt_seconds. An edge with stopped attempts
+  // (AttemptLaws::stopped) then has them as a third way an attempt goes: its success probability
+  // is lowered by their share (at most kMaxStoppedShare) and its failure law holds them. Without
+  // laws: nothing.
   void attempt_laws(map::EdgeIndex edge, Time at, RouteLeg& leg) const override;
+  static constexpr double kMaxStoppedShare = 0.5;
   // The pooled attempt-duration laws (null: no laws at all). Takes effect for caches with the next
   // set(), which moves version() on: call it just before set().
   void set_attempt_laws(std::shared_ptr<const AttemptLaws> laws) { attempt_laws_ = std::move(laws); }

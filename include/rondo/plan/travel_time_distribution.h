@@ -52,12 +52,25 @@ struct RouteLeg {
   std::vector<DurationPoint> failure_law{};
 };
 
+// The attempts of one edge that were stopped before they ended (right-censored: each would have
+// run longer, and how it would have ended is not known): their share of all the edge's attempts
+// (succeeded, failed or stopped) and the law of how long they had run when stopped, in seconds. A
+// lower bound of the tail the traversal log cannot see (exec/attempt_laws.h).
+struct StoppedAttempts {
+  double share = 0.0;                // in [0, 1]; 0: none
+  std::vector<DurationPoint> law{};  // seconds run before the stop
+  bool operator==(const StoppedAttempts&) const = default;
+};
+
 // Duration laws shared by every edge, as multiples of an edge's expected attempt seconds: leg k
 // gets the points {seconds × τ_k, weight}. Learned from the traversal log at refit time
-// (exec/attempt_laws.h). Empty laws leave attempt_seconds fixed.
+// (exec/attempt_laws.h). Empty laws leave attempt_seconds fixed. `stopped`, by map edge index
+// (shorter than the map: none for the rest), makes a stopped attempt a third way an attempt of
+// that edge goes (LearnedEdgeModels::attempt_laws).
 struct AttemptLaws {
   std::vector<DurationPoint> success{};  // one successful attempt / τ
   std::vector<DurationPoint> failure{};  // one failed attempt / τ
+  std::vector<StoppedAttempts> stopped{};
   bool operator==(const AttemptLaws&) const = default;
 };
 
