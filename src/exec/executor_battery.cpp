@@ -39,11 +39,12 @@ bool Executor::below_threshold() const {
 
 double Executor::home_level() const {
   if (!options_.battery_planning) return 0;
-  const BatteryPrediction p = way_home();
+  const double home_hours = way_home_hours();
+  const BatteryPrediction p = way_home(home_hours);
   // Readings come between edges: one more edge away from the dock must still leave the way back.
   double next_edge = 0;
   for (const map::EdgeIndex e : map_.out_edges(robot_.location())) next_edge = std::max(next_edge, edge_cost(e));
-  return options_.battery_reserve + p.mean + next_edge + margin_over(p, way_home_hours());
+  return options_.battery_reserve + p.mean + next_edge + margin_over(p, home_hours);
 }
 
 // The margin the plans keep (ChargePlan): `battery_margin` standard deviations of the prediction,
@@ -58,10 +59,10 @@ double Executor::way_home_hours() const {
          3600.0;
 }
 
-BatteryPrediction Executor::way_home() const {
+BatteryPrediction Executor::way_home(double hours) const {
   const map::NodeIndex here = robot_.location();
   const double metres = here < metres_home_.size() && std::isfinite(metres_home_[here]) ? metres_home_[here] : 0;
-  return battery_->estimator().predict({.metres = metres, .hours_moving = way_home_hours()});
+  return battery_->estimator().predict({.metres = metres, .hours_moving = hours});
 }
 
 double Executor::edge_cost(map::EdgeIndex e) const {
@@ -90,20 +91,19 @@ double Executor::level_when_free(Time free) const {
   return std::clamp(level, 0.0, 1.0);
 }
 
-std::optional<Executor::BatteryShort> Executor::battery_short_for(const TaskId& id) const {
+std::optional<Executor::BatteryShort> Executor::battery_short_for(const TaskId& id, map::NodeIndex from) const {
   if (!options_.battery_planning) return std::nullopt;
   const Task& task = book_.at(id).task;
-  const map::NodeIndex here = robot_.location();
-  const map::NodeIndex start = task.start_node.empty() ? here : *map_.find_node(task.start_node);
+  const map::NodeIndex start = task.start_node.empty() ? from : *map_.find_node(task.start_node);
   const map::NodeIndex end = task.end_node.empty() ? start : *map_.find_node(task.end_node);
   const auto finite = [](double m) { return std::isfinite(m) ? m : 0.0; };
   const auto hours_of = [](Duration d) { return to_seconds(std::min<Duration>(d, hours(24))) / 3600.0; };
   const Time now = clock_.now();
-  const Duration there = travel_->travel(here, start, now);
+  const Duration there = travel_->travel(from, start, now);
   const Duration work = book_.at(id).remaining();
   const Duration back = travel_->travel(end, options_.dock, now + std::min<Duration>(there, hours(24)) + work);
   const BatteryPrediction p = battery_->estimator().predict(
-      {.metres = finite(map::shortest_metres(map_, here)[start]) + (end < metres_home_.size() ? finite(metres_home_[end]) : 0),
+      {.metres = finite(map::shortest_metres(map_, from)[start]) + (end < metres_home_.size() ? finite(metres_home_[end]) : 0),
        .hours_moving = hours_of(there) + hours_of(back),
        .hours_acting = hours_of(work)});
   const double hours = hours_of(there) + hours_of(work) + hours_of(back);
@@ -179,8 +179,9 @@ Time Executor::retry_way_home(map::EdgeIndex edge) {
   if (!way_home_closed_ || way_home_closed_->edge != edge) way_home_closed_ = WayHomeClosed{.edge = edge};
   WayHomeClosed& w = *way_home_closed_;
   ++w.failures;
-  const BatteryPrediction home = way_home();
-  const double spare = battery_->level() - (options_.battery_reserve + home.mean + margin_over(home, way_home_hours()));
+  const double home_hours = way_home_hours();
+  const BatteryPrediction home = way_home(home_hours);
+  const double spare = battery_->level() - (options_.battery_reserve + home.mean + margin_over(home, home_hours));
   const int doublings = spare < 2 * edge_cost(edge) ? kWayHomeDoublings : std::min(w.failures - 1, kWayHomeDoublings);
   Time at = now + options_.slot_width * (1 << doublings);
   std::string learned;

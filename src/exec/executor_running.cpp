@@ -72,7 +72,7 @@ void Executor::next() {
 // actions, a night shut out); this is the last look before the robot sets out. One that even a
 // full battery could not afford runs at once.
 bool Executor::charge_first(const TaskId& id) {
-  const std::optional<BatteryShort> short_of = battery_short_for(id);
+  const std::optional<BatteryShort> short_of = battery_short_for(id, robot_.location());
   if (!short_of || short_of->needed > 1) return false;
   const Time now = clock_.now();
   if (book_.at(id).task.kind == TaskKind::kOnDemand)

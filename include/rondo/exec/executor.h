@@ -240,8 +240,8 @@ class Executor final : public RobotListener {
   // Planned charging: the reserve, plus what the way to the dock from here is predicted to take,
   // plus the margin; 0 when charging is not planned.
   double home_level() const;
-  BatteryPrediction way_home() const;        // from here to the dock, now
-  double way_home_hours() const;             // expected, at most a day
+  double way_home_hours() const;             // from here to the dock, now: expected, at most a day
+  BatteryPrediction way_home(double hours) const;  // the same way, `hours` of it moving
   double margin_over(const BatteryPrediction& p, double hours) const;  // as the plans keep it
   double edge_cost(map::EdgeIndex e) const;  // the battery one crossing of `e` takes, expected
   // From the last reading to the resume level (or a planned charge's target, by its end), as learned.
@@ -255,13 +255,14 @@ class Executor final : public RobotListener {
   bool reoffer_for_battery();
   // Below the threshold or below home_level(): the robot goes to charge (noted, counted).
   void enter_low_battery();
-  // Planned charging: the level `id` needs now (there, its work and the way back to the charger,
-  // above the reserve and the margin), and why, when the battery has less; nothing when it can.
+  // Planned charging: the level `id` needs now when it leaves from `from` (there, its work and the
+  // way back to the charger, above the reserve and the margin), and why, when the battery has
+  // less; nothing when it can.
   struct BatteryShort {
     double needed = 0;
     std::string why;
   };
-  std::optional<BatteryShort> battery_short_for(const TaskId& id) const;
+  std::optional<BatteryShort> battery_short_for(const TaskId& id, map::NodeIndex from) const;
   // In next(): when `id` is short of battery, it goes back first in its queue and a charge to
   // what it needs starts (true; then charge()).
   bool charge_first(const TaskId& id);
