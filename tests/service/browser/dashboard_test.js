@@ -60,6 +60,23 @@ function startServer(data) {
 
 const FINAL_WORDS = ["done", "failed", "cancelled", "dropped", "interrupted"];
 
+// Clicks `selector` once it is visible and has a box to click: on a busy machine a list refreshed
+// beside it can leave it briefly without one ("not clickable"), so that is tried again until the
+// deadline. The click is never sent twice: puppeteer throws before it dispatches any.
+async function clickWhenReady(page, selector) {
+  const until = Date.now() + DEADLINE_MS;
+  for (;;) {
+    try {
+      await page.waitForSelector(selector, { visible: true, timeout: DEADLINE_MS });
+      await page.click(selector);
+      return;
+    } catch (e) {
+      if (Date.now() > until || !/not clickable|not an Element|detached/.test(e.message)) throw e;
+      await new Promise((resolve) => setTimeout(resolve, 100));
+    }
+  }
+}
+
 async function main() {
   fs.mkdirSync(out, { recursive: true });
   const data = fs.mkdtempSync(path.join(os.tmpdir(), "rondo-dashboard-"));
@@ -109,7 +126,7 @@ async function main() {
     await page.$eval("#add-form input[name=activity]", (e, v) => { e.value = v; }, activity);
     await page.select("#add-form select[name=place]", "WayPoint1");
     await page.$eval("#add-form input[name=minutes]", (e) => { e.value = "3"; });
-    await page.click("#add-form button[type=submit]");
+    await clickWhenReady(page, "#add-form button[type=submit]");
     await page.waitForFunction(() => /^Added/.test(document.querySelector("#add-result").textContent));
     const rowOf = (name) => `[...document.querySelectorAll("#gantt .gantt-row")].find((g) => g.dataset.name === ${JSON.stringify(name)})`;
     await page.waitForFunction(`!!${rowOf(activity)}`);
@@ -150,7 +167,7 @@ async function main() {
       for (const input of [from, to]) input.dispatchEvent(new Event("input", { bubbles: true }));
     });
     await page.$eval("#add-form input[name=activity]", (e, v) => { e.value = v; }, later);
-    await page.click("#add-form button[type=submit]");
+    await clickWhenReady(page, "#add-form button[type=submit]");
     await page.waitForFunction((name) => /^Added/.test(document.querySelector("#add-result").textContent) &&
       document.querySelector("#add-result").textContent.includes(name), {}, later);
     await page.waitForFunction((name) => {
@@ -175,7 +192,7 @@ async function main() {
     await page.$eval('#say-form input[name=text]', (e) => {
       e.value = 'check WayPoint3';
     });
-    await page.click('#say-form button[type=submit]');
+    await clickWhenReady(page, '#say-form button[type=submit]');
     await page.waitForFunction(() => /^Added/.test(document.querySelector('#say-result').textContent));
     await page.waitForFunction(
         () => [...document.querySelectorAll('#tasks tbody tr')].some(
@@ -184,7 +201,7 @@ async function main() {
     await page.$eval('#say-form input[name=text]', (e) => {
       e.value = 'check the moon';
     });
-    await page.click('#say-form button[type=submit]');
+    await clickWhenReady(page, '#say-form button[type=submit]');
     await page.waitForFunction(() => /^Not understood: .*moon/.test(document.querySelector('#say-result').textContent));
     await shot('5-in-words');
     step('a task added in words is listed; a place not on the map is named');
