@@ -60,21 +60,14 @@ function startServer(data) {
 
 const FINAL_WORDS = ["done", "failed", "cancelled", "dropped", "interrupted"];
 
-// Clicks `selector` once it is visible and has a box to click: on a busy machine a list refreshed
-// beside it can leave it briefly without one ("not clickable"), so that is tried again until the
-// deadline. The click is never sent twice: puppeteer throws before it dispatches any.
+// Clicks `selector` once it is visible: the button's own click (a submit button's submits its
+// form, with the form's checks), sent to the element rather than to a point on the screen. On a
+// busy machine the lists refreshed beside it move the layout, and a click at a point computed a
+// moment before can miss the button (CI saw both "not clickable" and a click that submitted
+// nothing).
 async function clickWhenReady(page, selector) {
-  const until = Date.now() + DEADLINE_MS;
-  for (;;) {
-    try {
-      await page.waitForSelector(selector, { visible: true, timeout: DEADLINE_MS });
-      await page.click(selector);
-      return;
-    } catch (e) {
-      if (Date.now() > until || !/not clickable|not an Element|detached/.test(e.message)) throw e;
-      await new Promise((resolve) => setTimeout(resolve, 100));
-    }
-  }
+  await page.waitForSelector(selector, { visible: true, timeout: DEADLINE_MS });
+  await page.$eval(selector, (button) => button.click());
 }
 
 async function main() {
@@ -218,6 +211,7 @@ async function main() {
     try {
       const page = (await browser.pages()).pop();
       problems.push("the page's problem line: " + JSON.stringify(await page.$eval("#problem", (e) => (e.hidden ? "" : e.textContent))));
+      problems.push("the forms' answers: " + JSON.stringify(await page.$$eval("#add-result, #say-result", (es) => es.map((e) => e.textContent))));
       problems.push("the page's task rows: " + JSON.stringify(await page.$$eval("#tasks tbody tr",
         (rows) => rows.filter((r) => /browser test/.test(r.dataset.name)).map((r) => [r.dataset.name, r.querySelector("td.state").textContent]))));
       await page.screenshot({ path: path.join(out, "failure.png"), fullPage: true });
