@@ -68,7 +68,7 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
                                        "refit_window", "online_model", "slot_width", "scheduler_polls", "capacity",
                                        "return_to", "return_within", "battery_reserve", "battery_threshold",
                                        "battery_resume", "battery_planning", "battery_margin", "risk_alpha",
-                                       "navigation_alpha", "route_threshold"}));
+                                       "navigation_alpha", "navigation_window", "route_threshold"}));
   if (auto v = f.optional("navigation_overrun")) { RONDO_ASSIGN_OR_RETURN(o.navigation_overrun, positive(*v)); }
   if (auto v = f.optional("navigation_slack")) { RONDO_ASSIGN_OR_RETURN(o.navigation_slack, non_negative_duration(*v)); }
   if (auto v = f.optional("action_overrun")) { RONDO_ASSIGN_OR_RETURN(o.action_overrun, positive(*v)); }
@@ -139,6 +139,7 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
     if (!(a > 0 && a <= 0.5)) return v->error("must be above 0 and at most 0.5 (or null: risk_alpha)");
     o.navigation_alpha = a;
   }
+  if (auto v = f.optional("navigation_window")) { RONDO_ASSIGN_OR_RETURN(o.navigation_window, v->as_bool()); }
   if (f.has("route_threshold") && !f.optional("route_threshold")) o.route_threshold.reset();
   if (auto v = f.optional("route_threshold")) {
     RONDO_ASSIGN_OR_RETURN(const Duration d, v->as_duration());

@@ -74,13 +74,16 @@ RunFiguresSummary summarize_report(const Json& report) {
   s.completed = t["completed"].get<int>();
   const Json& failed = t["failed"];
   const Json& dropped = t["dropped"];
-  s.too_late = count_of(failed, "too late");
+  // A task dropped after the robot had left for it missed its window on the way (its journey came
+  // back and it could not be met again): late, like one that failed too late.
+  const Json& after = t.contains("dropped_after_leaving") ? t["dropped_after_leaving"] : Json::object();
+  s.too_late = count_of(failed, "too late") + total(after) - count_of(after, "charging");
   s.navigation_overrun = count_of(failed, "navigation overrun");
   const Json& b = report["battery"];
   s.days_flat = b.value("days_flat", 0);
   s.battery = count_of(failed, "charging") + count_of(dropped, "charging") + s.days_flat;
   s.other_failures = total(failed) - s.too_late - s.navigation_overrun - count_of(failed, "charging");
-  s.dropped = total(dropped) - count_of(dropped, "charging");
+  s.dropped = total(dropped) - count_of(dropped, "charging") - (total(after) - count_of(after, "charging"));
   s.waiting_s = report["time_s"]["waiting"].get<double>();
   s.lowest_charge = b.value("lowest", 1.0);
   return s;

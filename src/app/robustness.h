@@ -42,11 +42,11 @@ std::vector<RobustnessVariant> robustness_variants(const std::vector<double>& al
 struct RunFiguresSummary {
   int added = 0;
   int completed = 0;
-  int too_late = 0;            // failed too late, and dropped because the window was missed
+  int too_late = 0;            // failed too late, and dropped after the robot had left for it
   int navigation_overrun = 0;  // failed on a navigation overrun
   int battery = 0;             // failed or dropped for charging, plus days the robot ran flat
   int other_failures = 0;      // every other failure
-  int dropped = 0;             // dropped for good, any reason but charging
+  int dropped = 0;             // dropped for good before the robot left for it, any reason but charging
   double waiting_s = 0;
   double lowest_charge = 1;
   int days_flat = 0;

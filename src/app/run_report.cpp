@@ -14,6 +14,7 @@ namespace rondo::app {
 Json task_summary(const exec::Executor& executor) {
   int completed = 0, pending = 0;
   std::map<std::string, std::map<std::string, int>> by_state;  // sorted: a stable report
+  std::map<std::string, int> dropped_after_leaving;
   for (const auto& [id, r] : executor.tasks()) {
     if (!is_final(r.state)) {
       ++pending;
@@ -24,6 +25,7 @@ Json task_summary(const exec::Executor& executor) {
       continue;
     }
     ++by_state[to_string(r.state)][std::string(exec::to_string(r.outcome))];
+    if (r.state == TaskState::kDropped && r.started) ++dropped_after_leaving[std::string(exec::to_string(r.outcome))];
   }
   Json tasks = Json::object();
   tasks["added"] = executor.tasks().size();
@@ -34,6 +36,11 @@ Json task_summary(const exec::Executor& executor) {
     for (const auto& [reason, n] : by_state[state]) reasons[reason] = n;
     tasks[state] = reasons;
   }
+  // Of the dropped: those the robot had left for at least once (their journey came back, and the
+  // window could not be met again), by code.
+  Json after = Json::object();
+  for (const auto& [reason, n] : dropped_after_leaving) after[reason] = n;
+  tasks["dropped_after_leaving"] = after;
   return tasks;
 }
 

@@ -20,6 +20,12 @@ void Monitor::arm(Limit limit, std::function<void(const std::string&)> fired) {
   set(limit.after);
 }
 
+void Monitor::extend(Limit limit) {
+  cancel();
+  reason_ = std::move(limit.reason);
+  set(limit.after);
+}
+
 void Monitor::set(Duration after) {
   at_ = clock_.now() + after;
   left_.reset();

@@ -30,6 +30,8 @@ class Monitor {
   Monitor& operator=(const Monitor&) = delete;
 
   void arm(Limit limit, std::function<void(const std::string&)> fired);
+  // From inside `fired`: the monitor runs on to a new limit with the same callback.
+  void extend(Limit limit);
   void cancel();
   void suspend();
   void resume();

@@ -52,7 +52,7 @@ void NavigateStep::start() {
                                      duration_text(q + o.navigation_slack), level, duration_text(q),
                                      duration_text(o.navigation_slack))};
   }
-  monitor_.arm(std::move(limit), [this](const std::string& why) { hooks_.overrun(Outcome::kNavigationOverrun, why); });
+  monitor_.arm(std::move(limit), [this](const std::string& why) { overran(why); });
   if (ctx_.in_fault) monitor_.suspend();
   advance();
 }
@@ -74,8 +74,39 @@ void NavigateStep::advance() {
                                       ctx_.map.node(target_).name, ctx_.clock_text(ctx_.clock.now()))});
   }
   // The next edge is committed; the rest of the policy's expected route is the horizon.
+  std::vector<map::EdgeIndex> route = expected_route(here);
+  heading_ = ctx_.map.to_index(route.front());
   ctx_.before_command();
-  ctx_.robot.drive(Route{.edges = expected_route(here), .committed = 1});
+  ctx_.robot.drive(Route{.edges = std::move(route), .committed = 1});
+}
+
+void NavigateStep::overran(const std::string& why) {
+  const std::optional<Time> until = window_open_until();
+  if (!until) return hooks_.overrun(Outcome::kNavigationOverrun, why);
+  const Time now = ctx_.clock.now();
+  if (!window_watch_)
+    ctx_.book.note(*task_, "overrun", Outcome::kWindowStillOpen,
+                   fmt::format("{}; the task can still start in its window, so the journey goes on until {}", why,
+                               ctx_.clock_text(*until)));
+  window_watch_ = true;
+  monitor_.extend({.after = *until - now,
+                   .reason = fmt::format("navigation overrun: still travelling at {}, after {}; the task can no "
+                                         "longer be expected to start in its window",
+                                         ctx_.clock_text(*until), duration_text(*until - started_))});
+}
+
+std::optional<Time> NavigateStep::window_open_until() const {
+  const ExecutorOptions& o = ctx_.options;
+  if (purpose_ != Purpose::kToStart || !o.risk_alpha || !o.navigation_window || !heading_) return std::nullopt;
+  const Time now = ctx_.clock.now();
+  Duration rest{0};
+  if (*heading_ != target_) {
+    rest = ctx_.travel.quantile_travel(*heading_, target_, now, 1.0 - *o.risk_alpha);
+    if (rest >= kUnreachable) return std::nullopt;
+  }
+  const Time until = ctx_.book.at(*task_).latest_start(o.on_demand_patience) - rest;
+  if (until < now + seconds(1)) return std::nullopt;
+  return until;
 }
 
 // The edges the policy expects to take from `from` to the target if every attempt succeeds (the

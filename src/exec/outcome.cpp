@@ -6,7 +6,7 @@
 namespace rondo::exec {
 namespace {
 
-constexpr std::array<std::pair<Outcome, std::string_view>, 40> kNames{{
+constexpr std::array<std::pair<Outcome, std::string_view>, 41> kNames{{
     {Outcome::kNone, ""},
     {Outcome::kAdded, "added"},
     {Outcome::kScheduled, "scheduled"},
@@ -34,6 +34,7 @@ constexpr std::array<std::pair<Outcome, std::string_view>, 40> kNames{{
     {Outcome::kInterrupted, "interrupted"},
     {Outcome::kScheduleChanged, "schedule changed"},
     {Outcome::kOverrunHeld, "overrun held"},
+    {Outcome::kWindowStillOpen, "window still open"},
     {Outcome::kRunsAfterCurrent, "runs after current"},
     {Outcome::kInvalidRequest, "invalid request"},
     {Outcome::kPickupFailed, "pickup failed"},

@@ -67,6 +67,14 @@ class NavigateStep final : public RobotStep {
   void go_on() override { advance(); }
   void advance();  // the next edge, or the end
   void arrived();
+  // The navigation monitor fired: the task fails, or under the window watch
+  // (ExecutorOptions::navigation_window) the journey goes on while the task can still start in its
+  // window.
+  void overran(const std::string& why);
+  // When the window watch lets a journey still running now go on to: the last moment from which
+  // the (1 − risk_alpha)-quantile of the way on from the node the robot is heading for still
+  // reaches the task's latest start; nothing when that moment is past or the watch is off.
+  std::optional<Time> window_open_until() const;
   std::vector<map::EdgeIndex> expected_route(map::NodeIndex from) const;
   // After a failed edge: why trying again is not worth it (the attempts left are more likely than
   // not all to fail, or the re-planned travel from here would take the navigation past its
@@ -84,6 +92,8 @@ class NavigateStep final : public RobotStep {
   Duration expected_{0};
   Duration offline_expected_{0};
   int failed_edges_ = 0;
+  std::optional<map::NodeIndex> heading_;  // the end of the edge last sent to the robot
+  bool window_watch_ = false;              // the monitor's limit passed while the window was open
 };
 
 // At the task's place: runs its actions one after the other, watched by the action monitor. A

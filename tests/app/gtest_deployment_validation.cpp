@@ -221,6 +221,7 @@ TEST(RunCommand, BatteryLevelsAreStatesOfChargeInOrderAndRiskAlphaAndRouteThresh
       {"risk_alpha: 0", "risk_alpha"},
       {"navigation_alpha: 0.6", "navigation_alpha"},
       {"navigation_alpha: never", "navigation_alpha"},
+      {"navigation_window: sometimes", "navigation_window"},  // not a boolean
       {"battery_planning: often", "battery_planning"},                     // not a boolean
       {"battery_margin: -1", "battery_margin"},
       {"battery_margin: 11", "battery_margin"},
@@ -249,6 +250,19 @@ TEST(Deployment, RouteThresholdIsADurationOrNullForOff) {
     const auto d = app::load_deployment(edited_example(dir, "deployment.yaml", refit, refit + key));
     ASSERT_TRUE(d.ok()) << key << ": " << d.error().message;
     EXPECT_EQ(d->executor.route_threshold, expected) << key;
+    std::filesystem::remove_all(dir);
+  }
+}
+
+TEST(Deployment, TheWindowWatchIsOnUnlessTurnedOff) {
+  const std::string refit = "refit_at: \"02:00\"        # nightly refit of the edge models";
+  const std::pair<const char*, bool> cases[] = {
+      {"", true}, {"\n  navigation_window: false", false}, {"\n  navigation_window: true", true}};
+  for (const auto& [key, expected] : cases) {
+    const auto dir = fresh_dir("navigation-window");
+    const auto d = app::load_deployment(edited_example(dir, "deployment.yaml", refit, refit + key));
+    ASSERT_TRUE(d.ok()) << key << ": " << d.error().message;
+    EXPECT_EQ(d->executor.navigation_window, expected) << key;
     std::filesystem::remove_all(dir);
   }
 }

@@ -131,7 +131,8 @@ TEST(ExecutorScenario, AnAttemptTheNavigationMonitorCutIsKeptAsStoppedNotAsAFail
 // Under the chance constraint the stopped attempt is learned at the nightly refit: the next day
 // the journey's quantile holds it, so the monitor lets the slow edge finish and the task is done.
 TEST(ExecutorScenario, UnderRiskAlphaAStoppedAttemptRaisesTheNextDaysLimit) {
-  Scenario s(slow_office_world(), {.navigation_slack = Duration{0}, .risk_alpha = 0.1});
+  // The window watch off: the journey is stopped at its limit, as without the chance constraint.
+  Scenario s(slow_office_world(), {.navigation_slack = Duration{0}, .risk_alpha = 0.1, .navigation_window = false});
   ASSERT_NO_FATAL_FAILURE(run_a_to_the_slow_office(s));
   ASSERT_EQ(s.final_state("A"), "failed");
   ASSERT_EQ(store::find_observations(s.store(), {.what = kStoppedAttempt}).value().size(), 1u);
@@ -141,6 +142,44 @@ TEST(ExecutorScenario, UnderRiskAlphaAStoppedAttemptRaisesTheNextDaysLimit) {
   s.clock().run_until(next_day + hours(2));
   EXPECT_EQ(s.final_state("B"), "succeeded");
   EXPECT_EQ(store::find_traversals(s.store(), {.edge_id = "Hall_Office"}).value().size(), 1u);
+}
+
+// The window watch (ExecutorOptions::navigation_window): under the chance constraint a journey past
+// its monitor's limit goes on while the task can still start in its window. A's window (08:00 to
+// 10:00) leaves the slow edge all the time it needs: A is done, and the edge's long attempt is a
+// success in the traversal log, not a stopped one.
+TEST(ExecutorScenario, UnderRiskAlphaAJourneyPastItsLimitGoesOnWhileTheWindowIsOpen) {
+  Scenario s(slow_office_world(), {.navigation_slack = Duration{0}, .risk_alpha = 0.1});
+  ASSERT_NO_FATAL_FAILURE(run_a_to_the_slow_office(s));
+
+  EXPECT_EQ(s.final_state("A"), "succeeded");
+  EXPECT_EQ(s.code_of("A", "overrun"), "window still open");
+  EXPECT_THAT(s.reason_of("A", "overrun"), HasSubstr("navigation overrun: still travelling after 1m20s"));
+  EXPECT_THAT(s.reason_of("A", "overrun"), HasSubstr("the task can still start in its window"));
+  const auto crossed = store::find_traversals(s.store(), {.edge_id = "Hall_Office"}).value();
+  ASSERT_EQ(crossed.size(), 1u);
+  EXPECT_TRUE(crossed[0].success);
+  EXPECT_NEAR(to_seconds(crossed[0].duration), 200.0, 1.0);
+  EXPECT_TRUE(store::find_observations(s.store(), {.what = kStoppedAttempt}).value().empty());
+}
+
+// ... and is stopped when the task can no longer start in time: B must start by 08:02 (its window
+// ends 08:07, 5 minutes of work), and the slow edge would bring the robot at about 08:03. The
+// edge in progress ends at the Office itself, so nothing is left of the way after it: the watch
+// runs to the latest start exactly.
+TEST(ExecutorScenario, TheWindowWatchStopsAJourneyWhenItsTaskCanNoLongerStartInTime) {
+  Scenario s(slow_office_world(), {.navigation_slack = Duration{0}, .risk_alpha = 0.1});
+  s.executor().start();
+  ASSERT_TRUE(s.executor().add_task(task("B", "Office", s.at("08:00"), s.at("08:07"), minutes(5)), "test"));
+  s.run_until("09:00");
+
+  EXPECT_EQ(s.final_state("B"), "failed");
+  EXPECT_EQ(s.code_of("B", "failed"), "navigation overrun");
+  EXPECT_THAT(s.reason_of("B", "failed"), HasSubstr("can no longer be expected to start in its window"));
+  EXPECT_EQ(s.code_of("B", "overrun"), "window still open");
+  EXPECT_EQ(event_time(s, "B", "failed"), s.at("08:02"));
+  EXPECT_LT(event_time(s, "B", "overrun"), event_time(s, "B", "failed"));
+  EXPECT_TRUE(s.order_of("acting").empty());
 }
 
 TEST(ExecutorScenario, AnActionOverrunIsPreemptedAndTheTaskFailsWithThatReason) {

@@ -54,6 +54,13 @@ struct ExecutorOptions {
   // learned distribution and are stopped all the same, its false alarms. Nothing: risk_alpha.
   // Without risk_alpha it does nothing (no distribution is learned).
   std::optional<double> navigation_alpha{};
+  // Under the chance constraint, a journey to a task past its monitor's limit is stopped only when
+  // the task can no longer be expected to start in its window: when, even if the edge in progress
+  // ended now, the (1 − risk_alpha)-quantile of the way on from its end would arrive after the
+  // task's latest start. Until then the monitor looks again at the last moment that would still
+  // do (docs/executor.md, "The window watch"). False: stop at the limit. Without risk_alpha it
+  // does nothing.
+  bool navigation_window = true;
   // Travel times along the route (docs/planning.md, "Travel times along the route"): where the
   // expected travel with each edge read when the robot reaches it differs from the departure
   // slot's reading by more than this, the scheduler and the navigation monitor use the former

@@ -40,6 +40,7 @@ enum class Outcome {
   kInterrupted,               // the executive stopped while the task ran (a crash, a restart)
   kScheduleChanged,           // waiting ended because the schedule changed
   kOverrunHeld,               // a monitor fired while the task could not be interrupted
+  kWindowStillOpen,           // the navigation monitor's limit passed, but the task can still start in its window
   kRunsAfterCurrent,          // an on-demand task waits for a task that cannot be interrupted
   kInvalidRequest,            // a request refused at the door
   kPickupFailed,              // a drop that cannot happen: its pickup ended without the object
