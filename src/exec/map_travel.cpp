@@ -163,11 +163,19 @@ Duration TravelCache::quantile_at_slot(map::NodeIndex from, map::NodeIndex to, T
   double& q = e.quantile_seconds[from];
   if (std::isnan(q)) {
     // A coarser grid than the default: the bracket is still an upper bound, within ~1.6 % of the
-    // expected time per expected attempt, and a route's distribution costs a quarter.
-    const plan::TravelTimeDistribution d =
-        e.policy.travel_time_distribution(
-            from, {.cells = 1024, .horizon_factor = 16.0},
-            [&](const plan::PolicyStep& s, plan::RouteLeg& leg) { models_->attempt_laws(s.edge, slot_start, leg); });
+    // expected time per expected attempt, and a route's distribution costs a quarter. Its first
+    // quarter (4 x the expected time) is computed first, and the whole grid only for a quantile
+    // beyond it: the same answer to the bit (DistributionOptions::computed_cells), for a quarter
+    // of the work where the quantile is within.
+    const auto laws = [&](const plan::PolicyStep& s, plan::RouteLeg& leg) {
+      models_->attempt_laws(s.edge, slot_start, leg);
+    };
+    plan::DistributionOptions grid{.cells = 1024, .horizon_factor = 16.0, .computed_cells = 256};
+    plan::TravelTimeDistribution d = e.policy.travel_time_distribution(from, grid, laws);
+    if (d.reachable() && !std::isfinite(d.quantile(level).upper)) {
+      grid.computed_cells = 0;
+      d = e.policy.travel_time_distribution(from, grid, laws);
+    }
     // A quantile beyond the grid (16 x the expected time) is read as the grid's end: a reachable
     // target stays reachable for the window check.
     const double upper = d.quantile(level).upper;

@@ -153,8 +153,9 @@ TravelTimeDistribution TravelTimeDistribution::of_route(std::span<const RouteLeg
     d.slow_cdf_ = {1.0};
     return d;
   }
-  d.cells_ = std::max<std::size_t>(options.cells, 16);
-  d.cell_ = std::max(options.horizon_factor, 2.0) * expected / static_cast<double>(d.cells_);
+  const std::size_t cells = std::max<std::size_t>(options.cells, 16);
+  d.cell_ = std::max(options.horizon_factor, 2.0) * expected / static_cast<double>(cells);
+  d.cells_ = options.computed_cells > 0 ? std::min(options.computed_cells, cells) : cells;
   d.fast_cdf_ = rounded_cdf(clamped, d.cell_, d.cells_, Rounding::kDown);
   d.slow_cdf_ = rounded_cdf(clamped, d.cell_, d.cells_, Rounding::kUp);
   return d;

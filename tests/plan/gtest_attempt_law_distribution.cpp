@@ -158,5 +158,42 @@ RC_GTEST_PROP(AttemptLawProperties, BracketsTheRecursiveTruth, ()) {
   }
 }
 
+// Computing only the first cells of the grid (DistributionOptions::computed_cells) changes nothing
+// within them: every probability and every quantile found there is the whole grid's, to the bit,
+// and a quantile beyond them says so (upper +inf) instead of guessing.
+RC_GTEST_PROP(AttemptLawProperties, APartOfTheGridIsTheWholeGridsWithinIt, ()) {
+  const auto count = *rc::gen::inRange<std::size_t>(1, 6);
+  std::vector<RouteLeg> legs;
+  for (std::size_t k = 0; k < count; ++k) {
+    RouteLeg leg{.success_probability = *rc::gen::inRange(20, 101) / 100.0,
+                 .attempt_seconds = *rc::gen::inRange(10, 300) / 10.0};
+    if (*rc::gen::inRange(0, 3) != 0) leg.success_law = random_law(0, 900);
+    if (*rc::gen::inRange(0, 3) != 0) leg.failure_law = random_law(1, 3000);
+    legs.push_back(std::move(leg));
+  }
+  const auto cells = *rc::gen::element<std::size_t>(64, 256, 1024);
+  const auto computed = *rc::gen::inRange<std::size_t>(1, cells + 1);
+  const auto whole = TravelTimeDistribution::of_route(legs, {.cells = cells});
+  const auto part = TravelTimeDistribution::of_route(legs, {.cells = cells, .computed_cells = computed});
+  RC_ASSERT(whole.reachable() && part.reachable());
+  RC_ASSERT(part.cell_seconds() == whole.cell_seconds());
+  RC_ASSERT(part.horizon_seconds() <= whole.horizon_seconds());
+  for (double f = 0.0; f <= 1.0; f += 0.05) {
+    const double budget = f * part.horizon_seconds();
+    RC_ASSERT(part.probability_within(budget).lower == whole.probability_within(budget).lower);
+    RC_ASSERT(part.probability_within(budget).upper == whole.probability_within(budget).upper);
+  }
+  for (double q : {0.05, 0.5, 0.8, 0.9, 0.98}) {
+    const QuantileBounds p = part.quantile(q);
+    const QuantileBounds w = whole.quantile(q);
+    if (p.upper < kInf) {
+      RC_ASSERT(p.upper == w.upper);
+      RC_ASSERT(p.lower == w.lower);
+    } else {
+      RC_ASSERT(w.upper >= part.horizon_seconds());
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rondo::plan

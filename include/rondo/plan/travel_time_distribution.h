@@ -77,6 +77,12 @@ struct AttemptLaws {
 struct DistributionOptions {
   std::size_t cells = 4096;      // grid resolution, >= 16 (smaller values are raised to 16)
   double horizon_factor = 16.0;  // the grid spans [0, horizon_factor × expected time], >= 2
+  // Only the first `computed_cells` cells of that grid are computed (0, or more than `cells`: all
+  // of them); the rest lies beyond the grid. The cell width stays that of the whole grid, and every
+  // value within the cells computed is the whole grid's to the bit: travel times only grow along a
+  // route, so mass that is past a cell never comes back to it. A quantile beyond them (upper +inf)
+  // can be asked again of the whole grid.
+  std::size_t computed_cells = 0;
 };
 
 // A probability known to lie in [lower, upper]; both in [0, 1].
@@ -110,6 +116,7 @@ class TravelTimeDistribution {
   QuantileBounds quantile(double q) const;
 
   double cell_seconds() const { return cell_; }
+  // The end of the cells computed (DistributionOptions::computed_cells).
   double horizon_seconds() const { return cell_ * static_cast<double>(cells_); }
   // An upper bound on P(T > horizon): the mass the rounded-up pass pushed beyond the grid.
   double tail_mass() const;
