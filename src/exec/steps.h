@@ -75,6 +75,11 @@ class NavigateStep final : public RobotStep {
   // the (1 − risk_alpha)-quantile of the way on from the node the robot is heading for still
   // reaches the task's latest start; nothing when that moment is past or the watch is off.
   std::optional<Time> window_open_until() const;
+  // The chance that the attempt in progress, still running now, is one that succeeds, by its
+  // edge's learned laws (ExecutorOptions::risk_alpha): of the learned attempts that ran this long,
+  // the share of successes, each way weighted by its probability. Nothing without laws, or when no
+  // learned attempt ran this long.
+  std::optional<double> success_chance(Time now) const;
   std::vector<map::EdgeIndex> expected_route(map::NodeIndex from) const;
   // After a failed edge: why trying again is not worth it (the attempts left are more likely than
   // not all to fail, or the re-planned travel from here would take the navigation past its
@@ -93,7 +98,9 @@ class NavigateStep final : public RobotStep {
   Duration offline_expected_{0};
   int failed_edges_ = 0;
   std::optional<map::NodeIndex> heading_;  // the end of the edge last sent to the robot
-  bool window_watch_ = false;              // the monitor's limit passed while the window was open
+  std::optional<map::EdgeIndex> edge_;     // that edge, and when it was sent
+  Time edge_since_{};
+  bool window_watch_ = false;  // the monitor's limit passed while the window was open
 };
 
 // At the task's place: runs its actions one after the other, watched by the action monitor. A
