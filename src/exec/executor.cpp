@@ -85,6 +85,7 @@ void Executor::sweep_finished() {
 Executor::~Executor() {
   robot_.set_listener(nullptr);
   if (look_again_ != 0) clock_.cancel(look_again_);
+  if (offer_again_ != 0) clock_.cancel(offer_again_);
 }
 
 Status Executor::accept(const Task& task) const {

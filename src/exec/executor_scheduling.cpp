@@ -125,6 +125,23 @@ void Executor::finish_schedule(const std::vector<TaskId>& ids, std::vector<TaskI
   }
   apply_schedule(ids, answer, why);
   after_schedule(why);
+  offer_again_at_next_slot();
+}
+
+// Under the chance constraint a route through an edge that has just failed can be out of reach of
+// every window for a while (its quantile holds many failed attempts), and a robot left idle by
+// that has nothing else to reschedule it: the tasks dropped for now would wait, unoffered, until
+// their windows passed (validation seed 106 of examples/witham: a day with no task done). So they
+// are offered again at the next slot start, when the travel estimates may have moved.
+void Executor::offer_again_at_next_slot() {
+  if (!options_.risk_alpha || dispatcher_->deferred.empty() || offer_again_ != 0) return;
+  const Time at = travel_->slot_start(clock_.now()) + options_.slot_width;
+  offer_again_ = clock_.schedule_at(at, [this] {
+    offer_again_ = 0;
+    if (dispatcher_->deferred.empty()) return;
+    reschedule({}, "tasks dropped for now offered again at the slot start");
+    kick();  // an idle robot starts what fits again
+  });
 }
 
 void Executor::apply_charges(const std::vector<TaskId>& ids, const PlannedAnswer& answer, const std::string& why) {

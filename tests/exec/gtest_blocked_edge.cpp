@@ -182,3 +182,42 @@ TEST(BlockedEdge, AHeldBackTaskKeepsItsRetryTimeOverARestart) {
 
 }  // namespace
 }  // namespace rondo::exec::testing
+
+namespace rondo::exec::testing {
+namespace {
+
+// Under the chance constraint, right after the failure the route's quantile through the edge holds
+// many failed attempts: A's short window looks out of reach and A is dropped for now, with nothing
+// else to reschedule the idle robot. It is offered again at each slot start and is done once the
+// way is likely passable again (ExecutorOptions::risk_alpha, Executor::offer_again_at_next_slot).
+TEST(BlockedEdge, UnderRiskAlphaATaskDroppedForNowIsOfferedAgainAtTheNextSlotStart) {
+  ExecutorOptions o = Blocked::options_with(ExecutorOptions::BlockedEdge::kWait, hours(4));
+  o.risk_alpha = 0.1;
+  ScriptedExecutor s(o, scenario_map(), Blocked::parts());
+  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:30"), minutes(5)), "test").ok());
+  s.executor().start();
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Hall"));
+  s.settle();
+  ASSERT_EQ(s.robot().calls.back(), "drive Hall_Office +0");
+  s.clock().run_until(s.clock().now() + seconds(20));
+  s.robot().finish_edge(EdgeOutcome::kFailed, seconds(20));
+  s.settle();
+  EXPECT_EQ(s.code_of("A", "dropped for now"), "out of reach");
+  EXPECT_EQ(s.code_of("A", "re-offered"), "");
+  for (int guard = 0; guard < 2000 && s.state("A") != "succeeded" && s.state("A") != "dropped"; ++guard) {
+    s.settle();
+    if (s.robot().driving()) {
+      s.clock().run_until(s.clock().now() + seconds(20));
+      s.robot().finish_edge(EdgeOutcome::kSucceeded, seconds(20));
+    } else if (s.robot().acting()) {
+      s.robot().finish_action(ActionOutcome::kSucceeded, "");
+    } else {
+      s.clock().run_until(s.clock().now() + seconds(20));
+    }
+  }
+  EXPECT_EQ(s.state("A"), "succeeded");
+  EXPECT_THAT(s.reason_of("A", "re-offered"), HasSubstr("offered again at the slot start"));
+}
+
+}  // namespace
+}  // namespace rondo::exec::testing

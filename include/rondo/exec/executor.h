@@ -347,6 +347,8 @@ class Executor final : public RobotListener {
 
   // assumptions and opportunities (executor_observations.cpp)
   void after_schedule(const std::string& why);  // records what the new plan assumes
+  // Under risk_alpha, with tasks dropped for now: a reschedule at the next slot start.
+  void offer_again_at_next_slot();
   void note_look_alikes();                      // why look-alike jobs do not interleave
   bool blocked(const TaskId& id) const;         // waits for its door: kept out of the schedule
   bool can_wait(const TaskId& id) const;        // may be blocked by a door seen closed
@@ -407,6 +409,7 @@ class Executor final : public RobotListener {
   std::optional<TaskId> confirmed_;                     // its running action was confirmed: its cancel counts as done
   std::vector<TaskId> after_preempt_;   // new tasks to schedule once the preempted task is out
   TimerId look_again_ = 0;              // idle: look again at the queues then
+  TimerId offer_again_ = 0;             // offer_again_at_next_slot()
   std::optional<RobotFault> fault_;
   std::optional<Time> fault_since_;
   bool started_ = false;
