@@ -48,7 +48,9 @@ struct Deployment {
   std::filesystem::path world;
   std::optional<std::filesystem::path> requests;
   std::optional<std::filesystem::path> places;  // commands in words through `rondo serve`'s API
-  exec::ExecutorOptions executor{};  // dock is filled in once the map is loaded
+  // dock is filled in once the map is loaded; risk_alpha is exec::kDeploymentRiskAlpha unless the
+  // file says otherwise (null: expected values).
+  exec::ExecutorOptions executor{.risk_alpha = exec::kDeploymentRiskAlpha};
   // `battery:`: the simulated battery, in place of the world file's (docs/simulation.md).
   std::optional<sim::BatteryModel> battery;
   // The robot: nothing for the simulated one (kind: sim, the default), or a VDA 5050 vehicle.

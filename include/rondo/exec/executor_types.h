@@ -17,6 +17,11 @@ namespace rondo::exec {
 // (ExecutorOptions::blocked_edge).
 inline constexpr double kLikelyPassable = 0.5;
 
+// The α a deployment plans with when its file does not say (`executor.risk_alpha`; null: expected
+// values): chosen on validation seeds 101-110 of examples/witham and examples/g4s (docs/executor.md,
+// "The window watch").
+inline constexpr double kDeploymentRiskAlpha = 0.1;
+
 struct ExecutorOptions {
   map::NodeIndex dock = 0;
   double navigation_overrun = 2.0;       // preempt navigation past this x expected travel + slack
@@ -46,7 +51,8 @@ struct ExecutorOptions {
   // The chance constraint (docs/scheduling.md, "Slack sized by risk"): a task is planned only
   // where its departure leaves the (1 − risk_alpha)-quantile of its route's learned travel time
   // before its latest start, so it starts in its window with probability >= 1 − risk_alpha.
-  // Timing and the objective stay on expected values. Nothing: plan with expected values alone.
+  // Timing and the objective stay on expected values. Nothing: plan with expected values alone
+  // (the published system; a deployment file gets kDeploymentRiskAlpha unless it says null).
   std::optional<double> risk_alpha{};
   // Under the chance constraint, the navigation monitor lets a journey run to the (1 −
   // navigation_alpha)-quantile of its learned travel time + navigation_slack before it stops it
