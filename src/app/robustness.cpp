@@ -76,14 +76,15 @@ RunFiguresSummary summarize_report(const Json& report) {
   const Json& dropped = t["dropped"];
   // A task dropped after the robot had left for it missed its window on the way (its journey came
   // back and it could not be met again): late, like one that failed too late.
-  const Json& after = t.contains("dropped_after_leaving") ? t["dropped_after_leaving"] : Json::object();
-  s.too_late = count_of(failed, "too late") + total(after) - count_of(after, "charging");
+  const Json after = t.value("dropped_after_leaving", Json::object());
+  const int late_after_leaving = total(after) - count_of(after, "charging");
+  s.too_late = count_of(failed, "too late") + late_after_leaving;
   s.navigation_overrun = count_of(failed, "navigation overrun");
   const Json& b = report["battery"];
   s.days_flat = b.value("days_flat", 0);
   s.battery = count_of(failed, "charging") + count_of(dropped, "charging") + s.days_flat;
   s.other_failures = total(failed) - s.too_late - s.navigation_overrun - count_of(failed, "charging");
-  s.dropped = total(dropped) - count_of(dropped, "charging") - (total(after) - count_of(after, "charging"));
+  s.dropped = total(dropped) - count_of(dropped, "charging") - late_after_leaving;
   s.waiting_s = report["time_s"]["waiting"].get<double>();
   s.lowest_charge = b.value("lowest", 1.0);
   return s;

@@ -75,7 +75,6 @@ void NavigateStep::advance() {
   }
   // The next edge is committed; the rest of the policy's expected route is the horizon.
   std::vector<map::EdgeIndex> route = expected_route(here);
-  heading_ = ctx_.map.to_index(route.front());
   edge_ = route.front();
   edge_since_ = ctx_.clock.now();
   ctx_.before_command();
@@ -131,11 +130,12 @@ std::optional<double> NavigateStep::success_chance(Time now) const {
 
 std::optional<Time> NavigateStep::window_open_until() const {
   const ExecutorOptions& o = ctx_.options;
-  if (purpose_ != Purpose::kToStart || !o.risk_alpha || !o.navigation_window || !heading_) return std::nullopt;
+  if (purpose_ != Purpose::kToStart || !o.risk_alpha || !o.navigation_window || !edge_) return std::nullopt;
   const Time now = ctx_.clock.now();
+  const map::NodeIndex heading = ctx_.map.to_index(*edge_);
   Duration rest{0};
-  if (*heading_ != target_) {
-    rest = ctx_.travel.quantile_travel(*heading_, target_, now, 1.0 - *o.risk_alpha);
+  if (heading != target_) {
+    rest = ctx_.travel.quantile_travel(heading, target_, now, 1.0 - *o.risk_alpha);
     if (rest >= kUnreachable) return std::nullopt;
   }
   const Time until = ctx_.book.at(*task_).latest_start(o.on_demand_patience) - rest;

@@ -97,8 +97,7 @@ class NavigateStep final : public RobotStep {
   Duration expected_{0};
   Duration offline_expected_{0};
   int failed_edges_ = 0;
-  std::optional<map::NodeIndex> heading_;  // the end of the edge last sent to the robot
-  std::optional<map::EdgeIndex> edge_;     // that edge, and when it was sent
+  std::optional<map::EdgeIndex> edge_;  // the edge last sent to the robot, and when
   Time edge_since_{};
   bool window_watch_ = false;  // the monitor's limit passed while the window was open
 };
