@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "assumptions.h"
-#include "battery_watch.h"
+#include "charging.h"
 #include "charge_planning.h"
 #include "deliveries.h"
 #include "dispatcher.h"
@@ -65,9 +65,14 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
       assumption_map_(std::make_unique<AssumptionMap>(map_, options_.dock)),
       opportunities_(std::make_unique<Opportunities>()),
       door_models_(std::make_unique<DoorModels>(zone_)) {
-  battery_ = std::make_unique<BatteryWatch>(map_);
-  drift_ = std::make_unique<PlanDrift>();
-  if (options_.battery_planning) metres_home_ = map::shortest_metres_to(map_, options_.dock);
+  charging_ = std::make_unique<Charging>(ChargingContext{.map = map_,
+                                                        .options = options_,
+                                                        .clock = clock_,
+                                                        .robot = robot_,
+                                                        .book = book_,
+                                                        .zone = zone_,
+                                                        .travel = *travel_,
+                                                        .snapshot = *offline_models_});
   robot_.set_listener(this);
   if (options_.forget_finished)
     book_.forget_finished([this] { clock_.schedule_at(clock_.now(), [this] { sweep_finished(); }); });

@@ -6,7 +6,7 @@
 #include <algorithm>
 
 #include "attempt_laws.h"
-#include "battery_watch.h"
+#include "charging.h"
 #include "dispatcher.h"
 #include "loading_times.h"
 #include "rondo/exec/executor.h"
@@ -57,10 +57,10 @@ void Executor::on_edge_finished(const EdgeAttempt& a) {
   retired_runs_.clear();
   retired_steps_.clear();
   stats_.travelling += a.duration;
-  battery_->edge_finished(a);
+  charging_->watch().edge_finished(a);
   read_battery();
   learn_from(a);
-  way_home_crossed(a);
+  charging_->crossed(a);
   save_robot_state();
   if (run_) {
     if (Step* s = run_->current()) s->on_edge_finished(a);
@@ -142,7 +142,7 @@ void Executor::on_action_finished(const ActionResult& reported) {
   retired_runs_.clear();
   retired_steps_.clear();
   stats_.acting += result.duration;
-  battery_->action_finished(result);
+  charging_->watch().action_finished(result);
   read_battery();
   learn_from(result);
   if (run_) {
@@ -155,7 +155,7 @@ void Executor::on_action_finished(const ActionResult& reported) {
 
 void Executor::on_interruptible_changed(bool interruptible) {
   if (!run_ || run_->set_robot_interruptible(interruptible) || !interruptible) return;
-  if (low_battery_) return charge_now();  // the charge waited for this moment
+  if (charging_->low()) return charge_now();  // the charge waited for this moment
   if (!running_standard() || !interruptible_now()) return;
   if (const std::optional<TaskId> ready = dispatcher_->ready_on_demand(clock_.now())) preempt_for_on_demand(*ready);
 }

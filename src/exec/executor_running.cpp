@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <utility>
 
-#include "battery_watch.h"
+#include "charging.h"
 #include "dispatcher.h"
 #include "rondo/exec/executor.h"
 #include "task_run.h"
@@ -57,7 +57,7 @@ void Executor::next() {
       case Decision::Kind::kDock: return go_to_dock();
       case Decision::Kind::kIdleUntil: return look_again_at(d.until);
       case Decision::Kind::kCharge:
-        start_planned_charge(d.until, d.length, d.level);
+        charging_->start_planned(d.until, d.length, d.level);
         return charge();
       case Decision::Kind::kStay:
         if (reoffer_for_battery()) continue;
@@ -72,7 +72,7 @@ void Executor::next() {
 // actions, a night shut out); this is the last look before the robot sets out. One that even a
 // full battery could not afford runs at once.
 bool Executor::charge_first(const TaskId& id) {
-  const std::optional<BatteryShort> short_of = battery_short_for(id, robot_.location());
+  const std::optional<Charging::Short> short_of = charging_->short_for(id, robot_.location());
   if (!short_of || short_of->needed > 1) return false;
   const Time now = clock_.now();
   if (book_.at(id).task.kind == TaskKind::kOnDemand)
@@ -80,10 +80,10 @@ bool Executor::charge_first(const TaskId& id) {
   else
     dispatcher_->planned.insert(dispatcher_->planned.begin(), id);
   book_.note(id, "waits for the charge", Outcome::kCharging, short_of->why);
-  const double hours = std::max(0.0, battery_->estimator().hours_to_charge(battery_->level(), short_of->needed));
+  const double hours = std::max(0.0, charging_->estimator().hours_to_charge(charging_->level(), short_of->needed));
   const Duration on_charger = from_seconds(hours * 3600) + minutes(1);
-  start_planned_charge(now + travel_->travel(robot_.location(), options_.dock, now) + on_charger, on_charger,
-                       short_of->needed);
+  charging_->start_planned(now + travel_->travel(robot_.location(), options_.dock, now) + on_charger, on_charger,
+                           short_of->needed);
   reschedule({}, "charging for task " + id);
   return true;
 }
@@ -141,7 +141,8 @@ void Executor::retire_trip() { retired_steps_.push_back(std::move(trip_)); }
 
 void Executor::go_to_dock() {
   if (robot_.location() == options_.dock) return;
-  if (way_home_closed_ && clock_.now() < way_home_closed_->retry_at) return look_again_at(way_home_closed_->retry_at);
+  if (const std::optional<Time> closed = charging_->way_home_closed_until(); closed && clock_.now() < *closed)
+    return look_again_at(*closed);
   trip_ = std::make_unique<NavigateStep>(
       steps_, StepHooks{.ended = [this](StepEnd e) { trip_ended(std::move(e)); },
                         .overrun = [](Outcome, const std::string&) {}},
@@ -154,7 +155,7 @@ void Executor::go_to_dock() {
 void Executor::trip_ended(StepEnd e) {
   retire_trip();
   if (e.status == StepEnd::Status::kFailed) {
-    if (options_.battery_planning && e.edge) return look_again_at(retry_way_home(*e.edge));
+    if (options_.battery_planning && e.edge) return look_again_at(charging_->retry_way_home(*e.edge));
     return look_again_at(clock_.now() + options_.slot_width);
   }
   next();

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "battery_watch.h"
+#include "charging.h"
 #include "dispatcher.h"
 #include "rondo/exec/executor.h"
 #include "scheduling.h"
@@ -34,8 +34,8 @@ std::pair<map::NodeIndex, Time> Executor::free_at() const {
   if (run_ && !run_->waiting()) run(book_.at(run_->id()), run_->acting_until());
   // Below the hard threshold (to the dock, and charged back to the resume level), or in a planned
   // charge (until its target or its end).
-  if (low_battery_ || planned_charge_) {
-    t += travel_->travel(here, options_.dock, t) + time_to_charge();
+  if (charging_->low() || charging_->planned()) {
+    t += travel_->travel(here, options_.dock, t) + charging_->time_to_charge();
     here = options_.dock;
   }
   for (const TaskId& id : dispatcher_->on_demand)  // one held back for a blocked way comes later
@@ -100,11 +100,12 @@ std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_
                           .on_board = on_board_when_free(), .risk_alpha = options_.risk_alpha};
   if (options_.battery_planning) {
     read_battery();
-    drift_->observe(clock_.now(), battery_->level());
-    in.battery = BatteryInputs{.estimator = battery_->estimator(), .level = level_when_free(free),
+    charging_->drift().observe(clock_.now(), charging_->level());
+    in.battery = BatteryInputs{.estimator = charging_->estimator(),
+                               .level = charging_->level_when_free(free, run_ && !run_->waiting()),
                                .reserve = options_.battery_reserve, .margin = options_.battery_margin,
-                               .drift_per_hour = drift_->per_hour(),
-                               .drift_variance_per_hour = drift_->variance_per_hour(),
+                               .drift_per_hour = charging_->drift().per_hour(),
+                               .drift_variance_per_hour = charging_->drift().variance_per_hour(),
                                .dock = options_.dock, .dock_when_waiting_over = options_.dock_when_waiting_over};
   }
   auto problem = pending_problem(in, pending, here, free, running);
@@ -167,7 +168,7 @@ void Executor::apply_charges(const std::vector<TaskId>& ids, const PlannedAnswer
                                       zone_.format_clock(c.start).substr(0, 5), zone_.format_clock(c.end),
                                       c.target * 100, c.before ? ", before task " + *c.before : "", why));
   old = std::move(charges);
-  drift_->planned(answer.points);
+  charging_->drift().planned(answer.points);
 }
 
 void Executor::apply_schedule(const std::vector<TaskId>& ids, const PlannedAnswer& answer, const std::string& why) {
@@ -207,9 +208,11 @@ void Executor::apply_schedule(const std::vector<TaskId>& ids, const PlannedAnswe
     // So does what the battery left out (planned charging).
     const bool for_battery =
         std::find(answer.for_battery.begin(), answer.for_battery.end(), d.task) != answer.for_battery.end();
-    const Outcome outcome = low_battery_ || for_battery ? Outcome::kCharging : drop_outcome(d.cause);
+    const Outcome outcome = charging_->low() || for_battery ? Outcome::kCharging : drop_outcome(d.cause);
     const std::string reason =
-        low_battery_  ? fmt::format("while the robot charges (about {} more): {}", duration_text(time_to_charge()), d.reason)
+        charging_->low()
+            ? fmt::format("while the robot charges (about {} more): {}", duration_text(charging_->time_to_charge()),
+                          d.reason)
         : for_battery ? (answer.refused ? d.reason : "no room beside the charge the battery needs: " + d.reason)
                       : d.reason;
     if (r.state != TaskState::kQueued) book_.transition(id, TaskState::kQueued, outcome, reason);

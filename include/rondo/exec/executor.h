@@ -71,8 +71,7 @@ struct ScheduleAnswer;
 struct ScheduleCall;
 struct PlannedAnswer;
 class AssumptionMap;
-class BatteryWatch;
-class PlanDrift;
+class Charging;
 class Deliveries;
 class DoorModels;
 class LoadingTimes;
@@ -168,7 +167,7 @@ class Executor final : public RobotListener {
   // The battery as read so far, and what was learned of its costs (executor_battery.cpp).
   BatteryFigures battery_figures() const;
   // Below the hard threshold and not yet charged back to the resume level: nothing new starts.
-  bool charging_for_battery() const { return low_battery_; }
+  bool charging_for_battery() const;
 
   // RobotListener
   void on_edge_finished(const EdgeAttempt& attempt) override;
@@ -233,36 +232,18 @@ class Executor final : public RobotListener {
 
   // the robot (executor_robot.cpp)
   void log_battery();
-  // the battery (executor_battery.cpp)
+  // The robot's last known state in the store (its node, pose, battery, fault), for a restart.
+  void save_robot_state();
+  void learn_from(const EdgeAttempt& attempt);
+  void learn_from(const ActionResult& result);
+  // The pending tasks' processing times from the loading times learned so far.
+  void refresh_learned_durations(const std::vector<TaskId>& ids);
+  Status restore_loading_times();  // executor_restore.cpp
+  // the battery (executor_battery.cpp; what is kept about it: Charging)
   void read_battery();  // a reading for the BatteryWatch
-  double resume_level() const;
-  bool below_threshold() const;  // by the last reading (or below home_level(), when charging is planned)
-  // Planned charging: the reserve, plus what the way to the dock from here is predicted to take,
-  // plus the margin; 0 when charging is not planned.
-  double home_level() const;
-  double way_home_hours() const;             // from here to the dock, now: expected, at most a day
-  BatteryPrediction way_home(double hours) const;  // the same way, `hours` of it moving
-  double margin_over(const BatteryPrediction& p, double hours) const;  // as the plans keep it
-  double edge_cost(map::EdgeIndex e) const;  // the battery one crossing of `e` takes, expected
-  // From the last reading to the resume level (or a planned charge's target, by its end), as learned.
-  Duration time_to_charge() const;
-  // The state of charge predicted when the robot is next free (at `free`, by free_at()).
-  double level_when_free(Time free) const;
-  // Planned charging: on the charger until the planned charge's target or its end.
-  void start_planned_charge(Time until, Duration length, double target);
-  bool charging_as_planned();  // in must_charge(): false (and noted) once it is done
+  bool charging_as_planned();  // in must_charge(): false (and rescheduled) once it is done
   // Tasks dropped for the battery are offered again while the robot stands on the charger.
   bool reoffer_for_battery();
-  // Below the threshold or below home_level(): the robot goes to charge (noted, counted).
-  void enter_low_battery();
-  // Planned charging: the level `id` needs now when it leaves from `from` (there, its work and the
-  // way back to the charger, above the reserve and the margin), and why, when the battery has
-  // less; nothing when it can.
-  struct BatteryShort {
-    double needed = 0;
-    std::string why;
-  };
-  std::optional<BatteryShort> battery_short_for(const TaskId& id, map::NodeIndex from) const;
   // In next(): when `id` is short of battery, it goes back first in its queue and a charge to
   // what it needs starts (true; then charge()).
   bool charge_first(const TaskId& id);
@@ -273,13 +254,6 @@ class Executor final : public RobotListener {
   // In next(): true while the robot must charge (it enters or leaves that state here).
   bool must_charge();
   void charge();  // to the dock, and wait there
-  // The robot's last known state in the store (its node, pose, battery, fault), for a restart.
-  void save_robot_state();
-  void learn_from(const EdgeAttempt& attempt);
-  void learn_from(const ActionResult& result);
-  // The pending tasks' processing times from the loading times learned so far.
-  void refresh_learned_durations(const std::vector<TaskId>& ids);
-  Status restore_loading_times();  // executor_restore.cpp
 
   // running (executor_running.cpp)
   void kick();  // reconsider what to do now
@@ -293,9 +267,6 @@ class Executor final : public RobotListener {
   void requeue_waiting(Outcome outcome, const std::string& reason);
   void go_to_dock();
   void trip_ended(StepEnd end);
-  // A trip to the dock failed on `edge` with planned charging on: when to try again (noted).
-  Time retry_way_home(map::EdgeIndex edge);
-  void way_home_crossed(const EdgeAttempt& a);  // clears way_home_closed_ once the way is open
   void look_again_at(Time at);
   void preempt_for(Outcome outcome, const std::string& reason, std::vector<TaskId> then_schedule);
   void requeue_preempted(const TaskId& id, Outcome outcome, const std::string& reason);
@@ -414,29 +385,7 @@ class Executor final : public RobotListener {
   std::optional<Time> fault_since_;
   bool started_ = false;
   bool out_of_service_ = false;  // set_out_of_service(): next() starts nothing
-  std::unique_ptr<BatteryWatch> battery_;
-  bool low_battery_ = false;  // below the hard threshold, not yet charged back to the resume level
-  int low_battery_count_ = 0;
-  Time low_since_{};
-  struct PlannedChargeRun {
-    Time since;
-    Time until;       // the planned end; moved on by the time it took to reach the charger
-    Duration length;  // planned on the charger
-    double target = 1;
-    bool on_charger = false;
-  };
-  std::optional<PlannedChargeRun> planned_charge_;  // a planned charge under way
-  Time battery_retry_{};               // the next reschedule that re-offers tasks dropped for the battery
-  std::unique_ptr<PlanDrift> drift_;  // what the battery's plans missed so far
-  std::vector<double> metres_home_;   // from every node to the dock, for home_level()
-  // Planned charging: the way to the dock found closed (a trip failed on `edge`). No trip starts
-  // before `retry_at`; cleared when the robot crosses the edge or reaches the dock.
-  struct WayHomeClosed {
-    map::EdgeIndex edge = 0;
-    int failures = 0;
-    Time retry_at{};
-  };
-  std::optional<WayHomeClosed> way_home_closed_;
+  std::unique_ptr<Charging> charging_;  // the battery: readings, thresholds, charges
   // assumptions and opportunities
   std::unique_ptr<AssumptionMap> assumption_map_;
   std::vector<Assumption> assumptions_;
