@@ -196,19 +196,26 @@ Json travel_table(const map::TopoMap& map, std::span<const Traversal> log, Time 
 // The error of the travel estimates the executor used when it left for each task (the online
 // model, when on), next to what the nightly snapshot alone said for the same journeys, in Table
 // I's columns: relative error (estimate - actual) / actual of the navigations that arrived.
-Json live_estimates(const exec::Executor& executor) {
+Json live_estimates(std::span<const exec::NavigationRecord> navigations) {
   std::vector<double> used, offline;
-  for (const exec::NavigationRecord& n : executor.navigations()) {
+  double used_sum = 0, offline_sum = 0, actual_sum = 0;
+  for (const exec::NavigationRecord& n : navigations) {
     if (!n.arrived || n.actual <= Duration{0}) continue;
     const double actual = to_seconds(n.actual);
     used.push_back((to_seconds(n.expected) - actual) / actual);
     offline.push_back((to_seconds(n.offline_expected) - actual) / actual);
+    used_sum += to_seconds(n.expected);
+    offline_sum += to_seconds(n.offline_expected);
+    actual_sum += actual;
   }
-  const auto row = [](const plan::ErrorSummary& e) {
-    return Json{{"q10", e.q10},           {"q25", e.q25}, {"q75", e.q75},    {"q90", e.q90},
-                {"mean_abs", e.mean_abs}, {"std", e.std}, {"count", e.count}};
+  const auto row = [actual_sum](const plan::ErrorSummary& e, double sum) {
+    return Json{{"q10", e.q10},   {"q25", e.q25},
+                {"q75", e.q75},   {"q90", e.q90},
+                {"mean_abs", e.mean_abs}, {"std", e.std},
+                {"count", e.count}, {"sum_ratio", actual_sum > 0 ? sum / actual_sum : 0.0}};
   };
-  return Json{{"used", row(plan::summarize_errors(used))}, {"offline_snapshot", row(plan::summarize_errors(offline))}};
+  return Json{{"used", row(plan::summarize_errors(used), used_sum)},
+              {"offline_snapshot", row(plan::summarize_errors(offline), offline_sum)}};
 }
 
 Json weekly_summary(std::span<const Traversal> log, std::span<const store::Event> events, Time from, Time to) {
@@ -285,7 +292,7 @@ Json run_report(const exec::Executor& executor, const RunFigures& figures) {
                      {"charging", to_seconds(figures.charging)}};
   j["scheduler_calls"] = s.schedules;
   j["model_refits"] = s.refits;
-  j["live_estimates"] = live_estimates(executor);
+  j["live_estimates"] = live_estimates(executor.navigations());
   j["battery"] = battery_summary(executor);
   return j;
 }

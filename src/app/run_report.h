@@ -36,8 +36,10 @@ Json travel_table(const map::TopoMap& map, std::span<const Traversal> log, Time 
                   const TimeZone& zone);
 
 // The estimates the executor used (NavigationRecord::expected) and the snapshot's alone, scored
-// on the same journeys in Table I's columns; report.json's "live_estimates".
-Json live_estimates(const exec::Executor& executor);
+// on the same journeys (those that arrived) in Table I's columns, with each estimate's sum over the
+// sum of the actual times ("sum_ratio": 1 right on the whole, above 1 over-estimating);
+// report.json's "live_estimates".
+Json live_estimates(std::span<const exec::NavigationRecord> navigations);
 
 // Per 7-day block from `from` (the last may be shorter): edge attempts, failed ones, the edge that
 // failed most, and tasks failed on navigation by code (navigation overrun, navigation gave up, no
