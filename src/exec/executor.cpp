@@ -7,8 +7,8 @@
 #include <utility>
 
 #include "assumptions.h"
-#include "charging.h"
 #include "charge_planning.h"
+#include "charging.h"
 #include "deliveries.h"
 #include "dispatcher.h"
 #include "door_models.h"

@@ -101,7 +101,7 @@ TEST(LearnCommand, WithAMapLearnsItsEdgesWithDistancePriors) {
   const auto dir = std::filesystem::temp_directory_path() / "rondo_cli_learn_map";
   const auto db = witham_db(dir);
   const auto models = (dir / "models.json").string();
-  auto learned = run_cli({"learn", "--db", db, "--map", RONDO_SOURCE_DIR "/examples/witham/map.yaml", "--zone",
+  auto learned = run_cli({"learn", "--db", db, "--map", (rondo::testing::source_dir() / "examples/witham/map.yaml").string(), "--zone",
                           "Europe/London", "-o", models, "--json"});
   ASSERT_EQ(learned.exit_code, 0) << learned.err;
   const Json summary = Json::parse(learned.out);
@@ -124,7 +124,7 @@ TEST(LearnCommand, MapEdgesWithoutDataGetThePriorModel) {
   const auto models = (dir / "models.json").string();
   // A map of another building: no edge id matches the log.
   auto learned =
-      run_cli({"learn", "--db", db, "--map", RONDO_SOURCE_DIR "/tests/data/maps/small.yaml", "-o", models, "--json"});
+      run_cli({"learn", "--db", db, "--map", (rondo::testing::source_dir() / "tests/data/maps/small.yaml").string(), "-o", models, "--json"});
   ASSERT_EQ(learned.exit_code, 0) << learned.err;
   const Json summary = Json::parse(learned.out);
   EXPECT_EQ(summary["edges_with_own_model"], 0);

@@ -9,10 +9,11 @@
 
 #include "rondo/core/traversal.h"
 #include "rondo/learn/edge_predictor.h"
+#include "source_dir.h"
 
 namespace rondo::learn::testing {
 
-inline const char* kWithamDir = RONDO_SOURCE_DIR "/../shared/data/witham_wharf";
+inline const std::string kWithamDir = (rondo::testing::source_dir() / ".." / "shared" / "data" / "witham_wharf").string();
 
 struct WithamEdge {
   std::string id;

@@ -10,16 +10,17 @@
 #include <vector>
 
 #include "rondo/map/topo_map.h"
+#include "source_dir.h"
 
 namespace rondo::map::testing {
 
 // tests/data/maps of this project.
 inline std::filesystem::path fixture(const std::string& name) {
-  return std::filesystem::path(RONDO_SOURCE_DIR) / "tests" / "data" / "maps" / name;
+  return rondo::testing::source_dir() / "tests" / "data" / "maps" / name;
 }
 // The real STRANDS maps, read in place beside the project.
 inline std::filesystem::path real_map(const std::string& name) {
-  return std::filesystem::path(RONDO_SOURCE_DIR) / ".." / "shared" / "data" / "maps" / name;
+  return rondo::testing::source_dir() / ".." / "shared" / "data" / "maps" / name;
 }
 
 // A fresh folder under the system temp folder, removed at the end of the test.

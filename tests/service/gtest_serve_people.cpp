@@ -11,13 +11,14 @@
 #include "rondo/sim/sim_robot.h"
 #include "rondo/store/store.h"
 #include "serve_session.h"
+#include "source_dir.h"
 #include "test_files.h"
 
 namespace rondo::test {
 namespace {
 
 TEST(ServePeople, RequestsArriveWhenDueEveryDay) {
-  auto d = app::load_deployment(std::filesystem::path(RONDO_SOURCE_DIR) / "examples/g4s/deployment.yaml");
+  auto d = app::load_deployment(rondo::testing::source_dir() / "examples/g4s/deployment.yaml");
   ASSERT_TRUE(d.ok()) << d.error().message;
   auto parts = app::load_parts(*d);
   ASSERT_TRUE(parts.ok()) << parts.error().message;

@@ -4,11 +4,13 @@
 
 #include <future>
 
+#include "source_dir.h"
+
 namespace rondo::test {
 namespace {
 
 app::DeploymentParts example_parts(const std::string& deployment) {
-  auto d = app::load_deployment(std::filesystem::path(RONDO_SOURCE_DIR) / deployment);
+  auto d = app::load_deployment(rondo::testing::source_dir() / deployment);
   if (!d) throw std::runtime_error(d.error().message);
   auto parts = app::load_parts(*d);
   if (!parts) throw std::runtime_error(parts.error().message);

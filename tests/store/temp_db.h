@@ -13,6 +13,8 @@
 #include <string>
 #include <string_view>
 
+#include "source_dir.h"
+
 namespace rondo::store::testing {
 
 class TempDb {
@@ -49,7 +51,7 @@ class TempDb {
 
 // The Witham Wharf logs, read in place from the shared data folder.
 inline std::filesystem::path witham_dir() {
-  return std::filesystem::path(RONDO_SOURCE_DIR) / ".." / "shared" / "data" / "witham_wharf";
+  return rondo::testing::source_dir() / ".." / "shared" / "data" / "witham_wharf";
 }
 
 inline constexpr std::size_t kWithamAttempts = 32078;
