@@ -41,10 +41,10 @@ class GatedScheduler final : public schedule::Scheduler {
     }
     changed_.notify_all();
   }
-  // Waits (60 s at most) until a solve waits at the closed gate.
-  bool wait_for_a_solve() {
-    std::unique_lock lock(mutex_);
-    return changed_.wait_for(lock, std::chrono::seconds(60), [this] { return waiting_ > 0; });
+  // True while a solve waits at the closed gate.
+  bool holding_a_solve() {
+    std::lock_guard lock(mutex_);
+    return waiting_ > 0;
   }
 
  private:
@@ -127,8 +127,9 @@ TEST(BackgroundScheduling, TheOldScheduleRunsMeanwhileAndAStaleAnswerIsNotApplie
   // Answered after its commit, not after the reschedule: the worker is stuck at the gate.
   ASSERT_TRUE(s.executor().add_task(task("B", "Lab", s.at("08:00"), s.at("12:00"), minutes(5)), "api").ok());
   EXPECT_TRUE(store::get_task(s.store(), "B").ok());
-  s.settle();
-  ASSERT_TRUE(gate->wait_for_a_solve());  // B's problem is in flight
+  // B's problem is in flight. The clock's posts are delivered meanwhile: the worker says it is
+  // ready for B's problem only after A's answer, in a post of its own.
+  ASSERT_TRUE(s.settle_until([&] { return gate->holding_a_solve(); }));
   EXPECT_FALSE(s.planned("B"));
   // The old schedule goes on meanwhile: A drives to the Office and acts.
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
@@ -153,8 +154,7 @@ TEST(BackgroundScheduling, AChangeMeanwhileMakesTheAnswerStale) {
   ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("10:00"), s.at("11:00"), minutes(5)), "test").ok());
   gate->set_open(false);
   s.executor().start();
-  s.settle();
-  ASSERT_TRUE(gate->wait_for_a_solve());
+  ASSERT_TRUE(s.settle_until([&] { return gate->holding_a_solve(); }));
   // A's window moves while its first problem is solved: that answer (10:00) must not be used.
   const TimeWindow later{s.at("14:00"), s.at("15:00")};
   ASSERT_TRUE(s.executor().update_task("A", later, std::nullopt).ok());
