@@ -25,10 +25,21 @@ store::Store open_store(const std::filesystem::path& data) {
   return std::move(*s);
 }
 
+// The machine's monotonic clock, read as wall time from `start` on.
+exec::SystemClock::Sources starting_at(const std::string& start) {
+  auto at = parse_time(start);
+  if (!at) throw std::runtime_error(at.error().message);
+  const auto steady_start = exec::SystemClock::Steady::now();
+  return {.wall = [at = *at, steady_start] {
+            return at + std::chrono::duration_cast<Duration>(exec::SystemClock::Steady::now() - steady_start);
+          },
+          .steady = [] { return exec::SystemClock::Steady::now(); }};
+}
+
 }  // namespace
 
 LiveService::LiveService(const std::filesystem::path& data, LiveOptions o)
-    : parts_(example_parts(o.deployment)), store_(open_store(data)), clock_(o.speed), token_(o.token) {
+    : parts_(example_parts(o.deployment)), store_(open_store(data)), clock_(o.speed, starting_at(o.start)), token_(o.token) {
   robot_ = std::make_unique<sim::SimRobot>(clock_, parts_.map, parts_.world,
                                            sim::SimRobotOptions{.start = parts_.dock, .dock = parts_.dock, .seed = 3});
   exec::ExecutorOptions eo;

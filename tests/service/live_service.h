@@ -1,6 +1,6 @@
 // A live service for the API tests: the G4S example's map and simulated world (or another
-// example's, LiveOptions::deployment), an executor on a
-// SystemClock running on its own thread, and a service::Server on an ephemeral loopback port,
+// example's, LiveOptions::deployment), an executor on a SystemClock that starts at
+// LiveOptions::start and runs on its own thread, and a service::Server on an ephemeral loopback port,
 // with an httplib client pointed at it. Conditions are awaited with generous deadlines.
 #pragma once
 
@@ -33,6 +33,9 @@ struct LiveOptions {
   int threads = 16;
   Duration answer_timeout = seconds(30);
   std::string deployment = "examples/g4s/deployment.yaml";  // under the source tree
+  // Where the service's clock starts: a Wednesday morning (UTC), whatever the machine's date, so
+  // that "tomorrow", today's schedule and an hour from now never straddle a midnight by chance.
+  std::string start = "2026-11-25T10:00:00Z";
 };
 
 class LiveService {
