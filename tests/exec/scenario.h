@@ -32,6 +32,7 @@
 #include "rondo/sim/sim_world.h"
 #include "rondo/store/store.h"
 #include "rondo/store/events.h"
+#include "test_files.h"
 
 namespace rondo::exec::testing {
 
@@ -65,9 +66,11 @@ inline std::filesystem::path fresh_db_path() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "scenario";
   std::replace(name.begin(), name.end(), '/', '_');  // parameterised tests: Suite/Test/Param
-  auto dir = std::filesystem::temp_directory_path() / "rondo-exec-tests";
+  // The process's own folder, removed at its exit with the store's -wal and -shm files.
+  auto dir = std::filesystem::temp_directory_path() / ("rondo-exec-tests-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
-  auto file = dir / (name + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".sqlite");
+  if (!std::getenv("RONDO_KEEP_TEST_DB")) rondo::test::remove_at_exit(dir);
+  auto file = dir / (name + "-" + std::to_string(counter++) + ".sqlite");
   std::filesystem::remove(file);
   return file;
 }

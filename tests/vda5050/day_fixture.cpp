@@ -13,6 +13,7 @@
 #include "rondo/map/map_loader.h"
 #include "rondo/vda5050/decode.h"
 #include "run_session.h"
+#include "test_files.h"
 
 namespace rondo::vda5050::testing {
 namespace {
@@ -116,6 +117,7 @@ std::unique_ptr<VdaDay> VdaDay::start(std::string& why) {
   }
   day->broker_ = Broker::start(why);
   if (!day->broker_) return nullptr;
+  rondo::test::remove_at_exit(day->broker_->dir());  // with the run's files, kept when a test fails
   auto map = map::load_map("examples/g4s/map.yaml");
   if (!map) {
     why = map.error().message;

@@ -4,6 +4,7 @@
 
 #include "rondo/vda5050/mqtt_client.h"
 #include "vda5050/event_queue.h"
+#include "test_files.h"
 #include "vda5050/processes.h"
 
 namespace rondo::vda5050 {
@@ -25,6 +26,7 @@ TEST(Vda5050Mqtt, PublishSubscribeAndResubscribeAfterABrokerRestart) {
   std::string why;
   auto broker = Broker::start(why);
   if (!broker) GTEST_SKIP() << why;
+  rondo::test::remove_at_exit(broker->dir());
 
   EventQueue events;
   std::vector<std::string> received;

@@ -22,6 +22,7 @@
 #include "rondo/vda5050/order_builder.h"
 #include "rondo/vda5050/progress.h"
 #include "vda5050/event_queue.h"
+#include "test_files.h"
 #include "vda5050/processes.h"
 #include "vda5050/schema_check.h"
 
@@ -216,6 +217,7 @@ TEST(Vda5050Peer, OrderUpdateActionsAndCancelAgainstVdaLib) {
   if (node.empty()) GTEST_SKIP() << "node is not installed (scripts/setup installs it)";
   auto broker = testing::Broker::start(why);
   if (!broker) GTEST_SKIP() << why;
+  rondo::test::remove_at_exit(broker->dir());
   ASSERT_TRUE(fs::exists("tests/vda5050/peer/node_modules/vda-5050-lib"))
       << "the peer is not installed: run scripts/setup (npm ci in tests/vda5050/peer)";
 
@@ -330,6 +332,7 @@ TEST(Vda5050Peer, AKilledVehicleLeavesItsLastWillAndARestartedOneIsTaken) {
   if (node.empty()) GTEST_SKIP() << "node is not installed (scripts/setup installs it)";
   auto broker = testing::Broker::start(why);
   if (!broker) GTEST_SKIP() << why;
+  rondo::test::remove_at_exit(broker->dir());
   ASSERT_TRUE(fs::exists("tests/vda5050/peer/node_modules/vda-5050-lib"))
       << "the peer is not installed: run scripts/setup (npm ci in tests/vda5050/peer)";
   auto map = map::load_map("examples/g4s/map.yaml");
