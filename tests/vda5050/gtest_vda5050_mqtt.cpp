@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "rondo/vda5050/mqtt_client.h"
-#include "vda5050/event_queue.h"
 #include "test_files.h"
+#include "vda5050/event_queue.h"
 #include "vda5050/processes.h"
 
 namespace rondo::vda5050 {

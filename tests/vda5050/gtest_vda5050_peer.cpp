@@ -21,8 +21,8 @@
 #include "rondo/vda5050/mqtt_client.h"
 #include "rondo/vda5050/order_builder.h"
 #include "rondo/vda5050/progress.h"
-#include "vda5050/event_queue.h"
 #include "test_files.h"
+#include "vda5050/event_queue.h"
 #include "vda5050/processes.h"
 #include "vda5050/schema_check.h"
 
