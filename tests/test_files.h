@@ -30,7 +30,8 @@ inline constexpr bool kSanitized = false;
 
 namespace detail {
 
-// The folders fresh_dir() made in this process, removed at its exit when no test failed.
+// The folders of fresh_dir() and remove_at_exit() in this process, removed at its exit when no
+// test failed.
 class RemovedAtExit {
  public:
   void add(const std::filesystem::path& dir) {
