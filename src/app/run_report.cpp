@@ -218,10 +218,29 @@ Json live_estimates(std::span<const exec::NavigationRecord> navigations) {
               {"offline_snapshot", row(plan::summarize_errors(offline), offline_sum)}};
 }
 
+namespace {
+
+// The robot events of the executor's own journeys (docs/executor.md, "Journeys").
+constexpr std::array<const char*, 5> kOwnJourney{"departed", "arrived", "waits", "gave up", "stopped"};
+
+// A week's own journeys: each event's count, 0 when none.
+Json own_journeys(const std::map<std::string, int>& counts) {
+  Json j = Json::object();
+  for (const char* event : kOwnJourney) {
+    const auto it = counts.find(event);
+    j[std::string(event) == "gave up" ? "gave_up" : event] = it == counts.end() ? 0 : it->second;
+  }
+  return j;
+}
+
+}  // namespace
+
 Json weekly_summary(std::span<const Traversal> log, std::span<const store::Event> events, Time from, Time to) {
   struct Week {
     int attempts = 0, failed = 0;
+    int task_journeys = 0;  // a task's departures (to its place or its end place)
     std::map<std::string, int> failed_by_edge, navigation_failures;
+    std::map<std::string, int> own_journeys;  // the executor's own journeys' robot events, by event
   };
   const Duration week = hours(24 * 7);
   std::vector<Week> weeks(static_cast<std::size_t>(std::max<std::int64_t>(1, (to - from + week - Duration{1}) / week)));
@@ -243,7 +262,12 @@ Json weekly_summary(std::span<const Traversal> log, std::span<const store::Event
                                                             exec::Outcome::kNoRouteNow};
   for (const store::Event& e : events) {
     Week* w = week_of(e.time);
-    if (w == nullptr || e.event != "failed") continue;
+    if (w == nullptr) continue;
+    if (e.subject == store::Subject::kTask && e.code == exec::to_string(exec::Outcome::kDeparted)) ++w->task_journeys;
+    if (e.subject == store::Subject::kRobot &&
+        std::find(kOwnJourney.begin(), kOwnJourney.end(), e.event) != kOwnJourney.end())
+      ++w->own_journeys[e.event];
+    if (e.event != "failed") continue;
     const std::optional<exec::Outcome> code = exec::parse_outcome(e.code);
     if (code && std::find(kNavigation.begin(), kNavigation.end(), *code) != kNavigation.end())
       ++w->navigation_failures[e.code];
@@ -255,7 +279,8 @@ Json weekly_summary(std::span<const Traversal> log, std::span<const store::Event
              {"from", format_time(from + week * static_cast<std::int64_t>(i))},
              {"edge_attempts", w.attempts},
              {"failed_attempts", w.failed},
-             {"navigation_failures", w.navigation_failures}};
+             {"navigation_failures", w.navigation_failures},
+             {"journeys", {{"task", w.task_journeys}, {"own", own_journeys(w.own_journeys)}}}};
     // The edge that failed most (the first in id order among equals: a stable report).
     const auto most = std::max_element(w.failed_by_edge.begin(), w.failed_by_edge.end(),
                                        [](const auto& a, const auto& b) { return a.second < b.second; });

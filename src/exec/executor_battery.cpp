@@ -84,7 +84,7 @@ bool Executor::must_charge() {
 }
 
 void Executor::charge() {
-  if (robot_.location() != options_.dock) return go_to_dock();
+  if (robot_.location() != options_.dock) return go_to_dock(JourneyPurpose::kCharge);
   // On the charger: look again when the resume level is expected (at least every slot).
   look_again_at(clock_.now() + std::clamp(charging_->time_to_charge() + seconds(1), seconds(1), options_.slot_width));
 }

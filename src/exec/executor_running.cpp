@@ -17,10 +17,7 @@ void Executor::kick() {
     if (!run_->waiting()) return;  // a task navigates or acts: it goes on
     return requeue_waiting(Outcome::kScheduleChanged, "waiting interrupted: the schedule changed");
   }
-  if (trip_) {
-    if (robot_.busy()) return trip_->halt();  // trip_ended() looks again
-    retire_trip();
-  }
+  if (trip_) return trip_->halt();  // trip_ended() looks again
   next();
 }
 
@@ -37,7 +34,7 @@ void Executor::next() {
   if (run_ || trip_ || robot_.busy() || in_fault_) return;  // a fault: on_ready() comes back here
   if (look_again_ != 0) clock_.cancel(look_again_);
   look_again_ = 0;
-  if (out_of_service_) return go_to_dock();  // set_out_of_service(): nothing new starts
+  if (out_of_service_) return go_to_dock(JourneyPurpose::kOutOfService);  // nothing new starts
   if (must_charge()) return charge();        // below the battery's hard threshold
   const Time now = clock_.now();
   const map::NodeIndex here = robot_.location();
@@ -54,7 +51,7 @@ void Executor::next() {
         book_.transition(d.task, TaskState::kFailed, d.outcome, d.reason);
         reschedule({}, "task " + d.task + " failed");
         continue;
-      case Decision::Kind::kDock: return go_to_dock();
+      case Decision::Kind::kDock: return go_to_dock(JourneyPurpose::kDock);
       case Decision::Kind::kIdleUntil: return look_again_at(d.until);
       case Decision::Kind::kCharge:
         charging_->start_planned(d.until, d.length, d.level);
@@ -139,26 +136,61 @@ void Executor::end_wait() {
 void Executor::retire_run() { retired_runs_.push_back(std::move(run_)); }
 void Executor::retire_trip() { retired_steps_.push_back(std::move(trip_)); }
 
-void Executor::go_to_dock() {
+void Executor::go_to_dock(JourneyPurpose purpose) {
   if (robot_.location() == options_.dock) return;
   if (const std::optional<Time> closed = charging_->way_home_closed_until(); closed && clock_.now() < *closed)
     return look_again_at(*closed);
+  // Its monitor's end is its own (NavigateStep::overran): the overrun hook is a task's.
   trip_ = std::make_unique<NavigateStep>(
       steps_, StepHooks{.ended = [this](StepEnd e) { trip_ended(std::move(e)); },
                         .overrun = [](Outcome, const std::string&) {}},
-      NavigateStep::Purpose::kDock, std::nullopt, options_.dock);
+      purpose, std::nullopt, options_.dock);
   trip_->start();
 }
 
-// A trip of the executor's own that fails (no way to the dock now) is dropped, and the executor
-// looks again after a slot, or, when the battery is planned, when the way is likely open again.
+// How a journey of the executor's own ends (docs/executor.md, "Journeys"): arrived, the executor
+// goes on; stopped for something else to do, a `stopped` robot event; a way found blocked (before
+// leaving, or an edge that failed and is not worth trying again now) under the `wait` policy, a
+// `waits` event and the executor looks again when the way is likely passable (with the battery
+// planned, when the way home is likely open again: Charging::retry_way_home); otherwise a `gave
+// up` event, and it looks again after a slot.
 void Executor::trip_ended(StepEnd e) {
+  const std::string journey = fmt::format("the journey to {} ({})", map_.node(trip_->target()).name, trip_->errand());
   retire_trip();
-  if (e.status == StepEnd::Status::kFailed) {
-    if (options_.battery_planning && e.edge) return look_again_at(charging_->retry_way_home(*e.edge));
-    return look_again_at(clock_.now() + options_.slot_width);
+  const Time now = clock_.now();
+  const std::string here = map_.node(robot_.location()).name;
+  switch (e.status) {
+    case StepEnd::Status::kDone: return next();
+    case StepEnd::Status::kHalted:
+      book_.note_robot("stopped", Outcome::kScheduleChanged,
+                       fmt::format("{} stopped at {}: the executor looks again at what to do", journey, here));
+      return next();
+    case StepEnd::Status::kBlocked:
+    case StepEnd::Status::kFailed: break;
   }
-  next();
+  if (options_.battery_planning && e.edge && !e.not_before)
+    return look_again_at(charging_->retry_way_home(*e.edge));
+  std::optional<Time> again = e.not_before;
+  if (e.status == StepEnd::Status::kBlocked && !again) {
+    if (const std::optional<std::pair<Time, double>> open = passable_again(*e.edge, now + hours(24))) {
+      again = open->first;
+      e.reason += fmt::format("; {} is likely passable again at {} (p = {:.2f})", map_.edge(*e.edge).id,
+                              zone_.format_clock(open->first), open->second);
+    } else {
+      e.reason += fmt::format("; {} is not likely passable again within a day", map_.edge(*e.edge).id);
+    }
+  }
+  if (again) {
+    book_.note_robot("waits", Outcome::kNoRouteNow,
+                     fmt::format("{} waits at {}: {}; it looks again at {}", journey, here, e.reason,
+                                 zone_.format_clock(*again)));
+    return look_again_at(*again);
+  }
+  const Time later = now + (e.status == StepEnd::Status::kBlocked ? hours(24) : options_.slot_width);
+  book_.note_robot("gave up", e.outcome,
+                   fmt::format("{} gave up at {}: {}; it looks again at {}", journey, here, e.reason,
+                               zone_.format_clock(later)));
+  look_again_at(later);
 }
 
 void Executor::look_again_at(Time at) {
@@ -181,18 +213,22 @@ bool Executor::hold_back(const TaskId& id, map::EdgeIndex edge, std::optional<Ti
     book_.set_not_before(id, *leave_at);
     return true;
   }
-  const Time now = clock_.now();
-  const Time latest = book_.at(id).latest_start(options_.on_demand_patience);
-  for (Time t = planner_->slot_start(now) + options_.slot_width; t <= latest; t += options_.slot_width) {
+  const std::optional<std::pair<Time, double>> open =
+      passable_again(edge, book_.at(id).latest_start(options_.on_demand_patience));
+  if (!open) return false;
+  book_.set_not_before(id, open->first);
+  book_.note(id, "retry planned", Outcome::kNoRouteNow,
+             fmt::format("{} is likely passable again at {} (p = {:.2f}): not scheduled before then",
+                         map_.edge(edge).id, zone_.format_clock(open->first), open->second));
+  return true;
+}
+
+std::optional<std::pair<Time, double>> Executor::passable_again(map::EdgeIndex edge, Time until) const {
+  for (Time t = planner_->slot_start(clock_.now()) + options_.slot_width; t <= until; t += options_.slot_width) {
     const double p = models_->outcome(edge, t).success_probability;
-    if (p < kLikelyPassable) continue;
-    book_.set_not_before(id, t);
-    book_.note(id, "retry planned", Outcome::kNoRouteNow,
-               fmt::format("{} is likely passable again at {} (p = {:.2f}): not scheduled before then",
-                           map_.edge(edge).id, zone_.format_clock(t), p));
-    return true;
+    if (p >= kLikelyPassable) return std::pair{t, p};
   }
-  return false;
+  return std::nullopt;
 }
 
 void Executor::hold_on_demand(const TaskId& id, Outcome outcome, const std::string& reason) {

@@ -20,8 +20,7 @@ void NavigateStep::start() {
   started_ = now;
   expected_ = ctx_.travel.travel(here, target_, now);
   if (purpose_ == Purpose::kToStart) offline_expected_ = ctx_.offline_travel.travel(here, target_, now);
-  if (purpose_ == Purpose::kDock) return advance();
-  if (purpose_ == Purpose::kToEnd && here == target_) return end({.status = StepEnd::Status::kDone});
+  if (purpose_ != Purpose::kToStart && here == target_) return end({.status = StepEnd::Status::kDone});
   const std::string& to = ctx_.map.node(target_).name;
   const std::string& from = ctx_.map.node(here).name;
   if (expected_ >= kUnreachable) {
@@ -29,13 +28,19 @@ void NavigateStep::start() {
                 .outcome = Outcome::kNoRoute,
                 .reason = fmt::format("no route: from {} to {} at {}", from, to, ctx_.clock_text(now))});
   }
-  if (purpose_ == Purpose::kToStart) {
+  if (purpose_ != Purpose::kToEnd) {
     if (std::optional<StepEnd> wait = leave_later(here, now)) return end(std::move(*wait));
   }
-  ctx_.book.transition(*task_, TaskState::kNavigating, Outcome::kDeparted,
-                       fmt::format("to {}{} from {}, expected travel {}", to,
-                                   purpose_ == Purpose::kToEnd ? " (its end place)" : "", from,
-                                   duration_text(expected_)));
+  if (task_) {
+    ctx_.book.transition(*task_, TaskState::kNavigating, Outcome::kDeparted,
+                         fmt::format("to {}{} from {}, expected travel {}", to,
+                                     purpose_ == Purpose::kToEnd ? " (its end place)" : "", from,
+                                     duration_text(expected_)));
+  } else {
+    ctx_.book.note_robot("departed", Outcome::kDeparted,
+                         fmt::format("to {} ({}) from {}, expected travel {}", to, errand(), from,
+                                     duration_text(expected_)));
+  }
   const ExecutorOptions& o = ctx_.options;
   Monitor::Limit limit = Monitor::limit("navigation overrun: still travelling", "the expected travel time", expected_,
                                         o.navigation_overrun, o.navigation_slack);
@@ -57,6 +62,22 @@ void NavigateStep::start() {
   advance();
 }
 
+const char* NavigateStep::errand() const {
+  switch (purpose_) {
+    case Purpose::kDock: return "idle: back to the dock";
+    case Purpose::kOutOfService: return "out of service: to the dock";
+    case Purpose::kCharge: return "to charge";
+    case Purpose::kToStart:
+    case Purpose::kToEnd: break;
+  }
+  return "a task's journey";
+}
+
+StepEnd NavigateStep::halted_end() {
+  if (gave_up_) return *gave_up_;
+  return {.status = StepEnd::Status::kHalted};
+}
+
 void NavigateStep::advance() {
   const map::NodeIndex here = ctx_.robot.location();
   if (here == target_) return arrived();
@@ -75,13 +96,19 @@ void NavigateStep::advance() {
   }
   // The next edge is committed; the rest of the policy's expected route is the horizon.
   std::vector<map::EdgeIndex> route = expected_route(here);
+  if (edge_ != route.front()) failures_in_a_row_ = 0;
   edge_ = route.front();
   edge_since_ = ctx_.clock.now();
+  edge_p_ = std::clamp(ctx_.models.outcome(*edge_, edge_since_).success_probability, 0.0, 1.0);
   ctx_.before_command();
   ctx_.robot.drive(Route{.edges = std::move(route), .committed = 1});
 }
 
 void NavigateStep::overran(const std::string& why) {
+  if (!task_) {  // an own journey: stopped where it is; the executor decides what comes next
+    gave_up_ = StepEnd{.status = StepEnd::Status::kFailed, .outcome = Outcome::kNavigationOverrun, .reason = why};
+    return halt();
+  }
   const std::optional<Time> until = window_open_until();
   if (!until) return hooks_.overrun(Outcome::kNavigationOverrun, why);
   const Time now = ctx_.clock.now();
@@ -168,16 +195,23 @@ void NavigateStep::arrived() {
     ctx_.navigations.push_back({.task = *task_, .start = started_, .expected = expected_,
                                 .offline_expected = offline_expected_, .actual = ctx_.clock.now() - started_,
                                 .arrived = true});
+  if (!task_)
+    ctx_.book.note_robot("arrived", Outcome::kArrived,
+                         fmt::format("at {} ({}) after {}, expected {}", ctx_.map.node(target_).name, errand(),
+                                     duration_text(ctx_.clock.now() - started_), duration_text(expected_)));
   end({.status = StepEnd::Status::kDone});
 }
 
 void NavigateStep::on_edge_finished(const EdgeAttempt& a) {
-  if (a.outcome == EdgeOutcome::kCancelled) return end({.status = StepEnd::Status::kHalted});
+  if (a.outcome == EdgeOutcome::kCancelled) return end(halted_end());
   if (ctx_.robot.busy()) return;  // more of a committed route to come
-  if (halting()) return end({.status = StepEnd::Status::kHalted});
+  if (halting()) return end(halted_end());
+  if (a.outcome == EdgeOutcome::kSucceeded) failures_in_a_row_ = 0;
   if (a.outcome == EdgeOutcome::kFailed) {
     ++failed_edges_;
-    if (purpose_ == Purpose::kToStart && ctx_.options.blocked_edge != ExecutorOptions::BlockedEdge::kRetry) {
+    run_chance_ = (failures_in_a_row_ == 0 ? 1.0 : run_chance_) * (1 - edge_p_);
+    ++failures_in_a_row_;
+    if (purpose_ != Purpose::kToEnd && ctx_.options.blocked_edge != ExecutorOptions::BlockedEdge::kRetry) {
       if (std::optional<std::string> why = not_worth_trying(a)) {
         const bool wait = ctx_.options.blocked_edge == ExecutorOptions::BlockedEdge::kWait;
         monitor_.cancel();
@@ -189,7 +223,7 @@ void NavigateStep::on_edge_finished(const EdgeAttempt& a) {
     }
     // A trip to the charger when the battery matters: an edge more likely than not to fail again is
     // not tried again and again on the battery it is going to save; the executor looks again later.
-    if (purpose_ == Purpose::kDock && ctx_.options.battery_planning &&
+    if (!task_ && ctx_.options.battery_planning &&
         ctx_.models.outcome(a.edge, ctx_.clock.now()).success_probability < 0.5) {
       monitor_.cancel();
       return end({.status = StepEnd::Status::kFailed,
@@ -218,7 +252,8 @@ std::optional<StepEnd> NavigateStep::leave_later(map::NodeIndex here, Time now) 
     }
   }
   if (!blocked) return std::nullopt;
-  const Time latest = std::min(ctx_.book.at(*task_).latest_start(ctx_.options.on_demand_patience), now + hours(24));
+  const Time day = now + hours(24);
+  const Time latest = task_ ? std::min(ctx_.book.at(*task_).latest_start(ctx_.options.on_demand_patience), day) : day;
   Time leave = now;
   Time arrive = now + expected_;
   for (Time t = ctx_.travel.slot_start(now) + ctx_.options.slot_width; t <= latest; t += ctx_.options.slot_width) {
@@ -249,6 +284,13 @@ std::optional<std::string> NavigateStep::not_worth_trying(const EdgeAttempt& fai
   if (left >= kUnreachable) return std::nullopt;  // no way at all from here: advance() says so
   const map::Edge& e = ctx_.map.edge(failed.edge);
   // The attempts left before giving up, each as likely to pass as the live model says the next one is.
+  // An own journey has no window to meet: a run of failures that the live model gave less than
+  // kRefuted of a chance says the model has not learned this closure yet, and the robot need not
+  // learn it by hammering (a task's journey tries on: it has a window to meet, and a burst of
+  // failures often clears).
+  if (!task_ && failures_in_a_row_ >= 2 && run_chance_ < kRefuted)
+    return fmt::format("no route now: {} failed {} times in a row, a run the live model gave a chance of {:.2g}",
+                       e.id, failures_in_a_row_, run_chance_);
   const int tries = ctx_.options.max_failed_edges - failed_edges_;
   const double p = std::clamp(ctx_.models.outcome(failed.edge, now).success_probability, 0.0, 1.0);
   if (tries > 0 && std::pow(1 - p, tries) > 0.5)

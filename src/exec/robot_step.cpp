@@ -9,13 +9,13 @@ void RobotStep::halt() {
   if (ctx_.robot.busy())
     ctx_.robot.cancel();  // its cancelled edge or action ends the step
   else
-    end({.status = StepEnd::Status::kHalted});
+    end(halted_end());
 }
 
 void RobotStep::resume() {
   monitor_.resume();
   if (ctx_.robot.busy()) return;
-  if (halting_) return end({.status = StepEnd::Status::kHalted});
+  if (halting_) return end(halted_end());
   go_on();
 }
 

@@ -41,6 +41,8 @@ class RobotStep : public Step {
 
  protected:
   virtual void go_on() = 0;  // the robot is free again and no halt is asked: the next command
+  // How the step ends once a halt has taken effect: kHalted, unless the step halted itself.
+  virtual StepEnd halted_end() { return {.status = StepEnd::Status::kHalted}; }
   bool halting() const { return halting_; }
   Monitor monitor_;
 
@@ -48,13 +50,18 @@ class RobotStep : public Step {
   bool halting_ = false;
 };
 
-// Follows the MDP policy edge by edge to `target`, re-planning after every edge (so after a
-// failed one); every attempt is the executor's to log. A task's navigation to its start is
-// watched by the navigation monitor and recorded (NavigationRecord); the executor's own trips (to
-// the dock) are not.
+// The one way the robot moves (docs/executor.md, "Journeys"): follows the MDP policy edge by edge
+// to `target`, re-planning after every edge (so after a failed one); every attempt is the
+// executor's to log and learn from. Every journey, a task's or the executor's own (to the dock when
+// idle or out of service, to charge), is watched by the navigation monitor, gives up after
+// `max_failed_edges` failed attempts, and meets a way found blocked with the blocked-edge policy
+// (`blocked_edge`: before leaving, and after a failed edge). A task's journey writes its task's
+// events; the executor's own write robot events (`departed`, `arrived`, and the end that the
+// executor gives a journey that does not arrive). A task's navigation to its start is recorded
+// (NavigationRecord).
 class NavigateStep final : public RobotStep {
  public:
-  enum class Purpose { kToStart, kToEnd, kDock };
+  using Purpose = JourneyPurpose;
   NavigateStep(StepContext& ctx, StepHooks hooks, Purpose purpose, std::optional<TaskId> task, map::NodeIndex target);
   void start() override;
   void on_edge_finished(const EdgeAttempt& attempt) override;
@@ -62,9 +69,12 @@ class NavigateStep final : public RobotStep {
   Time started() const { return started_; }
   Duration expected() const { return expected_; }
   map::NodeIndex target() const { return target_; }
+  // What an own journey is for, in its events ("idle: back to the dock").
+  const char* errand() const;
 
  private:
   void go_on() override { advance(); }
+  StepEnd halted_end() override;
   void advance();  // the next edge, or the end
   void arrived();
   // The navigation monitor fired: the task fails, or under the window watch
@@ -85,9 +95,9 @@ class NavigateStep final : public RobotStep {
   // not all to fail, or the re-planned travel from here would take the navigation past its
   // monitor's limit), or nothing.
   std::optional<std::string> not_worth_trying(const EdgeAttempt& failed) const;
-  // Before leaving for a task: when the way crosses an edge held to be blocked and a later
-  // departure (before the task's latest start) is expected to arrive sooner, the end that makes
-  // the task wait for it (ExecutorOptions::BlockedEdge::kWait); nothing otherwise.
+  // Before leaving: when the way crosses an edge held to be blocked and a later departure (before
+  // the task's latest start; for an own journey, within a day) is expected to arrive sooner, the
+  // end that makes the journey wait for it (ExecutorOptions::BlockedEdge::kWait); nothing otherwise.
   std::optional<StepEnd> leave_later(map::NodeIndex here, Time now) const;
 
   Purpose purpose_;
@@ -99,7 +109,13 @@ class NavigateStep final : public RobotStep {
   int failed_edges_ = 0;
   std::optional<map::EdgeIndex> edge_;  // the edge last sent to the robot, and when
   Time edge_since_{};
+  double edge_p_ = 1;  // the live model's success probability of that attempt, when it was sent
+  // The failures of the same edge in a row on this journey, and the chance the live model gave
+  // that run when each attempt was sent (the product of 1 − p).
+  int failures_in_a_row_ = 0;
+  double run_chance_ = 1;
   bool window_watch_ = false;  // the monitor's limit passed while the window was open
+  std::optional<StepEnd> gave_up_;  // an own journey's monitor fired: how it ends once halted
 };
 
 // At the task's place: runs its actions one after the other, watched by the action monitor. A

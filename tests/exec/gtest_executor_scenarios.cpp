@@ -317,7 +317,9 @@ TEST(ExecutorScenario, ARobotFaultMidEdgePausesDispatchAndLearnsNoEdgeFailure) {
   std::vector<std::string> robot_events;
   for (const auto& e : s.all_events())
     if (e.subject == store::Subject::kRobot) robot_events.push_back(e.event + "/" + e.code);
-  EXPECT_EQ(robot_events, (std::vector<std::string>{"fault/robot fault", "ready/robot ready"}));
+  // The journey home after the task is the executor's own: it says so too.
+  EXPECT_EQ(robot_events, (std::vector<std::string>{"fault/robot fault", "ready/robot ready", "departed/departed",
+                                                    "arrived/arrived"}));
   int cut = 0;
   for (const auto& e : s.events_of("a")) cut += e.event == "edge" && e.code == "robot fault";
   EXPECT_EQ(cut, 1);
@@ -370,7 +372,11 @@ actions:
   };
   const double week1 = error_in_week(0), week3 = error_in_week(2);
   EXPECT_LT(week3, week1);
-  EXPECT_LT(week3, 0.8 * week1) << "week 1: " << week1 << ", week 3: " << week3;  // measured 0.33 vs 0.52
+  // Measured 0.33 vs 0.52 until the one journey path (issue 37), 0.326 vs 0.391 since: in week 1,
+  // 17 of the idle journeys home, six times slower than the map's prior at midday, are stopped by
+  // the navigation monitor (`gave up`), so the robot starts more tasks away from the dock.
+  EXPECT_LT(week3, 0.9 * week1) << "week 1: " << week1 << ", week 3: " << week3;
+  EXPECT_LT(week3, 0.36);
   EXPECT_GE(s.executor().stats().refits, 20);
 }
 

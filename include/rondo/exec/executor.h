@@ -31,7 +31,8 @@
 //   one); the navigation monitor preempts past `navigation_overrun` x the expected travel time, the
 //   action monitor past `action_overrun` x the processing time; a task that is not interruptible
 //   (its flag, or the robot saying so at run time) is never preempted: the monitor waits.
-// - idle: back to the dock. Nightly (at `refit_at`, local time) the edge models are refitted
+// - idle: back to the dock, by the same NavigateStep as a task's journey (monitor, failed-edge limit,
+//   blocked-edge policy), with robot events `departed`, `arrived`, `waits`, `gave up`. Nightly (at `refit_at`, local time) the edge models are refitted
 //   from the traversal log of the last `refit_window`; between refits every edge attempt updates
 //   the online model of its edge (`online_model`), so travel estimates and schedules adapt at once.
 #pragma once
@@ -43,6 +44,7 @@
 #include <random>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "rondo/core/result.h"
@@ -265,7 +267,7 @@ class Executor final : public RobotListener {
   void end_wait();  // the waiting task goes back to the executor, undecided
   // The waiting task goes back to the front of the queue (`outcome`, `reason`), and next().
   void requeue_waiting(Outcome outcome, const std::string& reason);
-  void go_to_dock();
+  void go_to_dock(JourneyPurpose purpose);
   void trip_ended(StepEnd end);
   void look_again_at(Time at);
   void preempt_for(Outcome outcome, const std::string& reason, std::vector<TaskId> then_schedule);
@@ -275,6 +277,9 @@ class Executor final : public RobotListener {
   // start, or for an on-demand task not within `on_demand_patience` of its request (the caller
   // fails it). With `leave_at` (found before leaving: NavigateStep), it waits until then.
   bool hold_back(const TaskId& id, map::EdgeIndex edge, std::optional<Time> leave_at);
+  // The first slot start after now, up to `until`, at which the live model holds `edge` likely
+  // passable (kLikelyPassable), with its probability then.
+  std::optional<std::pair<Time, double>> passable_again(map::EdgeIndex edge, Time until) const;
   // A held on-demand task goes back to the front of its queue and is due at its retry time.
   void hold_on_demand(const TaskId& id, Outcome outcome, const std::string& reason);
   // An on-demand task goes back to the front of its queue.

@@ -32,6 +32,10 @@ namespace rondo::exec {
 
 class TravelCache;
 
+// What a journey (exec::NavigateStep) is for: a task's way to its place or to its end place; the
+// executor's own way to the dock when idle, when out of service, or to charge.
+enum class JourneyPurpose { kToStart, kToEnd, kDock, kOutOfService, kCharge };
+
 // How a step ended.
 struct StepEnd {
   enum class Status {
