@@ -12,6 +12,7 @@
 
 #include "rondo/core/timezone.h"
 #include "rondo/core/utf8.h"
+#include "json_tree.h"
 #include "yaml_tree.h"
 
 namespace rondo {
@@ -78,13 +79,6 @@ Status check_yaml_flow_depth(std::string_view text, const std::string& source) {
   return {};
 }
 
-// Thrown from nlohmann's parse callback to stop a JSON text that nests too deep; nlohmann's parser
-// is not recursive, so this is about the decoders and writers that walk the tree afterwards.
-struct TooDeep {
-  int depth;
-};
-struct TooMany {};
-
 // The line of the first byte that is not part of well-formed UTF-8, if any. Text files are UTF-8;
 // rejecting anything else here means no string that reaches a decoder can fail to print.
 std::optional<int> first_invalid_utf8_line(std::string_view text) {
@@ -107,26 +101,9 @@ Result<Document> Document::parse(std::string_view text, DocumentFormat format, s
     return Error::invalid(*doc.source_ + ":" + std::to_string(*line) + ": the text is not valid UTF-8");
   }
   if (format == DocumentFormat::kJson) {
-    try {
-      std::size_t values = 0;
-      const auto limit_depth = [&values](int depth, Json::parse_event_t event, Json&) {
-        if (depth >= Document::kMaxDepth) throw TooDeep{depth};  // depth counts from 0
-        if (event == Json::parse_event_t::value || event == Json::parse_event_t::object_start ||
-            event == Json::parse_event_t::array_start) {
-          if (++values > Document::kMaxValues) throw TooMany{};
-        }
-        return true;
-      };
-      doc.json_ = std::make_shared<Json>(Json::parse(text, limit_depth));
-    } catch (const Json::exception& e) {
-      // nlohmann's message names the byte and line: "parse error at line 3, column 5: ..."
-      return Error::invalid(*doc.source_ + ": " + quote_for_message(e.what(), 400));
-    } catch (const TooDeep&) {
-      return Error::invalid(*doc.source_ + ": nested deeper than " + std::to_string(Document::kMaxDepth) + " levels");
-    } catch (const TooMany&) {
-      return Error::invalid(*doc.source_ + ": more than " + std::to_string(kMaxValues) + " values (the limit is " +
-                            std::to_string(kMaxValues) + ")");
-    }
+    auto json = detail::json_to_tree(text, *doc.source_);
+    if (!json) return json.error();
+    doc.json_ = std::make_shared<Json>(std::move(*json));
     return doc;
   }
   if (auto s = check_yaml_flow_depth(text, *doc.source_); !s) return s.error();

@@ -7,6 +7,7 @@
 
 #include "core/alias_bomb.h"
 #include "rondo/core/utf8.h"
+#include "test_files.h"
 
 namespace rondo {
 namespace {
@@ -76,6 +77,42 @@ TEST(Document, MalformedTextIsAnErrorNotACrash) {
     EXPECT_EQ(doc.error().code, ErrorCode::kInvalidInput);
     EXPECT_NE(doc.error().message.find(c.expect), std::string::npos) << doc.error().message;
   }
+}
+
+// nlohmann keeps the last of a key given twice without a word, and a YAML mapping with a duplicate
+// key is refused: a JSON object is refused the same way, naming the line of the second key and its
+// path. The same key in two objects is not a duplicate.
+TEST(Document, JsonRefusesADuplicateKeyNamingItsLineAndPath) {
+  struct Case {
+    std::string text;
+    std::string expect;  // the whole message; empty: the text is accepted
+  };
+  const Case cases[] = {
+      {R"({"a": 1, "a": 2})", "t.json:1: a: duplicate key 'a'"},
+      {"{\n  \"tasks\": [\n    {\"id\": \"x\",\n     \"id\": \"y\"}\n  ]\n}\n",
+       "t.json:4: tasks[0].id: duplicate key 'id'"},
+      {"{\"l\": [1, [2], {\"k\": 1,\n\n \"k\": 2}]}", "t.json:3: l[2].k: duplicate key 'k'"},
+      {R"({"a": {"b": {"c": 1}}, "a": 2})", "t.json:1: a: duplicate key 'a'"},
+      {R"({"a": 1, "\u0061": 2})", "t.json:1: a: duplicate key 'a'"},  // the same key once unescaped
+      {R"({"a": {"x": 1}, "b": {"x": 2}, "c": [{"x": 1}, {"x": 2}]})", ""},
+      {R"({"a": 1, "A": 2, "a ": 3})", ""},
+  };
+  for (const auto& c : cases) {
+    auto doc = Document::parse(c.text, DocumentFormat::kJson, "t.json");
+    if (c.expect.empty()) {
+      EXPECT_TRUE(doc.ok()) << c.text << ": " << doc.error().message;
+      continue;
+    }
+    ASSERT_FALSE(doc.ok()) << c.text;
+    EXPECT_EQ(doc.error().code, ErrorCode::kInvalidInput);
+    EXPECT_EQ(doc.error().message, c.expect) << c.text;
+  }
+  // Through a file, as every JSON loader reads it: the message names the file.
+  const auto file = test::fresh_dir("rondo-document-test", "duplicate") / "day.json";
+  std::ofstream(file) << "{\"tasks\": [],\n \"tasks\": []}\n";
+  auto loaded = Document::load(file);
+  ASSERT_FALSE(loaded.ok());
+  EXPECT_EQ(loaded.error().message, file.string() + ":2: tasks: duplicate key 'tasks'");
 }
 
 // Found by fuzz_problem and fuzz_models: the parsers' own messages quote the byte they stopped at,

@@ -90,6 +90,12 @@ TEST(TaskCodec, JsonFilesReadLikeYaml) {
   auto bad = parse_task_file(R"({"tasks": [{"id": 5}]})", DocumentFormat::kJson, "day.json");
   ASSERT_FALSE(bad.ok());
   EXPECT_EQ(bad.error().message, "day.json: tasks[0].id: expected text, found an integer");
+  // A key twice: refused, as in YAML, not the last one taken.
+  auto twice = parse_task_file(R"({"tasks": [{"id": "a", "window": {"release": "2026-11-23T09:00:00Z",
+     "deadline": "2026-11-23T10:00:00Z"}, "duration": 60, "duration": 120, "start_node": "A"}]})",
+                               DocumentFormat::kJson, "day.json");
+  ASSERT_FALSE(twice.ok());
+  EXPECT_EQ(twice.error().message, "day.json:2: tasks[0].duration: duplicate key 'duration'");
 }
 
 RC_GTEST_PROP(TaskCodec, EncodeThenDecodeIsIdentityInYamlAndJson, ()) {
