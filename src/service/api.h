@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -130,6 +131,12 @@ Reply add_routines_now(Api& api, std::vector<Routine> list);
 
 // The event stream (GET /api/v1/events): sets a chunked provider on `res`.
 void event_stream(Api& api, const httplib::Request& req, httplib::Response& res);
+
+// A request's body as a JSON object, read as every JSON document is (rondo::Document: a key given
+// twice in one object is refused, as YAML refuses it). Nothing when `body` holds it; else the reply
+// that refuses it: 400 when the body is not JSON or not an object, 422 naming the field when an
+// object in it gives a key twice ("request body:3: tasks[0].duration: duplicate key 'duration'").
+std::optional<Reply> read_json_object(const httplib::Request& req, Json& body);
 
 // The body of a task file as text, with the deployment's time zone when it names none.
 std::string with_default_zone(Json body, const TimeZone& zone);

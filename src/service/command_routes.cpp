@@ -14,8 +14,8 @@ namespace rondo::service {
 namespace {
 
 Reply command(Api& api, const httplib::Request& req) {
-  Json body = Json::parse(req.body, nullptr, false);
-  if (body.is_discarded() || !body.is_object()) return error_reply(400, "malformed", "the body is not a JSON object");
+  Json body;
+  if (auto refused = read_json_object(req, body)) return *refused;
   for (const auto& [k, v] : body.items())
     if (k != "text") return error_reply(422, "invalid", fmt::format("request: {}: unknown field (text)", k), k);
   if (!body.contains("text") || !body["text"].is_string())

@@ -6,6 +6,16 @@
 
 namespace rondo::service {
 
+std::optional<Reply> read_json_object(const httplib::Request& req, Json& body) {
+  // nlohmann's syntax check tells text that is not JSON (400) from JSON that cannot be meant (422).
+  if (!Json::accept(req.body)) return error_reply(400, "malformed", "the body is not JSON");
+  auto doc = Document::parse(req.body, DocumentFormat::kJson, "request body");
+  if (!doc) return error_reply(doc.error());
+  if (!doc->json().is_object()) return error_reply(400, "malformed", "the body must be a JSON object");
+  body = doc->json();
+  return std::nullopt;
+}
+
 std::string with_default_zone(Json body, const TimeZone& zone) {
   if (body.is_object() && !body.contains("timezone")) body["timezone"] = zone.name();
   return body.dump();

@@ -197,8 +197,8 @@ Reply routines(Api& api, const httplib::Request&) {
 }
 
 Reply add_routines(Api& api, const httplib::Request& req) {
-  Json j = Json::parse(req.body, nullptr, false);
-  if (j.is_discarded() || !j.is_object()) return error_reply(400, "malformed", "the body is not a JSON object");
+  Json j;
+  if (auto refused = read_json_object(req, j)) return *refused;
   const map::TopoMap& map = api.ctx.map;
   const PlaceCheck places{[&map](std::string_view n) { return map.find_node(n).has_value(); }, map.name()};
   auto file = parse_task_file(with_default_zone(j, api.ctx.zone), DocumentFormat::kJson, "request", &places);
@@ -254,8 +254,8 @@ Reply set_service(Api& api, const httplib::Request& req, bool out) {
   bool halt = false;
   std::string reason;
   if (!req.body.empty()) {
-    Json j = Json::parse(req.body, nullptr, false);
-    if (j.is_discarded() || !j.is_object()) return error_reply(400, "malformed", "the body is not a JSON object");
+    Json j;
+    if (auto refused = read_json_object(req, j)) return *refused;
     if (const auto it = j.find("halt"); it != j.end()) {
       if (!out || !it->is_boolean()) return error_reply(422, "invalid", "halt: a boolean, for pause only", "halt");
       halt = it->get<bool>();

@@ -26,17 +26,6 @@ std::string fingerprint(std::string_view text) {
   return fmt::format("{:016x}", h);
 }
 
-Result<Json> parse_body(const httplib::Request& req) {
-  Json j = Json::parse(req.body, nullptr, false);
-  if (j.is_discarded()) return Error::invalid("the body is not JSON");
-  if (!j.is_object()) return Error::invalid("the body must be a JSON object");
-  return j;
-}
-
-Reply malformed(const std::string& what) {
-  return error_reply(400, "malformed", what);
-}
-
 // A task as the API shows it, from the executor's memory or (a finished one) the store.
 Result<Json> task_view(Api& api, const TaskId& id) {
   RONDO_ASSIGN_OR_RETURN(std::optional<exec::TaskRecord> r, api.ctx.executor.task(id));
@@ -101,11 +90,11 @@ Reply submit(Api& api, const httplib::Request& req) {
   const std::string key = req.get_header_value("Idempotency-Key");
   if (key.size() > kMaxKeyLength || std::any_of(key.begin(), key.end(), [](char c) { return c < 0x21 || c > 0x7e; }))
     return error_reply(422, "invalid", "Idempotency-Key: printable ASCII, at most 200 characters", "Idempotency-Key");
-  auto body = parse_body(req);
-  if (!body) return malformed(body.error().message);
+  Json body;
+  if (auto refused = read_json_object(req, body)) return *refused;
   const map::TopoMap& map = api.ctx.map;
   const PlaceCheck places{[&map](std::string_view n) { return map.find_node(n).has_value(); }, map.name()};
-  auto file = parse_task_file(with_default_zone(*body, api.ctx.zone), DocumentFormat::kJson, "request", &places);
+  auto file = parse_task_file(with_default_zone(body, api.ctx.zone), DocumentFormat::kJson, "request", &places);
   if (!file) return error_reply(file.error());
   if (!file->routines.empty())
     return error_reply(422, "invalid", "request: routines: add routines through /api/v1/routines", "routines");
@@ -175,9 +164,9 @@ Reply one(Api& api, const httplib::Request& req) {
 // the error to answer.
 std::optional<Reply> read_text_field(const httplib::Request& req, const std::string& name, std::string& value) {
   if (req.body.empty()) return std::nullopt;
-  auto body = parse_body(req);
-  if (!body) return malformed(body.error().message);
-  for (const auto& [k, v] : body->items()) {
+  Json body;
+  if (auto refused = read_json_object(req, body)) return refused;
+  for (const auto& [k, v] : body.items()) {
     if (k != name) return error_reply(422, "invalid", fmt::format("request: {}: unknown field", k), k);
     if (!v.is_string()) return error_reply(422, "invalid", fmt::format("request: {}: expected text", name), name);
     value = v.get<std::string>();
@@ -224,11 +213,11 @@ Result<Time> time_field(const Json& j, const std::string& path) {
 
 Reply change(Api& api, const httplib::Request& req) {
   const std::string id = req.matches[1];
-  auto body = parse_body(req);
-  if (!body) return malformed(body.error().message);
+  Json body;
+  if (auto refused = read_json_object(req, body)) return *refused;
   std::optional<TimeWindow> window;
   std::optional<int> priority;
-  for (const auto& [k, v] : body->items()) {
+  for (const auto& [k, v] : body.items()) {
     if (k == "priority") {
       if (!v.is_number_integer())
         return error_reply(422, "invalid", "request: priority: expected a whole number", "priority");

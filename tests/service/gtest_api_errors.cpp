@@ -63,6 +63,61 @@ TEST(ApiErrors, MalformedJsonIs400AndTasksThatCannotBeMeantAre422NamingTheField)
   EXPECT_EQ(body_of(cli.Get("/api/v1/tasks"))["total"], 0);
 }
 
+// A body that gives a key twice is refused (422, naming the field and the line), on every route that
+// reads one: JSON parsers differ on which of the two wins, so no value is guessed at. Each body
+// here would be taken (or answered for its task id) if the last value won.
+TEST(ApiErrors, ABodyWithAKeyTwiceIs422NamingTheField) {
+  LiveService s(fresh_dir("rondo-service-test", "duplicate"));
+  auto cli = s.client();
+  const Time t = s.clock().now() + hours(1);
+  const std::string window =
+      fmt::format(R"("window": {{"release": "{}", "deadline": "{}"}})", format_time(t), format_time(t + hours(1)));
+  struct Case {
+    std::string method;
+    std::string path;
+    std::string body;
+    std::string field;
+    std::string key;
+  };
+  const Case cases[] = {
+      {"POST", "/api/v1/tasks", R"({"tasks": [{"id": "x", )" + window + R"(, "duration": 60,
+           "duration": 120, "start_node": "WayPoint2"}]})",
+       "tasks[0].duration", "duration"},
+      {"POST", "/api/v1/tasks",
+       R"({"tasks": [], "tasks": [{"id": "y", )" + window + R"(, "start_node": "WayPoint2"}]})", "tasks", "tasks"},
+      {"PATCH", "/api/v1/tasks/nobody", R"({"priority": 1, "priority": 2})", "priority", "priority"},
+      {"POST", "/api/v1/tasks/nobody/cancel", R"({"reason": "a", "reason": "b"})", "reason", "reason"},
+      {"POST", "/api/v1/tasks/nobody/confirm", R"({"by": "a", "by": "b"})", "by", "by"},
+      {"POST", "/api/v1/routines",
+       R"({"routines": [{"name": "a", "name": "b", "task": {"duration": 120, "start_node": "WayPoint2"},
+           "window": {"from": "00:00", "to": "24:00"}}]})",
+       "routines[0].name", "name"},
+      {"POST", "/api/v1/commands", R"({"text": "juggle", "text": "check WayPoint3 tomorrow"})", "text", "text"},
+      {"POST", "/api/v1/pause", R"({"reason": "a", "reason": "b"})", "reason", "reason"},
+      {"POST", "/api/v1/resume", R"({"reason": "a", "reason": "b"})", "reason", "reason"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.method + " " + c.path + " " + c.body);
+    auto r = c.method == "PATCH" ? cli.Patch(c.path, c.body, "application/json")
+                                 : cli.Post(c.path, c.body, "application/json");
+    expect_error(r, 422, "invalid", c.field);
+    if (!r) continue;
+    const Json j = body_of(r);
+    const std::string message = j.contains("error") ? j["error"].value("message", "") : "";
+    EXPECT_TRUE(message.starts_with("request body:")) << message;
+    EXPECT_NE(message.find(c.field + ": duplicate key '" + c.key + "'"), std::string::npos) << message;
+  }
+  // The line is the second key's.
+  auto lines =
+      cli.Post("/api/v1/tasks/nobody/cancel", "{\n\"reason\": \"a\",\n\n\"reason\": \"b\"}", "application/json");
+  ASSERT_TRUE(lines);
+  EXPECT_EQ(body_of(lines)["error"]["message"], "request body:4: reason: duplicate key 'reason'");
+  // Nothing of the refused requests was kept or done.
+  EXPECT_EQ(body_of(cli.Get("/api/v1/tasks"))["total"], 0);
+  EXPECT_EQ(body_of(cli.Get("/api/v1/routines"))["routines"].size(), 0u);
+  EXPECT_FALSE(body_of(cli.Get("/api/v1/robot"))["out_of_service"].get<bool>());
+}
+
 TEST(ApiErrors, UnknownRoutesAre404AndBodiesPastTheLimit413) {
   LiveService s(fresh_dir("rondo-service-test", "limits"), {.body_limit = 4096});
   auto cli = s.client();
