@@ -2,6 +2,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "number_options.h"
 #include "rondo/core/timezone.h"
 #include "rondo/core/traversal.h"
 #include "rondo/learn/evaluation.h"
@@ -89,10 +90,10 @@ void add_eval_commands(CLI::App& root, CommandContext& ctx) {
       ->capture_default_str();
   edges->add_option("--min-train", edges_args->min_train, "Attempts an edge needs before the split")
       ->capture_default_str()
-      ->check(CLI::Range(0, 1000000));
+      ->transform(whole_number(0, 1000000));
   edges->add_option("--min-test", edges_args->min_test, "Attempts an edge needs after the split")
       ->capture_default_str()
-      ->check(CLI::Range(0, 1000000));
+      ->transform(whole_number(0, 1000000));
   edges->add_flag("--json", edges_args->json, "Print JSON instead of a table");
   edges->callback([edges_args, &ctx] { run_eval_edges(*edges_args, ctx); });
 

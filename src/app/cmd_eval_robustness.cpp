@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "number_options.h"
 #include "robustness.h"
 
 namespace rondo::app {
@@ -30,11 +31,13 @@ struct EvalRobustnessArgs {
   bool json = false;
 };
 
+// A seed as `rondo run --seed` and a deployment's `seed:` take it: 0 to 2^63 - 1.
 Result<std::uint64_t> seed_number(std::string_view s) {
-  std::uint64_t v = 0;
+  std::int64_t v = 0;
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (ec != std::errc{} || end != s.data() + s.size()) return Error::invalid(fmt::format("'{}' is not a seed", s));
-  return v;
+  if (ec != std::errc{} || end != s.data() + s.size() || v < 0)
+    return Error::invalid(fmt::format("'{}' is not a seed (a whole number from 0 to {})", s, kMaxWholeNumber));
+  return static_cast<std::uint64_t>(v);
 }
 
 }  // namespace
@@ -52,7 +55,7 @@ Result<std::vector<std::uint64_t>> parse_seeds(std::string_view spec) {
     RONDO_ASSIGN_OR_RETURN(const std::uint64_t a, seed_number(spec.substr(0, dash)));
     RONDO_ASSIGN_OR_RETURN(const std::uint64_t b, seed_number(spec.substr(dash + 1)));
     if (b < a || b - a >= 1000) return Error::invalid(fmt::format("--seeds: '{}' is not a range of up to 1000", spec));
-    for (std::uint64_t s = a; s <= b; ++s) out.push_back(s);
+    for (std::uint64_t i = 0; i <= b - a; ++i) out.push_back(a + i);
     return out;
   }
   while (!spec.empty()) {
@@ -77,8 +80,6 @@ void run_eval_robustness(const EvalRobustnessArgs& args, CommandContext& ctx) {
   auto seeds = parse_seeds(args.seeds);
   if (!seeds) return (void)fail(ctx, seeds.error().with_context("--seeds"));
   options.seeds = std::move(*seeds);
-  if (args.days && (*args.days < 1 || *args.days > 3660))
-    return (void)fail(ctx, Error::invalid(fmt::format("--days: {} is not between 1 and 3660", *args.days)));
   options.days = args.days;
   for (double a : args.alphas)
     if (!(a > 0 && a <= 0.5)) return (void)fail(ctx, Error::invalid(fmt::format("--alphas: {} is not in (0, 0.5]", a)));
@@ -110,7 +111,8 @@ void add_eval_robustness_command(CLI::App* eval, CommandContext& ctx) {
   auto* robustness = eval->add_subcommand(
       "robustness", "Deployments under expected-value and risk-aware scheduling, and idle against planned charging");
   robustness->add_option("deployments", args->deployments, "Deployment files")->required();
-  robustness->add_option("--days", args->days, "Days of each run (default: each deployment's own)");
+  robustness->add_option("--days", args->days, "Days of each run (default: each deployment's own)")
+      ->transform(whole_number(1, 3660));
   robustness->add_option("--seeds", args->seeds, "Seeds: a count K (1..K), a range A-B, or a list A,B,C")
       ->capture_default_str();
   robustness->add_option("--alphas", args->alphas, "Values of the chance constraint's α to compare")
@@ -127,7 +129,7 @@ void add_eval_robustness_command(CLI::App* eval, CommandContext& ctx) {
   robustness->add_option("--variants", args->only,
                          "Run only these variants (names as in the table, comma-separated), and 'expected'")
       ->delimiter(',');
-  robustness->add_option("--jobs", args->jobs, "Runs at once")->capture_default_str()->check(CLI::Range(1, 64));
+  robustness->add_option("--jobs", args->jobs, "Runs at once")->capture_default_str()->transform(whole_number(1, 64));
   robustness->add_flag("--json", args->json, "Print JSON instead of a table");
   robustness->callback([args, &ctx] { run_eval_robustness(*args, ctx); });
 }

@@ -38,13 +38,16 @@ struct ArchiveArgs {
   std::string out;
 };
 
-// "90d", "2160h", "1h30m": days, or what parse_duration reads.
+// "90d", "2160h", "1h30m": days, or what parse_duration reads (up to kMaxSeconds either way).
 Result<Duration> parse_age(const std::string& text) {
   if (!text.empty() && text.back() == 'd') {
-    int n = -1;
+    constexpr auto kMaxDays = static_cast<std::int64_t>(kMaxSeconds / 86400);
+    std::int64_t n = -1;
     const auto [end, err] = std::from_chars(text.data(), text.data() + text.size() - 1, n);
-    if (err == std::errc{} && end == text.data() + text.size() - 1 && n >= 0) return Duration{hours(24 * n)};
-    return Error::invalid(fmt::format("--older-than: '{}' is not a number of days", text));
+    if (err == std::errc{} && end == text.data() + text.size() - 1 && n >= 0 && n <= kMaxDays)
+      return Duration{hours(24 * n)};
+    return Error::invalid(
+        fmt::format("--older-than: '{}' is not a number of days from 0 to {}", quote_for_message(text), kMaxDays));
   }
   auto d = parse_duration(text);
   if (!d) return Error::invalid(fmt::format("--older-than: {}", d.error().message));

@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "deployment.h"
+#include "number_options.h"
 #include "run_session.h"
 
 namespace rondo::app {
@@ -37,15 +38,8 @@ void run_run(const RunArgs& args, CommandContext& ctx) {
       args.deployment.empty() ? default_deployment() : std::filesystem::path(args.deployment);
   auto deployment = load_deployment(file);
   if (!deployment) return (void)fail(ctx, deployment.error());
-  if (args.days) {
-    if (*args.days < 1 || *args.days > 3660)
-      return (void)fail(ctx, Error::invalid(fmt::format("--days: {} is not between 1 and 3660", *args.days)));
-    deployment->days = *args.days;
-  }
-  if (args.seed) {
-    if (*args.seed < 0) return (void)fail(ctx, Error::invalid("--seed: must not be negative"));
-    deployment->seed = static_cast<std::uint64_t>(*args.seed);
-  }
+  if (args.days) deployment->days = *args.days;  // the options' ranges are checked as they are read
+  if (args.seed) deployment->seed = static_cast<std::uint64_t>(*args.seed);
   if (!(args.speed > 0 && args.speed <= 1e6))
     return (void)fail(ctx, Error::invalid(fmt::format("--speed: {} is not above 0 (and at most 1e6)", args.speed)));
   if (deployment->vda5050 && !args.realtime)
@@ -127,8 +121,9 @@ void add_run_commands(CLI::App& root, CommandContext& ctx) {
   auto args = std::make_shared<RunArgs>();
   auto* run = root.add_subcommand("run", "Run the executive on a deployment (default: the bundled G4S example)");
   run->add_option("deployment", args->deployment, "The deployment file (examples/g4s/deployment.yaml)");
-  run->add_option("--days", args->days, "Days to run (default: the deployment's)");
-  run->add_option("--seed", args->seed, "Random seed of the simulated world (default: the deployment's)");
+  run->add_option("--days", args->days, "Days to run (default: the deployment's)")->transform(whole_number(1, 3660));
+  run->add_option("--seed", args->seed, "Random seed of the simulated world (default: the deployment's)")
+      ->transform(whole_number(0, kMaxWholeNumber));
   run->add_option("--out", args->out,
                   "The run folder (default: a fresh runs/<time> folder); a folder holding this run resumes it");
   run->add_flag("--realtime", args->realtime, "Run on the system clock instead of simulated time");

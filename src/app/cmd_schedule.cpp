@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
+#include "number_options.h"
 #include "rondo/schedule/checker.h"
 #include "rondo/schedule/default_scheduler.h"
 #include "rondo/schedule/mip_scheduler.h"
@@ -35,7 +36,7 @@ struct ScheduleOptions {
   std::string solver = "default";
   double time_limit = 10;
   bool json = false;
-  std::int64_t seed = 1;  // signed, so that '-1' is refused instead of wrapping to 2^64 - 1
+  std::int64_t seed = 1;
 };
 
 void run_schedule(const ScheduleOptions& o, CommandContext& ctx) {
@@ -50,10 +51,6 @@ void run_schedule(const ScheduleOptions& o, CommandContext& ctx) {
   if (!(std::isfinite(o.time_limit) && o.time_limit > 0 && o.time_limit <= kMaxTimeLimitSeconds)) {
     fail(ctx, Error::invalid(fmt::format("--time-limit: must be a number of seconds above 0 and at most {:g}, not {}",
                                          kMaxTimeLimitSeconds, o.time_limit)));
-    return;
-  }
-  if (o.seed < 0) {
-    fail(ctx, Error::invalid(fmt::format("--seed: must not be negative, not {}", o.seed)));
     return;
   }
   Result<Problem> problem = tsptw ? load_tsptw(o.tsptw) : load_problem(o.file);
@@ -116,7 +113,9 @@ void add_schedule_commands(CLI::App& root, CommandContext& ctx) {
   cmd->add_option("--tsptw", options->tsptw, "a TSPTW instance in the LKH-3 format instead of FILE");
   cmd->add_option("--solver", options->solver, "default | mip | mip-ia")->capture_default_str();
   cmd->add_option("--time-limit", options->time_limit, "seconds")->capture_default_str()->check(CLI::PositiveNumber);
-  cmd->add_option("--seed", options->seed, "random seed of the default scheduler")->capture_default_str();
+  cmd->add_option("--seed", options->seed, "random seed of the default scheduler")
+      ->capture_default_str()
+      ->transform(whole_number(0, kMaxWholeNumber));
   cmd->add_flag("--json", options->json, "print JSON");
   cmd->callback([options, &ctx] { run_schedule(*options, ctx); });
 }

@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "deployment.h"
+#include "number_options.h"
 #include "serve_session.h"
 
 namespace rondo::app {
@@ -65,8 +66,10 @@ void add_serve_commands(CLI::App& root, CommandContext& ctx) {
   serve->add_option("--token-file", args->token_file,
                     "A file (mode 600) holding the token every write must present as 'Authorization: Bearer'");
   serve->add_option("--speed", args->speed, "Run the clock X times faster than real time (default 1)");
-  serve->add_option("--streams", args->streams,
-                    "At most N event streams (/api/v1/events) open at once (default 64; more get 503)");
+  serve
+      ->add_option("--streams", args->streams,
+                   "At most N event streams (/api/v1/events) open at once (default 64; more get 503)")
+      ->transform(whole_number(1, 4096));
   serve->callback([args, &ctx] { run_serve(*args, ctx); });
 }
 

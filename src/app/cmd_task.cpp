@@ -7,6 +7,7 @@
 #include <fmt/ranges.h>
 
 #include "commands.h"
+#include "number_options.h"
 #include "request_queue.h"
 #include "rondo/core/task_codec.h"
 #include "rondo/lang/command.h"
@@ -185,7 +186,7 @@ void add_task_commands(CLI::App& root, CommandContext& ctx) {
   auto* expand_cmd = task->add_subcommand("expand", "List a file's tasks and the tasks its routines make");
   expand_cmd->add_option("FILE", options->file, "task file")->required();
   expand_cmd->add_option("--from", options->from, "first local date, YYYY-MM-DD (routines only)")->required();
-  expand_cmd->add_option("--days", options->days, "number of days")->check(CLI::Range(1, 3660));
+  expand_cmd->add_option("--days", options->days, "number of days")->transform(whole_number(1, 3660));
   expand_cmd->add_flag("--json", options->json, "print the tasks as a task file in JSON");
   expand_cmd->callback([options, &ctx] { expand(*options, ctx); });
 

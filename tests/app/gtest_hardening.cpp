@@ -175,7 +175,7 @@ TEST(Hardening, NumbersAreCheckedNotClampedOrOverflowed) {
       {"--time-limit nan", ok2, {"--time-limit", "nan"}, "--time-limit: must be a number of seconds"},
       {"--time-limit inf", ok2, {"--time-limit", "inf"}, "--time-limit"},
       {"--time-limit a year", ok2, {"--time-limit", "31536000"}, "--time-limit: must be a number of seconds"},
-      {"--seed -1", ok2, {"--seed", "-1"}, "--seed: must not be negative"},
+      {"--seed -1", ok2, {"--seed", "-1"}, "--seed: '-1' is not a whole number from 0 to 9223372036854775807"},
       {"problem time 1e300",
        "#yaml\n" + with(with(problem, "DEADLINE", "1e300"), "PRIORITY", "0"),
        {},
@@ -258,6 +258,120 @@ TEST(Hardening, AFailedLearnLeavesTheModelsFileAsItWas) {
   }
   EXPECT_EQ(slurp(dir / "empty.db"), "");  // and the read-only open did not make it a store
   std::filesystem::remove_all(dir.parent_path());
+}
+
+// Every numeric option of every command: a number out of its range, past its type's (CLI11 clamped
+// --seed 99999999999999999999 to 9223372036854775807 and the run went ahead), negative, zero where
+// that means nothing, NaN or not written in decimal is refused with exit 2 before anything runs,
+// and the message names the option.
+TEST(Hardening, EveryNumericOptionRefusesWhatItCannotMean) {
+  const auto dir = fresh_dir("options");
+  const std::string out = (dir / "run").string();
+  const std::string g4s = "examples/g4s/deployment.yaml";
+  const std::string tasks = "tests/data/tasks/office_day.yaml";
+  const std::string witham = "../shared/data/witham_wharf";
+  write(dir / "ok.tsptw", tsptw("2", "0 5\n5 0", "1 0 100\n2 0 100"));
+  const std::string tsptw_file = (dir / "ok.tsptw").string();
+  // The other options of each command are small and valid: were the bad one let through, the job
+  // would be short.
+  // The command, then the bad option and its value, then the command's other options except that one.
+  const auto with = [](std::vector<std::string> command, const std::vector<std::string>& bad,
+                       const std::vector<std::pair<std::string, std::string>>& others) {
+    command.insert(command.end(), bad.begin(), bad.end());
+    for (const auto& [option, value] : others)
+      if (option != bad[0]) command.insert(command.end(), {option, value});
+    return command;
+  };
+  const auto run = [&](const std::vector<std::string>& bad) {
+    return with({"run", g4s}, bad, {{"--days", "1"}, {"--out", out}});
+  };
+  const auto robustness = [&](const std::vector<std::string>& bad) {
+    return with({"eval", "robustness", g4s}, bad,
+                {{"--days", "1"}, {"--seeds", "1"}, {"--alphas", "0.2"}, {"--variants", "expected"}, {"--jobs", "1"}});
+  };
+  const auto edges = [&](const std::vector<std::string>& bad) {
+    return with({"eval", "edges"}, bad, {{"--witham", witham}, {"--split", "2014-08-01T00:00:00Z"}});
+  };
+  const auto plan = [&](const std::vector<std::string>& bad) {
+    return with({"plan"}, bad, {{"--map", "tests/data/maps/small.yaml"}, {"--from", "A"}, {"--to", "B"}});
+  };
+  struct Case {
+    std::vector<std::string> args;
+    std::string expect;  // in the message
+  };
+  const Case cases[] = {
+      {run({"--seed", "99999999999999999999"}), "--seed: '99999999999999999999' is not a whole number from 0 to"},
+      {run({"--seed", "9223372036854775808"}), "--seed: '9223372036854775808'"},
+      {run({"--seed", "-1"}), "--seed: '-1'"},
+      {run({"--seed", "1.5"}), "--seed: '1.5'"},
+      {run({"--seed", "0x10"}), "--seed: '0x10'"},
+      {run({"--seed", ""}), "--seed"},
+      {run({"--days", "99999999999999999999"}), "--days: '99999999999999999999' is not a whole number from 1 to 3660"},
+      {run({"--days", "4294967297"}), "--days: '4294967297'"},
+      {run({"--days", "-3"}), "--days: '-3'"},
+      {run({"--days", "0"}), "--days: '0'"},
+      {run({"--days", "3661"}), "--days: '3661'"},
+      {run({"--speed", "0"}), "--speed"},
+      {run({"--speed", "-2"}), "--speed"},
+      {run({"--speed", "nan"}), "--speed"},
+      {run({"--speed", "1e400"}), "--speed"},
+      {run({"--for", "-5m"}), "--for"},
+      {run({"--for", "0s"}), "--for"},
+      {{"schedule", "--tsptw", tsptw_file, "--seed", "99999999999999999999"}, "--seed: '99999999999999999999'"},
+      {{"schedule", "--tsptw", tsptw_file, "--seed", "-1"}, "--seed: '-1'"},
+      {{"schedule", "--tsptw", tsptw_file, "--time-limit", "-1"}, "--time-limit"},
+      {{"schedule", "--tsptw", tsptw_file, "--time-limit", "0"}, "--time-limit"},
+      {{"serve", g4s, "--streams", "99999999999999999999"}, "--streams: '99999999999999999999'"},
+      {{"serve", g4s, "--streams", "0"}, "--streams: '0'"},
+      {{"serve", g4s, "--streams", "-1"}, "--streams: '-1'"},
+      {{"serve", g4s, "--speed", "0"}, "--speed"},
+      {{"serve", g4s, "--speed", "-1"}, "--speed"},
+      {{"serve", g4s, "--speed", "nan"}, "--speed"},
+      {{"serve", g4s, "--listen", "127.0.0.1:99999999999999999999"}, "--listen"},
+      {{"task", "expand", tasks, "--from", "2026-11-23", "--days", "-3"}, "--days: '-3'"},
+      {{"task", "expand", tasks, "--from", "2026-11-23", "--days", "99999999999999999999"}, "--days"},
+      {{"task", "expand", tasks, "--from", "2026-11-23", "--days", "0x10"}, "--days: '0x10'"},
+      {edges({"--min-train", "99999999999999999999"}), "--min-train: '99999999999999999999'"},
+      {edges({"--min-test", "-5"}), "--min-test: '-5'"},
+      {edges({"--min-test", "2.5"}), "--min-test: '2.5'"},
+      {robustness({"--seeds", "9223372036854775808"}), "--seeds"},
+      {robustness({"--seeds", "9223372036854775807-9223372036854775808"}), "--seeds"},
+      {robustness({"--seeds", "1,-2"}), "--seeds"},
+      {robustness({"--days", "-3"}), "--days: '-3'"},
+      {robustness({"--days", "99999999999999999999"}), "--days"},
+      {robustness({"--jobs", "0"}), "--jobs: '0'"},
+      {robustness({"--jobs", "99999999999999999999"}), "--jobs"},
+      {robustness({"--alphas", "nan"}), "--alphas"},
+      {robustness({"--navigation-alphas", "-0.1"}), "--navigation-alphas"},
+      {robustness({"--route-thresholds", "-30"}), "--route-thresholds"},
+      {plan({"--prior-probability", "0"}), "--prior-probability"},
+      {plan({"--prior-probability", "nan"}), "--prior-probability"},
+      {plan({"--prior-probability", "-1"}), "--prior-probability"},
+      {{"log", "archive", "--db", (dir / "none.db").string(), "--older-than", "99999999999999999999d", "--out",
+        (dir / "a.db").string()},
+       "--older-than"},
+      {{"log", "archive", "--db", (dir / "none.db").string(), "--older-than", "200000000d", "--out",
+        (dir / "a.db").string()},
+       "--older-than: '200000000d' is not a number of days from 0 to"},
+      {{"log", "archive", "--db", (dir / "none.db").string(), "--older-than", "-90d", "--out", (dir / "a.db").string()},
+       "--older-than"},
+  };
+  for (const Case& c : cases) {
+    std::string line;
+    for (const auto& a : c.args) line += a + " ";
+    const auto r = test::run_cli(c.args);
+    EXPECT_EQ(r.exit_code, 2) << line << "\n" << r.err;
+    EXPECT_THAT(r.err, HasSubstr(c.expect)) << line;
+    EXPECT_FALSE(std::filesystem::exists(out)) << line;  // nothing ran
+    std::filesystem::remove_all(out);
+  }
+  // A leading zero is decimal, not octal: ten days are ten days.
+  const auto expand = [&](const std::string& days) {
+    return test::run_cli({"task", "expand", tasks, "--from", "2026-11-23", "--days", days, "--json"});
+  };
+  const auto ten = expand("10");
+  ASSERT_EQ(ten.exit_code, 0) << ten.err;
+  EXPECT_EQ(expand("010").out, ten.out);
 }
 
 TEST(Hardening, OutOfRangeCountsOnTheCommandLineAreRefused) {

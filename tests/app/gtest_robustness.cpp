@@ -18,6 +18,19 @@ TEST(Robustness, SeedsAreACountARangeOrAList) {
   for (const char* bad : {"", "0", "x", "5-2", "1-", "1,,2", "1-2000"}) EXPECT_FALSE(parse_seeds(bad).ok()) << bad;
 }
 
+// A seed is what `rondo run --seed` and a deployment's `seed:` take, 0 to 2^63 - 1: past it, a
+// seed is refused (it was taken, and a range ending at 2^64 - 1 never ended).
+TEST(Robustness, SeedsPastTheLargestSeedAreRefused) {
+  EXPECT_EQ(*parse_seeds("9223372036854775806-9223372036854775807"),
+            (std::vector<std::uint64_t>{9223372036854775806u, 9223372036854775807u}));
+  for (const char* bad : {"9223372036854775808", "9223372036854775807-9223372036854775808", "1,9223372036854775808",
+                          "-1", "1,-2", "18446744073709551615-18446744073709551615"}) {
+    const auto seeds = parse_seeds(bad);
+    ASSERT_FALSE(seeds.ok()) << bad;
+    EXPECT_THAT(seeds.error().message, HasSubstr("is not a seed (a whole number from 0 to 9223372036854775807)"));
+  }
+}
+
 TEST(Robustness, AReportIsReadByReason) {
   const Json report = Json::parse(R"({
     "tasks": {"added": 20, "completed": 11,
