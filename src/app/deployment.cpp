@@ -164,6 +164,27 @@ Status decode_robot(const Field& f, Deployment& d) {
   return Status{};
 }
 
+// world and battery describe the simulated building and robot: the simulated robot needs its world,
+// and a VDA 5050 vehicle, which drives in the real building and reports its own battery, is refused
+// either rather than have it read and never used (docs/deployment.md, "The robot").
+Status decode_simulated_building(const Field& root, const std::filesystem::path& base, Deployment& d) {
+  if (d.vda5050) {
+    for (const char* key : {"world", "battery"})
+      if (auto f = root.optional(key))
+        return f->error(fmt::format(
+            "a vda5050 vehicle drives in the real building; the simulated {} is for robot kind sim only (remove "
+            "it, or run the simulated robot)",
+            key));
+    return Status{};
+  }
+  if (!root.has("world"))
+    return root.error("missing field 'world': the simulated robot (robot kind sim, the default) needs its building");
+  RONDO_ASSIGN_OR_RETURN(const Field world, root.required("world"));
+  RONDO_ASSIGN_OR_RETURN(d.world, path_field(world, base));
+  if (auto f = root.optional("battery")) { RONDO_ASSIGN_OR_RETURN(d.battery, sim::decode_battery(*f)); }
+  return Status{};
+}
+
 Result<Deployment> decode(const Field& root, const std::filesystem::path& file) {
   const std::filesystem::path base = file.parent_path();
   RONDO_RETURN_IF_ERROR(root.expect_keys({"rondo_deployment", "name", "map", "time_zone", "dock", "start", "days",
@@ -199,13 +220,11 @@ Result<Deployment> decode(const Field& root, const std::filesystem::path& file) 
     d.seed = static_cast<std::uint64_t>(s);
   }
   if (auto f = root.optional("routines")) { RONDO_ASSIGN_OR_RETURN(d.routines, path_field(*f, base)); }
-  RONDO_ASSIGN_OR_RETURN(const Field world, root.required("world"));
-  RONDO_ASSIGN_OR_RETURN(d.world, path_field(world, base));
   if (auto f = root.optional("requests")) { RONDO_ASSIGN_OR_RETURN(d.requests, path_field(*f, base)); }
   if (auto f = root.optional("places")) { RONDO_ASSIGN_OR_RETURN(d.places, path_field(*f, base)); }
   if (auto f = root.optional("executor")) RONDO_RETURN_IF_ERROR(decode_executor(*f, d.executor));
-  if (auto f = root.optional("battery")) { RONDO_ASSIGN_OR_RETURN(d.battery, sim::decode_battery(*f)); }
   if (auto f = root.optional("robot")) RONDO_RETURN_IF_ERROR(decode_robot(*f, d));
+  RONDO_RETURN_IF_ERROR(decode_simulated_building(root, base, d));
   return d;
 }
 

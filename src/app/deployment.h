@@ -10,7 +10,7 @@
 //   days: 21
 //   seed: 1
 //   routines: routines.yaml        # task file: routines (and one-off tasks)
-//   world: world.yaml              # the simulated building (docs/simulation.md)
+//   world: world.yaml              # the simulated building (docs/simulation.md): kind sim only
 //   requests: requests.yaml        # optional: people's on-demand requests
 //   places: places.yaml            # optional: rooms, aliases and people for commands in words
 //   executor: {navigation_overrun: 2.0, navigation_slack: 60s, action_overrun: 1.5,
@@ -45,13 +45,14 @@ struct Deployment {
   int days = 21;
   std::uint64_t seed = 1;
   std::optional<std::filesystem::path> routines;
-  std::filesystem::path world;
+  // The simulated building: always for the simulated robot, never for a VDA 5050 vehicle.
+  std::optional<std::filesystem::path> world;
   std::optional<std::filesystem::path> requests;
   std::optional<std::filesystem::path> places;  // commands in words through `rondo serve`'s API
   // dock is filled in once the map is loaded; risk_alpha is exec::kDeploymentRiskAlpha unless the
   // file says otherwise (null: expected values).
   exec::ExecutorOptions executor{.risk_alpha = exec::kDeploymentRiskAlpha};
-  // `battery:`: the simulated battery, in place of the world file's (docs/simulation.md).
+  // `battery:`: the simulated battery, in place of the world file's (docs/simulation.md); kind sim only.
   std::optional<sim::BatteryModel> battery;
   // The robot: nothing for the simulated one (kind: sim, the default), or a VDA 5050 vehicle.
   std::optional<vda5050::Vda5050Config> vda5050;

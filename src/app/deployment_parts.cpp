@@ -23,8 +23,11 @@ Result<DeploymentParts> load_parts(const Deployment& d) {
     RONDO_ASSIGN_OR_RETURN(plan, load_task_file(*d.routines, &places));
   }
   // The world and the requests decoders check their nodes against the map themselves.
-  RONDO_ASSIGN_OR_RETURN(sim::SimWorld world, sim::load_world(d.world, map, d.zone));
-  if (d.battery) world.battery = *d.battery;  // the deployment's battery replaces the world's
+  std::optional<sim::SimWorld> world;
+  if (d.world) {
+    RONDO_ASSIGN_OR_RETURN(world, sim::load_world(*d.world, map, d.zone));
+    if (d.battery) world->battery = *d.battery;  // the deployment's battery replaces the world's
+  }
   std::optional<sim::RequestGenerator> people;
   if (d.requests) { RONDO_ASSIGN_OR_RETURN(people, sim::RequestGenerator::load(*d.requests, map, d.zone)); }
   std::optional<lang::Places> places;

@@ -1,7 +1,7 @@
 // Everything a deployment names, loaded and checked against each other before anything runs or is
 // written (the map, the dock, the routines and tasks, the simulated world, the requests, the
 // places): every node they name is on the map, and every error names the file, the line and the
-// node.
+// node. A VDA 5050 vehicle's deployment has no simulated world.
 //
 //   Result<DeploymentParts> parts = load_parts(deployment);   // reads files, writes nothing
 //   if (!parts) return parts.error();   // "routines.yaml:12: routines[0].task.start_node: node ..."
@@ -23,7 +23,7 @@ struct DeploymentParts {
   map::TopoMap map;
   map::NodeIndex dock = 0;
   TaskFile plan;  // routines and one-off tasks
-  sim::SimWorld world;
+  std::optional<sim::SimWorld> world;  // the simulated robot's building; none for a VDA 5050 vehicle
   std::optional<sim::RequestGenerator> people;
   std::optional<lang::Places> places;  // the deployment's places file, checked against the map
 };

@@ -24,7 +24,7 @@ struct DeploymentRobot {
 };
 
 // The robot starts at `start` (a VDA 5050 vehicle then says where it is); `seed` is the simulated
-// robot's. `parts` and `clock` must outlive it.
+// robot's, which drives in `parts.world`. `parts` and `clock` must outlive it.
 Result<DeploymentRobot> make_robot(const Deployment& deployment, DeploymentParts& parts, exec::Clock& clock,
                                    map::NodeIndex start, std::uint64_t seed);
 

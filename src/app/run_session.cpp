@@ -258,15 +258,15 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   RunFigures figures{.from = start, .to = end, .charging = deployed.charging_time()};
   navigation_from_log(map, log, start, end, figures);
   result.report = run_report(executor, figures);
-  // The simulated truth beside what was learned of it.
-  if (result.report.contains("loading_times"))
+  // The simulated truth beside what was learned of it (not for a real vehicle, which has no world).
+  if (s.parts.world && result.report.contains("loading_times"))
     for (Json& t : result.report["loading_times"])
-      if (auto truth = s.parts.world.confirmation.at(t["action"].get<std::string>(), t["place"].get<std::string>()))
+      if (auto truth = s.parts.world->confirmation.at(t["action"].get<std::string>(), t["place"].get<std::string>()))
         t["truth_s"] = to_seconds(*truth);
   result.report["battery"]["days_flat"] = days_flat;
-  // The simulated battery's true costs beside the learned ones (not for a real vehicle).
-  if (!d.vda5050) {
-    const sim::BatteryModel& b = s.parts.world.battery;
+  // The simulated battery's true costs beside the learned ones.
+  if (s.parts.world) {
+    const sim::BatteryModel& b = s.parts.world->battery;
     result.report["battery"]["truth"] = Json{{"per_km", b.per_metre * 1000},
                                              {"moving_per_hour", b.moving_per_hour},
                                              {"acting_per_hour", b.acting_per_hour},

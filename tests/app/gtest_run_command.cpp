@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "cli_runner.h"
+#include "deployment.h"
+#include "deployment_parts.h"
 #include "test_files.h"
 #include "rondo/core/document.h"
 #include "rondo/core/task.h"
@@ -179,9 +181,9 @@ TEST(RunCommand, TheRobotSectionIsCheckedAndAVdaVehicleNeedsRealtime) {
   const auto dir = fresh_dir("robot");
   std::filesystem::create_directories(dir);
   const std::filesystem::path ex = std::filesystem::absolute("examples/g4s");
+  // No world: a vehicle drives in the real building (OnlyTheSimulatedRobotHasAWorld).
   const std::string head = "rondo_deployment: 1\nname: x\nmap: " + (ex / "map.yaml").string() +
-                           "\ntime_zone: UTC\ndock: ChargingPoint\nstart: 2026-11-23\ndays: 1\nworld: " +
-                           (ex / "world.yaml").string() + "\n";
+                           "\ntime_zone: UTC\ndock: ChargingPoint\nstart: 2026-11-23\ndays: 1\n";
   const auto run = [&](const std::string& robot, std::vector<std::string> extra = {}) {
     std::ofstream(dir / "deployment.yaml", std::ios::trunc) << head << robot;
     std::vector<std::string> args{"run", (dir / "deployment.yaml").string(), "--out", (dir / "run").string()};
@@ -197,7 +199,7 @@ TEST(RunCommand, TheRobotSectionIsCheckedAndAVdaVehicleNeedsRealtime) {
 
   const auto kind = run("robot: {kind: forklift}\n", {"--realtime"});
   EXPECT_EQ(kind.exit_code, 2);
-  EXPECT_THAT(kind.err, HasSubstr("deployment.yaml:9"));
+  EXPECT_THAT(kind.err, HasSubstr("deployment.yaml:8"));
   EXPECT_THAT(kind.err, HasSubstr("forklift"));
 
   std::string no_map = vehicle;
@@ -215,12 +217,64 @@ TEST(RunCommand, TheRobotSectionIsCheckedAndAVdaVehicleNeedsRealtime) {
   bad_serial.replace(bad_serial.find("agv-7"), 5, "agv/7");
   const auto serial = run(bad_serial, {"--realtime"});
   EXPECT_EQ(serial.exit_code, 2);
-  EXPECT_THAT(serial.err, HasSubstr("deployment.yaml:14"));  // the field's own line
+  EXPECT_THAT(serial.err, HasSubstr("deployment.yaml:13"));  // the field's own line
   EXPECT_THAT(serial.err, HasSubstr("serial_number"));
 
-  const auto sim = run("robot: {kind: sim, broker: x}\n");
+  const auto sim = run("world: " + (ex / "world.yaml").string() + "\nrobot: {kind: sim, broker: x}\n");
   EXPECT_EQ(sim.exit_code, 2);
   EXPECT_THAT(sim.err, HasSubstr("broker"));
+  std::filesystem::remove_all(dir.parent_path());
+}
+
+// The world is the simulated robot's building: a deployment of the simulated robot (kind sim, the
+// default) must name one, and one of a VDA 5050 vehicle, which drives in the real building, needs
+// none and is refused one (and a simulated battery), so that nobody thinks it is used.
+TEST(RunCommand, OnlyTheSimulatedRobotHasAWorld) {
+  const auto dir = fresh_dir("world");
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path ex = std::filesystem::absolute("examples/g4s");
+  const std::string head = "rondo_deployment: 1\nname: x\nmap: " + (ex / "map.yaml").string() +
+                           "\ntime_zone: UTC\ndock: ChargingPoint\nstart: 2026-11-23\ndays: 1\n";
+  const std::string world = "world: " + (ex / "world.yaml").string() + "\n";
+  const std::string vehicle =
+      "robot:\n  kind: vda5050\n  broker: \"mqtt://127.0.0.1:1\"\n  interface_name: uagv\n"
+      "  manufacturer: acme\n  serial_number: agv-7\n  map_id: g4s_y2\n";
+  const auto file = dir / "deployment.yaml";
+  const auto run = [&](const std::string& text, std::vector<std::string> extra = {}) {
+    std::ofstream(file, std::ios::trunc) << text;
+    std::vector<std::string> args{"run", file.string(), "--out", (dir / "run").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return test::run_cli(args);
+  };
+
+  // A vehicle without a world: read, and its parts load with no world to dereference.
+  std::ofstream(file, std::ios::trunc) << head + vehicle;
+  const auto d = app::load_deployment(file);
+  ASSERT_TRUE(d.ok()) << d.error().message;
+  EXPECT_FALSE(d->world.has_value());
+  const auto parts = app::load_parts(*d);
+  ASSERT_TRUE(parts.ok()) << parts.error().message;
+  EXPECT_FALSE(parts->world.has_value());
+  const auto no_realtime = run(head + vehicle);
+  EXPECT_EQ(no_realtime.exit_code, 2);
+  EXPECT_THAT(no_realtime.err, HasSubstr("--realtime"));  // the next thing it needs, not a world
+
+  // A vehicle with a world: refused at the world's line.
+  const auto with_world = run(head + world + vehicle, {"--realtime"});
+  EXPECT_EQ(with_world.exit_code, 2);
+  EXPECT_THAT(with_world.err, HasSubstr("deployment.yaml:8: world: a vda5050 vehicle drives in the real building"));
+  const auto with_battery = run(head + vehicle + "battery: {moving_per_hour: 1.0}\n", {"--realtime"});
+  EXPECT_EQ(with_battery.exit_code, 2);
+  EXPECT_THAT(with_battery.err, HasSubstr("deployment.yaml:15: battery: "));
+
+  // The simulated robot without a world: refused, saying why it needs one.
+  for (const std::string& robot : {std::string(), std::string("robot: {kind: sim}\n")}) {
+    const auto sim = run(head + robot);
+    EXPECT_EQ(sim.exit_code, 2) << robot;
+    EXPECT_THAT(sim.err, HasSubstr("deployment.yaml:1: missing field 'world'")) << robot;
+    EXPECT_THAT(sim.err, HasSubstr("robot kind sim")) << robot;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "run"));
   std::filesystem::remove_all(dir.parent_path());
 }
 

@@ -28,7 +28,7 @@ TEST(ServePeople, RequestsArriveWhenDueEveryDay) {
   ASSERT_TRUE(db.ok());
   const Time monday = d->zone.at(d->start, Duration{0});
   exec::SimClock clock(monday);
-  sim::SimRobot robot(clock, parts->map, parts->world, {.start = parts->dock, .dock = parts->dock, .seed = 1});
+  sim::SimRobot robot(clock, parts->map, *parts->world, {.start = parts->dock, .dock = parts->dock, .seed = 1});
   exec::ExecutorOptions options = d->executor;
   options.dock = parts->dock;
   exec::Executor executor(clock, robot, parts->map, *db, d->zone, options);

@@ -40,7 +40,7 @@ exec::SystemClock::Sources starting_at(const std::string& start) {
 
 LiveService::LiveService(const std::filesystem::path& data, LiveOptions o)
     : parts_(example_parts(o.deployment)), store_(open_store(data)), clock_(o.speed, starting_at(o.start)), token_(o.token) {
-  robot_ = std::make_unique<sim::SimRobot>(clock_, parts_.map, parts_.world,
+  robot_ = std::make_unique<sim::SimRobot>(clock_, parts_.map, *parts_.world,
                                            sim::SimRobotOptions{.start = parts_.dock, .dock = parts_.dock, .seed = 3});
   exec::ExecutorOptions eo;
   eo.dock = parts_.dock;

@@ -189,7 +189,6 @@ void VdaDay::run(const DayOptions& o) {
   std::ofstream dep(dir_ / "deployment.yaml");
   dep << "rondo_deployment: 1\nname: vda-day\n"
       << "map: " << (source / "map.yaml").string() << "\n"
-      << "world: " << (source / "world.yaml").string() << "\n"
       << "time_zone: UTC\ndock: ChargingPoint\nstart: 2026-12-01\ndays: 3\nroutines: tasks.yaml\n"
       << "executor: " << o.executor_yaml << "\n"
       << "robot: {kind: vda5050, broker: \"" << broker_->url() << "\", interface_name: uagv, manufacturer: acme, "
