@@ -65,17 +65,30 @@ std::string id_tag(const CommandContext& ctx) {
 
 Status apply_one_off(const Timing& t, const CommandContext& ctx, Task& task) {
   if (t.now) {
-    if (t.day_offset || t.on_weekday || t.on_date || t.before || t.after || t.at || t.between) {
+    if (t.day_offset || t.on_weekday || t.on_date || t.before || t.after || t.at || t.between || t.in) {
       return Error::invalid("'now' cannot go with a day or a time: drop one of them");
     }
     task.kind = TaskKind::kOnDemand;
     task.window.reset();
     return {};
   }
-  RONDO_ASSIGN_OR_RETURN(auto day, day_of(t, ctx));
-  RONDO_ASSIGN_OR_RETURN(auto span, daily_window(t));
-  const Time opens = ctx.zone.at(day, span.first);
-  const Time closes = ctx.zone.at(day, span.second);
+  Time opens{};
+  Time closes{};
+  if (t.in) {
+    // "in 10 minutes": a time from now, as "at" that time; it may fall on another day.
+    if (t.day_offset || t.on_weekday || t.on_date || t.before || t.after || t.at || t.between) {
+      return Error::invalid(fmt::format("'in {}' is a time from now: it cannot go with a day or another time; give one "
+                                        "of them",
+                                        format_duration(*t.in)));
+    }
+    opens = ctx.now + *t.in;
+    closes = opens + kAtSlack;
+  } else {
+    RONDO_ASSIGN_OR_RETURN(auto day, day_of(t, ctx));
+    RONDO_ASSIGN_OR_RETURN(auto span, daily_window(t));
+    opens = ctx.zone.at(day, span.first);
+    closes = ctx.zone.at(day, span.second);
+  }
   if (closes <= ctx.now) {
     return Error::invalid(
         fmt::format("the time asked for ends at {}, which is past (it is {}); say 'tomorrow' or "
@@ -93,8 +106,10 @@ Status apply_one_off(const Timing& t, const CommandContext& ctx, Task& task) {
 }
 
 Result<Routine> make_routine(const Timing& t, const CommandContext& ctx, const Job& job, int priority) {
-  if (t.now || t.day_offset || t.on_date) {
-    return Error::invalid("a repeated task ('every ...') cannot also be for 'now', 'today', 'tomorrow' or a date");
+  if (t.now || t.day_offset || t.on_date || t.in) {
+    return Error::invalid(
+        "a repeated task ('every ...') cannot also be for 'now', 'today', 'tomorrow', a date or a time from now "
+        "('in ...')");
   }
   Routine r;
   r.name = job.verb + "-" + slug(job.node);

@@ -43,6 +43,18 @@ std::optional<std::chrono::year_month_day> iso_date(std::string_view w) {
   return ymd;
 }
 
+// A span from now at tokens[i]: "N UNIT" ("10 minutes", "one hour"), "a/an UNIT" ("an hour") or
+// "half an hour"; the span and the number of words it takes.
+std::optional<std::pair<Duration, std::size_t>> span_from_now(const Tokens& t, std::size_t i) {
+  const auto word = [&](std::size_t k) { return k < t.size() ? std::string_view(t[k].word) : std::string_view(); };
+  const auto unit = unit_of(word(i + 1));
+  if (auto n = count_of(word(i)); n && unit) return std::pair{*n * *unit, std::size_t{2}};
+  if ((word(i) == "a" || word(i) == "an") && unit) return std::pair{*unit, std::size_t{2}};
+  if (word(i) == "half" && (word(i + 1) == "an" || word(i + 1) == "a") && unit_of(word(i + 2)) == hours(1))
+    return std::pair{Duration{minutes(30)}, std::size_t{3}};
+  return std::nullopt;
+}
+
 class TimingParser {
  public:
   TimingParser(const Tokens& t, std::size_t i) : t_(t), i_(i) {}
@@ -177,6 +189,19 @@ class TimingParser {
       }
       return once(out_.between, std::pair{a, b}, keyword);
     }
+    if (w == "in") {
+      const auto span = span_from_now(t_, i_ + 1);
+      if (!span) {
+        return error(next().empty() ? std::string("'in' needs a length such as '10 minutes' or 'half an hour'")
+                                    : fmt::format("'in' needs a length such as '10 minutes' or 'half an hour', not '{}'",
+                                                  t_[i_ + 1].text));
+      }
+      if (span->first <= Duration{0}) {
+        return error(fmt::format("'in {}' must be later than now", text_of(t_, i_ + 1, i_ + 1 + span->second)));
+      }
+      i_ += 1 + span->second;
+      return once(out_.in, span->first, "in ...");
+    }
     if (w == "every") return every();
     if (w == "daily") {
       ++i_;
@@ -207,7 +232,7 @@ class TimingParser {
     return error(
         fmt::format("I do not understand '{}' here: after the place come only time words (now, "
                     "today, tomorrow, on DAY, before/after/at TIME, between TIME and TIME, every ..., "
-                    "for LENGTH, with priority N)",
+                    "in LENGTH, for LENGTH, with priority N)",
                     t_[i_].text));
   }
 
@@ -219,8 +244,8 @@ class TimingParser {
 }  // namespace
 
 bool Timing::any() const {
-  return now || day_offset || on_weekday || on_date || before || after || at || between || every || days || duration ||
-         priority;
+  return now || day_offset || on_weekday || on_date || before || after || at || between || in || every || days ||
+         duration || priority;
 }
 
 bool starts_timing(const Tokens& tokens, std::size_t i) {
@@ -234,6 +259,7 @@ bool starts_timing(const Tokens& tokens, std::size_t i) {
   if (w == "on") return weekday_named(next) || iso_date(next) || next == "weekdays" || next == "weekends";
   if (w == "for") return count_of(next).has_value() || (!next.empty() && next.front() >= '0' && next.front() <= '9');
   if (w == "with") return next == "priority";
+  if (w == "in") return span_from_now(tokens, i + 1).has_value();  // "in 10 minutes", not "the desk in A-110"
   return false;
 }
 

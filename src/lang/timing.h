@@ -1,7 +1,7 @@
 // The time words at the end of a command (docs/commands.md, "When"): "now", "today",
 // "tomorrow", "on friday", "before 15:00", "after 14:00", "between 20:00 and 20:15",
 // "from 08:00 to 18:00", "at 09:00", "every 2 hours", "every weekday", "daily", "on weekdays",
-// "for 10 minutes", "with priority 4". Internal to rondo::lang.
+// "for 10 minutes", "with priority 4", "in 10 minutes", "in half an hour". Internal to rondo::lang.
 #pragma once
 
 #include <chrono>
@@ -23,6 +23,7 @@ struct Timing {
   std::optional<Duration> after;
   std::optional<Duration> at;
   std::optional<std::pair<Duration, Duration>> between;
+  std::optional<Duration> in;                             // "in 10 minutes": that long after now
   std::optional<Duration> every;                          // "every 2 hours"
   std::optional<std::vector<std::chrono::weekday>> days;  // "every weekday", "daily", "on weekdays"
   std::optional<Duration> duration;                       // "for 10 minutes"

@@ -183,6 +183,19 @@ const Case kAccepted[] = {
     {"cancel the check of office A-123", "cancel check @A-123", true},
     {"cancel the patrol of the emergency exits", "cancel patrol @Exit-West,Exit-East", true},
     {"cancel task check-a-123@2026-11-23T10:00", "cancel task check-a-123@2026-11-23T10:00", true},
+    // Times from now: as "at" that time (a window of 30 min).
+    {"check A-123 in 10 minutes", "check-a-123@T [23 10:10,23 10:40] 2m p0 @A-123 check", true},
+    {"check A-123 in 1 minute", "check-a-123@T [23 10:01,23 10:31] 2m p0 @A-123 check", true},
+    {"check A-123 in half an hour", "check-a-123@T [23 10:30,23 11:00] 2m p0 @A-123 check", true},
+    {"check A-123 in an hour", "check-a-123@T [23 11:00,23 11:30] 2m p0 @A-123 check", true},
+    {"urgent: check the kitchen in 2 hours for 5 minutes", "check-a-117@T [23 12:00,23 12:30] 5m p10 @A-117 check",
+     true},
+    {"come to the library in ten minutes", "visit-a-110@T [23 10:10,23 10:40] 5m p0 @A-110 visit", true},
+    {"deliver the red letter from A-111 to A-120 in 15 mins",
+     "pickup-red-letter@T [23 10:15,23 10:45] 1m p0 @A-111 load pickup:red-letter@T 'red letter'; "
+     "drop-red-letter@T [23 10:15,23 10:45] 1m p0 @A-120 unload drop:red-letter@T 'red letter' "
+     "after:pickup-red-letter@T",
+     true},
 };
 
 const Case kRejected[] = {
@@ -226,8 +239,16 @@ const Case kRejected[] = {
      "'with priority' needs a whole number, not 'high'", false},
     {"check A-123 on 2026-11-20", "2026-11-20 is past (today is 2026-11-23)", false},
     {"check A-123 tomorrow on friday", "name the day once", false},
-    {"check the emergency exits every 2 hours tomorrow", "cannot also be for 'now', 'today', 'tomorrow' or a date",
+    {"check the emergency exits every 2 hours tomorrow", "cannot also be for 'now', 'today', 'tomorrow', a date",
      false},
+    {"check A-123 in 10 minutes tomorrow", "'in 10m' is a time from now: it cannot go with a day or another time",
+     false},
+    {"check A-123 in 10 minutes at 15:00", "'in 10m' is a time from now", false},
+    {"check A-123 every day in 10 minutes", "cannot also be for 'now', 'today', 'tomorrow', a date or a time from now",
+     false},
+    {"check A-123 in 0 minutes", "'in 0 minutes' must be later than now", false},
+    {"check A-123 tomorrow in a while", "'in' needs a length such as '10 minutes' or 'half an hour', not 'a'", false},
+    {"come to A-110 in 5 minutes now", "'now' cannot go with a day or a time", false},
 };
 
 class Sentences : public ::testing::TestWithParam<Case> {};
@@ -321,6 +342,21 @@ RC_GTEST_PROP(Sentences, DeliveriesGoBetweenExactlyThePlacesNamed, ()) {
   auto again = parse_command(shouted, test::office_context());
   RC_ASSERT(again.ok());
   RC_ASSERT(describe(*again) == describe(*c));
+}
+
+// "in N minutes" is from the command's own "now", whatever its time of day: late in the evening it
+// runs into the next day.
+RC_GTEST_PROP(Sentences, InNMinutesIsThatLongAfterNow, ()) {
+  const int n = *rc::gen::inRange(1, 1000);
+  const bool in_hours = *rc::gen::arbitrary<bool>();
+  const Duration later = in_hours ? hours(n) : minutes(n);
+  CommandContext ctx = test::office_context();
+  ctx.now += minutes(*rc::gen::inRange(0, 24 * 60));
+  const std::string sentence = fmt::format("check A-123 in {} {}", n, in_hours ? "hours" : "minutes");
+  auto c = parse_command(sentence, ctx);
+  RC_ASSERT(c.ok());
+  RC_ASSERT(c->tasks.size() == 1u);
+  RC_ASSERT((c->tasks[0].window == TimeWindow{ctx.now + later, ctx.now + later + minutes(30)}));
 }
 
 TEST(Sentences, TooLongIsAnErrorNotAWait) {
