@@ -6,6 +6,8 @@
 // cancel task ID).
 #include <algorithm>
 #include <array>
+#include <functional>
+#include <map>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -59,6 +61,18 @@ std::string object_of(const Tokens& t, std::size_t b, std::size_t e) {
   return normalise_object(text_of(t, b, e));
 }
 
+// One place of a list as it was said: "the emergency exits" in "check A-123 and the emergency exits".
+struct SaidPlace {
+  Place place;
+  std::string text;
+};
+
+// The longest list of places read, and the most ways of reading it tried (a list of known names
+// that contain "and" can be read in many ways; real ones take a handful). A group in the places
+// file names more places at once.
+constexpr std::size_t kMaxListPlaces = 40;
+constexpr std::size_t kMaxListSteps = 2'000;
+
 struct TwoPlaces {
   Place from;
   Place to;
@@ -111,6 +125,110 @@ class Parser {
   Result<Place> place(std::size_t b, std::size_t e, bool suggest = true) const {
     if (b >= e) return Error::invalid(fmt::format("'{}' needs a place", text_of(t_, verb_, b)));
     return ctx_.places->resolve(text_of(t_, b, e), suggest);
+  }
+
+  // The places of [b, e): one place, or a list of them ("A-110 and A-111", "A-110, A-111 and the
+  // kitchen"). A list may go on after a comma and at "and". Every way of cutting the words there
+  // whose parts all resolve is a reading, except one in which some run of its parts, taken
+  // together as said, is itself a known place: a known name is never cut ("Tom and Anna's
+  // office", when the places file has it, is that place, not Tom and Anna's). The readings left
+  // must name the same nodes; two that do not are an error showing both.
+  Result<std::vector<SaidPlace>> place_list(std::size_t b, std::size_t e) const {
+    using Span = std::pair<std::size_t, std::size_t>;
+    std::vector<Span> cuts;  // {where a part ends, where the next one starts}
+    for (std::size_t k = b + 1; k < e; ++k) {
+      if (t_[k].word == "and") {
+        if (k + 1 < e) cuts.emplace_back(k, k + 1);
+      } else if (t_[k - 1].comma) {
+        cuts.emplace_back(k, k);
+      }
+    }
+    if (cuts.empty()) {
+      RONDO_ASSIGN_OR_RETURN(auto one, place(b, e));
+      return std::vector<SaidPlace>{{std::move(one), text_of(t_, b, e)}};
+    }
+    if (cuts.size() >= kMaxListPlaces) {
+      return Error::invalid(fmt::format("a list of more than {} places is too long: name a group of them in the "
+                                        "places file",
+                                        kMaxListPlaces));
+    }
+    std::map<Span, std::optional<Place>> resolved;
+    const auto lookup = [&](std::size_t x, std::size_t y) -> const std::optional<Place>& {
+      auto [it, fresh] = resolved.try_emplace(Span{x, y});
+      if (fresh) {
+        if (auto p = place(x, y, false)) it->second = std::move(*p);
+      }
+      return it->second;
+    };
+    std::vector<std::vector<Span>> readings;
+    std::vector<Span> parts;
+    std::size_t steps = 0;
+    const std::function<void(std::size_t)> extend = [&](std::size_t from) {
+      if (++steps > kMaxListSteps) return;
+      if (lookup(from, e)) {
+        parts.emplace_back(from, e);
+        readings.push_back(parts);
+        parts.pop_back();
+      }
+      for (const auto& [end, next] : cuts) {
+        if (end <= from || !lookup(from, end)) continue;
+        parts.emplace_back(from, end);
+        extend(next);
+        parts.pop_back();
+      }
+    };
+    extend(b);
+    if (steps > kMaxListSteps) {
+      return Error::invalid(
+          fmt::format("'{}' can be read as too many different lists of places: name fewer at once", text_of(t_, b, e)));
+    }
+    const auto cuts_a_known_name = [&](const std::vector<Span>& r) {
+      for (std::size_t i = 0; i + 1 < r.size(); ++i)
+        for (std::size_t j = i + 1; j < r.size(); ++j)
+          if (lookup(r[i].first, r[j].second)) return true;
+      return false;
+    };
+    std::erase_if(readings, cuts_a_known_name);
+    if (readings.empty()) {
+      // Cut everywhere, the first part that is not a place is the one to name (with the nearest).
+      std::size_t from = b;
+      for (const auto& [end, next] : cuts) {
+        if (end <= from) continue;
+        if (!lookup(from, end)) return place(from, end).error();
+        from = next;
+      }
+      return place(from, e).error();
+    }
+    const auto nodes_of = [&](const std::vector<Span>& r) {
+      std::vector<std::string> nodes;
+      for (const Span& p : r) nodes.insert(nodes.end(), lookup(p.first, p.second)->nodes.begin(),
+                                           lookup(p.first, p.second)->nodes.end());
+      return nodes;
+    };
+    const auto said = [&](const std::vector<Span>& r) {
+      std::vector<std::string> texts;
+      for (const Span& p : r) texts.push_back("'" + text_of(t_, p.first, p.second) + "'");
+      return fmt::format("{}", fmt::join(texts, " and "));
+    };
+    for (const auto& r : readings) {
+      if (nodes_of(r) != nodes_of(readings.front())) {
+        return Error::invalid(fmt::format("'{}' can be read two ways: {}, or {}", text_of(t_, b, e),
+                                          said(readings.front()), said(r)));
+      }
+    }
+    std::vector<SaidPlace> out;
+    std::vector<std::string> seen;
+    for (const Span& p : readings.front()) {
+      const Place& where = *lookup(p.first, p.second);
+      for (const auto& node : where.nodes) {
+        if (std::find(seen.begin(), seen.end(), node) != seen.end()) {
+          return Error::invalid(fmt::format("the command names the place '{}' twice", node));
+        }
+        seen.push_back(node);
+      }
+      out.push_back({where, text_of(t_, p.first, p.second)});
+    }
+    return out;
   }
 
   // Splits [b, e) at one of `separators` into two places that both resolve. Exactly one way of
@@ -217,28 +335,30 @@ class Parser {
       }
       ++b;
     }
-    RONDO_ASSIGN_OR_RETURN(auto where, place(b, body_end_));
-    const std::string said = text_of(t_, b, body_end_);
+    // One task (or, repeated, one routine) per node of each place named.
+    RONDO_ASSIGN_OR_RETURN(const auto list, place_list(b, body_end_));
     Command c;
-    for (const auto& node : where.nodes) {
-      Job job{std::string(v.action),
-              where.nodes.size() > 1 ? fmt::format("{} {} ({})", t_[verb_].word, said, node)
-                                     : fmt::format("{} {}{}", t_[verb_].word, v.needs_to ? "to " : "", said),
-              node, v.duration};
-      if (timing_.recurring()) {
-        RONDO_ASSIGN_OR_RETURN(auto r, detail::make_routine(timing_, ctx_, job, priority_));
-        c.routines.push_back(std::move(r));
-        continue;
+    for (const auto& [where, said] : list) {
+      for (const auto& node : where.nodes) {
+        Job job{std::string(v.action),
+                where.nodes.size() > 1 ? fmt::format("{} {} ({})", t_[verb_].word, said, node)
+                                       : fmt::format("{} {}{}", t_[verb_].word, v.needs_to ? "to " : "", said),
+                node, v.duration};
+        if (timing_.recurring()) {
+          RONDO_ASSIGN_OR_RETURN(auto r, detail::make_routine(timing_, ctx_, job, priority_));
+          c.routines.push_back(std::move(r));
+          continue;
+        }
+        Task task;
+        task.id = job.verb + "-" + slug(node) + "@" + detail::id_tag(ctx_);
+        task.activity = job.activity;
+        task.duration = timing_.duration.value_or(job.duration);
+        task.priority = priority_;
+        task.start_node = node;
+        task.actions = {Action{job.verb, {}}};
+        RONDO_RETURN_IF_ERROR(detail::apply_one_off(timing_, ctx_, task));
+        c.tasks.push_back(std::move(task));
       }
-      Task task;
-      task.id = job.verb + "-" + slug(node) + "@" + detail::id_tag(ctx_);
-      task.activity = job.activity;
-      task.duration = timing_.duration.value_or(job.duration);
-      task.priority = priority_;
-      task.start_node = node;
-      task.actions = {Action{job.verb, {}}};
-      RONDO_RETURN_IF_ERROR(detail::apply_one_off(timing_, ctx_, task));
-      c.tasks.push_back(std::move(task));
     }
     return check(std::move(c));
   }
@@ -264,9 +384,10 @@ class Parser {
     if (b + 2 < e && t_[b + 1].word == "of") {
       for (const auto& v : kVisits) {
         if (v.word == t_[b].word && !v.action.empty()) {
-          RONDO_ASSIGN_OR_RETURN(auto where, place(b + 2, e));
-          return Command{
-              {}, {}, Cancellation{Cancellation::What::kActivity, {}, std::string(v.action), where.nodes, {}}};
+          RONDO_ASSIGN_OR_RETURN(const auto list, place_list(b + 2, e));
+          std::vector<std::string> nodes;
+          for (const auto& said : list) nodes.insert(nodes.end(), said.place.nodes.begin(), said.place.nodes.end());
+          return Command{{}, {}, Cancellation{Cancellation::What::kActivity, {}, std::string(v.action), nodes, {}}};
         }
       }
     }

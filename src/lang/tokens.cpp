@@ -39,7 +39,7 @@ Tokens tokenize(std::string_view sentence) {
     while (b < e && is_edge_punctuation(sentence[b])) ++b;
     while (e > b && is_edge_punctuation(sentence[e - 1])) --e;
     if (e > b) {
-      Token t{std::string(sentence.substr(b, e - b)), {}};
+      Token t{std::string(sentence.substr(b, e - b)), {}, sentence.substr(e, j - e).find(',') != std::string_view::npos};
       t.word = normalise_phrase(t.text);  // one word: folding only (a lone filler word keeps itself)
       out.push_back(std::move(t));
     }

@@ -16,6 +16,7 @@ namespace rondo::lang::detail {
 struct Token {
   std::string text;  // as written, without surrounding punctuation: "A-110", "librarian's"
   std::string word;  // lower case, typographic apostrophes as ': "a-110", "librarian's"
+  bool comma = false;  // a ',' came right after it ("A-110, A-111"): a list may go on there
 };
 
 using Tokens = std::vector<Token>;

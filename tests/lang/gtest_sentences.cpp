@@ -196,6 +196,26 @@ const Case kAccepted[] = {
      "drop-red-letter@T [23 10:15,23 10:45] 1m p0 @A-120 unload drop:red-letter@T 'red letter' "
      "after:pickup-red-letter@T",
      true},
+    // Lists of places: one task, or one routine, per place.
+    {"check A-110 and A-120", "check-a-110@T [23 10:00,24 00:00] 2m p0 @A-110 check; "
+                              "check-a-120@T [23 10:00,24 00:00] 2m p0 @A-120 check",
+     true},
+    {"patrol A-110 and A-120 every day at 9am",
+     "routine patrol-a-110 09:00-09:30 daily 2m p0 @A-110 patrol; "
+     "routine patrol-a-120 09:00-09:30 daily 2m p0 @A-120 patrol",
+     true},
+    {"check A-110, the kitchen, and Michael's desk before 15:00",
+     "check-a-110@T [23 10:00,23 15:00] 2m p0 @A-110 check; check-a-117@T [23 10:00,23 15:00] 2m p0 @A-117 check; "
+     "check-a-114-desk@T [23 10:00,23 15:00] 2m p0 @A-114-Desk check",
+     true},
+    {"check A-123, the emergency exits and the desk in A-120 in 10 minutes",
+     "check-a-123@T [23 10:10,23 10:40] 2m p0 @A-123 check; "
+     "check-exit-west@T [23 10:10,23 10:40] 2m p0 @Exit-West check; "
+     "check-exit-east@T [23 10:10,23 10:40] 2m p0 @Exit-East check; "
+     "check-a-120-desk@T [23 10:10,23 10:40] 2m p0 @A-120-Desk check",
+     true},
+    {"go to A-110 and A-111 now", "visit-a-110@T now 5m p0 @A-110 visit; visit-a-111@T now 5m p0 @A-111 visit", true},
+    {"cancel the check of A-110 and A-120", "cancel check @A-110,A-120", true},
 };
 
 const Case kRejected[] = {
@@ -249,6 +269,11 @@ const Case kRejected[] = {
     {"check A-123 in 0 minutes", "'in 0 minutes' must be later than now", false},
     {"check A-123 tomorrow in a while", "'in' needs a length such as '10 minutes' or 'half an hour', not 'a'", false},
     {"come to A-110 in 5 minutes now", "'now' cannot go with a day or a time", false},
+    {"check A-110 and A-121", "no place called 'A-121'; nearest known places: A-120", false},
+    {"check A-110 and room A-110", "the command names the place 'A-110' twice", false},
+    {"patrol the exits and the east exit every day", "the command names the place 'Exit-East' twice", false},
+    {"check the desk and A-110", "'the desk' is in more than one room; say which", false},
+    {"check A-110 and", "no place called 'A-110 and'", false},
 };
 
 class Sentences : public ::testing::TestWithParam<Case> {};
@@ -357,6 +382,79 @@ RC_GTEST_PROP(Sentences, InNMinutesIsThatLongAfterNow, ()) {
   RC_ASSERT(c.ok());
   RC_ASSERT(c->tasks.size() == 1u);
   RC_ASSERT((c->tasks[0].window == TimeWindow{ctx.now + later, ctx.now + later + minutes(30)}));
+}
+
+// A list of any of the office's single places, joined with commas and "and", makes one task per
+// place, in the order said, each exactly at its place's node.
+RC_GTEST_PROP(Sentences, AListOfPlacesMakesOneTaskPerPlaceInOrder, ()) {
+  const Places& places = test::office().places;
+  std::vector<std::string> singles;
+  for (const auto& name : places.names()) {
+    if (auto p = places.resolve(name); p && p->nodes.size() == 1) singles.push_back(name);
+  }
+  const auto count = *rc::gen::inRange<std::size_t>(2, 6);
+  std::vector<std::string> said;
+  std::vector<std::string> nodes;
+  while (said.size() < count) {
+    const auto name = *rc::gen::elementOf(singles);
+    const std::string node = places.resolve(name)->nodes.front();
+    if (std::find(nodes.begin(), nodes.end(), node) != nodes.end()) continue;
+    said.push_back(name);
+    nodes.push_back(node);
+  }
+  std::string list = said.front();
+  for (std::size_t i = 1; i < said.size(); ++i) list += (i + 1 == said.size() ? " and " : ", ") + said[i];
+  auto c = parse_command("check " + list, test::office_context());
+  RC_ASSERT(c.ok());
+  std::vector<std::string> got;
+  for (const auto& t : c->tasks) got.push_back(t.start_node);
+  RC_ASSERT(got == nodes);
+}
+
+// A place whose own name holds "and" is that place, never two; a list that can be cut into known
+// places in two ways that mean different places is an error that shows both.
+TEST(Sentences, AKnownNameWithAndIsNeverCutAndTwoReadingsAreAnError) {
+  auto doc = Document::parse(R"(places:
+  - {name: Tom and Anna's office, node: A-123}
+  - {name: Tom, node: A-110}
+  - {name: red and blue, node: A-110-Desk}
+  - {name: blue and green, node: A-111-Table}
+  - {name: red, node: A-114}
+  - {name: blue, node: A-117}
+  - {name: green, node: Exit-West}
+people:
+  - {name: Anna, place: A-120}
+)",
+                             DocumentFormat::kYaml, "places.yaml");
+  ASSERT_TRUE(doc.ok()) << doc.error().message;
+  auto places = Places::decode(*doc, test::office().map);
+  ASSERT_TRUE(places.ok()) << places.error().message;
+  CommandContext ctx = test::office_context();
+  ctx.places = &*places;
+  auto nodes = [&](const std::string& sentence) {
+    auto c = parse_command(sentence, ctx);
+    std::vector<std::string> out;
+    if (!c) return std::vector<std::string>{"error: " + c.error().message};
+    for (const auto& t : c->tasks) out.push_back(t.start_node);
+    return out;
+  };
+  using V = std::vector<std::string>;
+  EXPECT_EQ(nodes("check Tom and Anna's office"), V{"A-123"});
+  EXPECT_EQ(nodes("check Tom and Anna's office and A-111"), (V{"A-123", "A-111"}));
+  EXPECT_EQ(nodes("check A-111, Tom and Anna's office"), (V{"A-111", "A-123"}));
+  EXPECT_EQ(nodes("check Tom and Anna"), (V{"A-110", "A-120"}));
+  EXPECT_EQ(nodes("check Anna and Tom"), (V{"A-120", "A-110"}));
+  auto two = parse_command("check red and blue and green", ctx);
+  ASSERT_FALSE(two.ok());
+  EXPECT_EQ(two.error().message,
+            "'red and blue and green' can be read two ways: 'red' and 'blue and green', or 'red and blue' and 'green'")
+      << two.error().message;
+  std::string many = "check A-110";
+  for (int i = 0; i < 45; ++i) many += " and A-110";
+  auto c = parse_command(many, ctx);
+  ASSERT_FALSE(c.ok());
+  EXPECT_NE(c.error().message.find("a list of more than 40 places is too long"), std::string::npos)
+      << c.error().message;
 }
 
 TEST(Sentences, TooLongIsAnErrorNotAWait) {
