@@ -145,7 +145,12 @@ void add(const AddOptions& o, CommandContext& ctx) {
       fail(ctx, q.error());
       return;
     }
-    ctx.err << fmt::format("rondo task add: queued as request {} in {}: {}\n", q->id, q->file.string(), q->what);
+    if (!q->already_queued.empty()) {
+      ctx.err << fmt::format("rondo task add: already queued: {} (in {}); nothing queued\n",
+                             fmt::join(q->already_queued, ", "), q->file.string());
+    } else {
+      ctx.err << fmt::format("rondo task add: queued as request {} in {}: {}\n", q->id, q->file.string(), q->what);
+    }
   }
   if (o.json) {
     ctx.out << request_body(*command, zone).dump(2) << '\n';

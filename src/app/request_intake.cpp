@@ -9,6 +9,7 @@
 
 #include "rondo/core/task_codec.h"
 #include "rondo/lang/command.h"
+#include "rondo/service/said_again.h"
 #include "rondo/service/stored_routines.h"
 #include "rondo/store/requests.h"
 
@@ -81,6 +82,18 @@ void take_tasks(exec::Executor& executor, store::Store& db, Time now, const stor
                 std::vector<std::string>& errors) {
   auto file = parse_task_file(r.body.dump(), DocumentFormat::kJson, about(r));
   if (!file) return reject(executor, now, r, file.error().message);
+  // The same sentence again (queued twice before the executive took the first): nothing to add.
+  // Another that made the same ids gets its own ("~2" after them).
+  lang::Command said{std::move(file->tasks), std::move(file->routines), std::nullopt};
+  auto repeated = service::settle_against_executor(said, executor);
+  if (!repeated) return reject(executor, now, r, repeated.error().message);
+  if (!repeated->empty()) {
+    if (auto ok = store::take_request(db, {r.id, now, service::already_queued_text(*repeated)}); !ok)
+      errors.push_back(ok.error().message);
+    return;
+  }
+  file->tasks = std::move(said.tasks);
+  file->routines = std::move(said.routines);
   if (!file->routines.empty()) return take_routines(executor, db, now, r, std::move(*file), errors);
   if (file->tasks.empty()) return reject(executor, now, r, "it holds no task");
   const std::size_t n = file->tasks.size();

@@ -4,8 +4,10 @@
 // that stores them; routines are added as POST /api/v1/routines adds them, the request marked taken
 // in the transaction that keeps them in the store (service/stored_routines.h) for a restart; a
 // cancellation is applied to the tasks it names, then marked taken (applying it again after a kill
-// finds them cancelled already); a request that cannot be carried out (a routine name already
-// taken, a node not on the map) is marked taken with a `rejected` request event (code
+// finds them cancelled already). The same tasks or routines queued again (a sentence said twice)
+// mark the request taken with "already queued: ID"; ids another request took are made free by
+// "~2" after them (service/said_again.h). A request that cannot be carried out (a node not on the
+// map) is marked taken with a `rejected` request event (code
 // `invalid request`) that says why.
 //
 //   RequestIntake intake(clock, executor, db);

@@ -4,12 +4,14 @@
 #include <fmt/ranges.h>
 
 #include <chrono>
+#include <optional>
 #include <vector>
 
 #include "rondo/core/task_codec.h"
 #include "rondo/store/requests.h"
 #include "rondo/store/robot_state.h"
 #include "rondo/store/store.h"
+#include "rondo/store/task_table.h"
 
 namespace rondo::app {
 
@@ -18,8 +20,8 @@ Json request_body(const lang::Command& command, const TimeZone& zone) {
   return encode(TaskFile{zone, command.tasks, command.routines});
 }
 
-Result<QueuedAt> queue_command(const std::filesystem::path& data, const std::string& sentence,
-                               const lang::Command& command, const TimeZone& zone) {
+Result<QueuedAt> queue_command(const std::filesystem::path& data, const std::string& sentence, lang::Command& command,
+                               const TimeZone& zone) {
   const std::filesystem::path file = data / "rondo.sqlite";
   if (!std::filesystem::is_regular_file(file))
     return Error::invalid(fmt::format(
@@ -30,12 +32,28 @@ Result<QueuedAt> queue_command(const std::filesystem::path& data, const std::str
   if (meta.contains("run.finished"))
     return Error::invalid(
         fmt::format("--data {}: the run there is finished; nothing would take the request", data.string()));
+  // The tasks the store holds under the command's ids: the same ones still to do are a repeat.
+  std::optional<Error> unreadable;
+  const auto task_held = [&](const Task& said) {
+    auto row = store::get_task(db, said.id);
+    if (!row) {
+      if (row.error().code == ErrorCode::kNotFound) return lang::Held::kFree;
+      unreadable = row.error();
+      return lang::Held::kOther;
+    }
+    auto state = parse_task_state(row->state);
+    return state && !is_final(*state) && row->task == encode(said) ? lang::Held::kSame : lang::Held::kOther;
+  };
+  RONDO_ASSIGN_OR_RETURN(const auto repeated,
+                         lang::settle_ids(command, task_held, [](const Routine&) { return lang::Held::kFree; }));
+  if (unreadable) return *unreadable;
+  if (!repeated.empty()) return QueuedAt{0, file, queued_what(command), repeated};
   const Time now = std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now());
   RONDO_ASSIGN_OR_RETURN(
       const std::int64_t id,
       store::queue_request(
           db, {.queued = now, .source = "words", .sentence = sentence, .body = request_body(command, zone)}));
-  return QueuedAt{id, file, queued_what(command)};
+  return QueuedAt{id, file, queued_what(command), {}};
 }
 
 std::string queued_what(const lang::Command& command) {

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "rondo/core/result.h"
 #include "rondo/core/timezone.h"
@@ -17,9 +18,12 @@
 namespace rondo::app {
 
 struct QueuedAt {
-  std::int64_t id = 0;         // the request's id in the queue
+  std::int64_t id = 0;         // the request's id in the queue (0: nothing was queued)
   std::filesystem::path file;  // the store it is queued in
   std::string what;            // what was queued: "2 task(s): a, b", "1 routine(s): c", "a cancellation"
+  // Not empty: the store holds these tasks already, the same and still to do (the sentence was
+  // said before in the same minute), and nothing was queued.
+  std::vector<std::string> already_queued{};
 };
 
 // What a command queues, for people: "2 task(s): pickup-..., drop-...", "2 routine(s):
@@ -29,9 +33,13 @@ std::string queued_what(const lang::Command& command);
 // The request's body: what `rondo task add --json` prints (a task file, or {"cancel": ...}).
 Json request_body(const lang::Command& command, const TimeZone& zone);
 
-// kInvalidInput (exit 2) naming the folder when it holds no rondo store or holds a finished run
-// (nothing would take the request); kStorage when the store cannot be written.
-Result<QueuedAt> queue_command(const std::filesystem::path& data, const std::string& sentence,
-                               const lang::Command& command, const TimeZone& zone);
+// Queues the command unless the store holds its tasks already (QueuedAt::already_queued). Its task
+// ids are first settled against the store's tasks (lang::settle_ids: "~2" after them when other
+// tasks hold them), so `command` holds the ids queued; routines are settled by the executive that
+// takes the request (request_intake.h), which knows the deployment's. kInvalidInput (exit 2)
+// naming the folder when it holds no rondo store or holds a finished run (nothing would take the
+// request); kStorage when the store cannot be read or written.
+Result<QueuedAt> queue_command(const std::filesystem::path& data, const std::string& sentence, lang::Command& command,
+                               const TimeZone& zone);
 
 }  // namespace rondo::app

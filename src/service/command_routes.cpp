@@ -3,15 +3,41 @@
 // command's routines are added as POST /api/v1/routines would (201, {"routines": [...]}), a
 // cancellation cancels the tasks it names that are not finished (200). A sentence outside the
 // grammar or a place that is not on the map is 422 naming the word, with the field "text". The
-// places are the deployment's places file (ServiceContext::places), else the map's node names; "now" and local times are the service's clock in the
-// deployment's zone.
+// places are the deployment's places file (ServiceContext::places), else the map's node names; "now" (to the
+// minute, as `rondo task add` takes it) and local times are the service's clock in the deployment's zone.
+// The same sentence said again in the same minute adds nothing: 200 with the tasks (routines) it
+// made the first time and "already queued: ID"; a different one never takes another's id
+// (lang::settle_ids: "~2" after its ids).
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <chrono>
+
 #include "api.h"
+#include "rondo/core/task_codec.h"
 #include "rondo/lang/command.h"
+#include "rondo/service/said_again.h"
 
 namespace rondo::service {
 namespace {
+
+// 200: the command was said before and its tasks (routines) are still to do.
+Reply already_queued(Api& api, const lang::Command& c, const std::vector<std::string>& ids) {
+  Reply r;
+  r.body = Json{{"message", already_queued_text(ids)}, {"already_queued", ids}};
+  if (!c.routines.empty()) {
+    Json routines = Json::array();
+    for (const Routine& routine : api.ctx.executor.routines())
+      if (std::find(ids.begin(), ids.end(), routine.name) != ids.end()) routines.push_back(encode(routine));
+    r.body["routines"] = std::move(routines);
+    return r;
+  }
+  Json tasks = Json::array();
+  for (const std::string& id : ids)
+    if (auto found = api.ctx.executor.task(id); found && *found) tasks.push_back(task_json(**found));
+  r.body["tasks"] = std::move(tasks);
+  return r;
+}
 
 Reply command(Api& api, const httplib::Request& req) {
   Json body;
@@ -24,8 +50,16 @@ Reply command(Api& api, const httplib::Request& req) {
     std::optional<lang::Places> node_names;
     if (!api.ctx.places) node_names = lang::Places::from_map(api.ctx.map);
     const lang::Places& places = api.ctx.places ? *api.ctx.places : *node_names;
-    auto parsed = lang::parse_command(text, {.places = &places, .zone = api.ctx.zone, .now = api.ctx.clock.now()});
+    const Time now = std::chrono::floor<std::chrono::minutes>(api.ctx.clock.now());
+    auto parsed = lang::parse_command(text, {.places = &places, .zone = api.ctx.zone, .now = now});
     if (!parsed) return error_reply(422, "invalid", "text: " + parsed.error().message, "text");
+    auto repeated = settle_against_executor(*parsed, api.ctx.executor);
+    if (!repeated) {
+      Reply e = error_reply(repeated.error());
+      e.body["error"]["field"] = "text";
+      return e;
+    }
+    if (!repeated->empty()) return already_queued(api, *parsed, *repeated);
     if (!parsed->routines.empty()) {  // a repeated command: as POST /api/v1/routines would
       Reply added = add_routines_now(api, std::move(parsed->routines));
       if (added.status >= 400) added.body["error"]["field"] = "text";

@@ -89,9 +89,10 @@ Json document() {
          Json::array({id}), false, true);
   paths["/api/v1/commands"]["post"] =
       op("A command in words, {text} (docs/commands.md): its tasks are submitted (201), or the tasks a cancellation "
-         "names are cancelled (200).",
-         responses({{201, "the tasks added"},
-                    {200, "the tasks cancelled"},
+         "names are cancelled (200). The same sentence again in the same minute adds nothing (200, \"already queued: "
+         "ID\").",
+         responses({{201, "the tasks (or a repeated command's routines) added"},
+                    {200, "the tasks cancelled, or the tasks (routines) already queued by the same sentence"},
                     {400, "malformed JSON"},
                     {422, "the sentence is not understood: the word or place, field text"}}),
          Json::array(), true, true);

@@ -41,10 +41,58 @@ TEST(ApiCommands, ARepeatedCommandAddsItsRoutineAndKeepsItStored) {
   Json listed = body_of(cli.Get("/api/v1/routines"))["routines"];
   EXPECT_TRUE(std::any_of(listed.begin(), listed.end(), [&](const Json& r) { return r["name"] == name; }))
       << listed.dump();
-  // The same routine again is refused, naming the field of the sentence.
+  // The same routine again adds nothing: it is there already.
   auto again = cli.Post("/api/v1/commands", R"({"text": "check WayPoint3 every weekday at 09:00"})", "application/json");
-  ASSERT_EQ(again->status, 422) << again->body;
-  EXPECT_EQ(body_of(again)["error"]["field"], "text");
+  ASSERT_EQ(again->status, 200) << again->body;
+  EXPECT_EQ(body_of(again)["message"], "already queued: " + name);
+  EXPECT_EQ(body_of(again)["routines"][0]["name"], name);
+  // Another one at the same place is a routine of its own.
+  auto other = cli.Post("/api/v1/commands", R"({"text": "check WayPoint3 every weekday at 10:00"})", "application/json");
+  ASSERT_EQ(other->status, 201) << other->body;
+  EXPECT_EQ(body_of(other)["routines"][0]["name"], name + "~2");
+}
+
+// A person who says the same thing twice in a minute gets the task once and "already queued"
+// (200) the second time, never "the id is already taken"; a different sentence that would have
+// made the same id gets an id of its own.
+TEST(ApiCommands, TheSameSentenceTwiceInAMinuteIsAlreadyQueuedAndAnotherNeverCollides) {
+  LiveService s(fresh_dir("rondo-service-test", "commands-again"));
+  auto cli = s.client();
+  auto say = [&](const char* text) {
+    return cli.Post("/api/v1/commands", Json{{"text", text}}.dump(), "application/json");
+  };
+  auto first = say("go to WayPoint3");
+  ASSERT_TRUE(first);
+  ASSERT_EQ(first->status, 201) << first->body;
+  const std::string id = body_of(first)["tasks"][0]["id"];
+  EXPECT_EQ(id, "visit-waypoint3@2026-11-25T10:00");  // the clock starts at 10:00:00: still that minute
+  auto again = say("go to WayPoint3");
+  ASSERT_EQ(again->status, 200) << again->body;
+  const Json j = body_of(again);
+  EXPECT_EQ(j["message"], "already queued: " + id);
+  EXPECT_EQ(j["already_queued"], Json::array({id}));
+  ASSERT_EQ(j["tasks"].size(), 1u);
+  EXPECT_EQ(j["tasks"][0]["id"], id);
+  EXPECT_NE(j["tasks"][0]["state"], "cancelled");  // still to do (the robot may be on its way)
+
+  auto later = say("go to WayPoint3 before 15:00");
+  ASSERT_EQ(later->status, 201) << later->body;
+  EXPECT_EQ(body_of(later)["tasks"][0]["id"], id + "~2");
+  EXPECT_EQ(say("go to WayPoint3 before 15:00")->status, 200);
+  auto urgent = say("urgent: go to WayPoint3");
+  ASSERT_EQ(urgent->status, 201) << urgent->body;
+  EXPECT_EQ(body_of(urgent)["tasks"][0]["id"], id + "~3");
+  // Once the first is cancelled, saying it again makes a new one.
+  ASSERT_EQ(cli.Post(("/api/v1/tasks/" + id + "/cancel").c_str(), "{}", "application/json")->status, 200);
+  ASSERT_TRUE(eventually([&] { return body_of(cli.Get(("/api/v1/tasks/" + id).c_str()))["state"] == "cancelled"; }));
+  auto after_cancel = say("go to WayPoint3");
+  ASSERT_EQ(after_cancel->status, 201) << after_cancel->body;
+  EXPECT_EQ(body_of(after_cancel)["tasks"][0]["id"], id + "~4");
+  // Two places, one of them asked for already: the sentence's own tasks, both new.
+  auto two = say("go to WayPoint3 and WayPoint5");
+  ASSERT_EQ(two->status, 201) << two->body;
+  EXPECT_EQ(body_of(two)["tasks"][0]["id"], id + "~5");
+  EXPECT_EQ(body_of(two)["tasks"][1]["id"], "visit-waypoint5@2026-11-25T10:00~5");
 }
 
 // With the deployment's places file (examples/office: places.yaml), rooms and their aliases are

@@ -13,6 +13,7 @@
 // parser never guesses: an ambiguous split of the words is an error too.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -65,6 +66,26 @@ Result<Command> parse_command(std::string_view sentence, const CommandContext& c
 // Whether the task is one the cancellation names. A routine instance ("name@...") matches a kTask
 // cancellation of its routine's name.
 bool matches(const Cancellation& c, const Task& task);
+
+// Who holds an id (or a routine's name) that a command made, as the executive that would add it
+// sees it: nobody; the same task (routine) still to do, so that the command was said before; or
+// anything else (another task, a task that is over, a routine of other times).
+enum class Held { kFree, kSame, kOther };
+
+// A sentence said again (docs/commands.md, "Saying it again"). Its ids are those of the first
+// saying when it comes in the same minute, so against what the executive holds a command is:
+// - a repeat, when every task (routine) of it is held by the same one still to do: the ids (names)
+//   it repeats are returned, and there is nothing to add;
+// - new otherwise: nothing is returned, and the command's ids are made free of every id held,
+//   by the first "~N" (N = 2, 3, ...) after them all (a delivery's job and `after` alike) that
+//   leaves every one of them free, or held by the same one (then it is a repeat of those).
+// A cancellation is always new. kConflict when 100 such ids are all held by others.
+Result<std::vector<std::string>> settle_ids(Command& c, const std::function<Held(const Task&)>& task_held,
+                                            const std::function<Held(const Routine&)>& routine_held);
+
+// Whether routine `held` is what `said` asks for: equal, except that one held since an earlier
+// first day covers a later one (the same routine said again on another day).
+bool same_routine(const Routine& said, const Routine& held);
 
 // {"cancel": {"what": "delivery", "object": "red letter"}} and the like (docs/commands.md).
 Json encode(const Cancellation& c);

@@ -296,8 +296,12 @@ function setUpSentence() {
     const result = $('#say-result');
     try {
       const r = await api('POST', '/api/v1/commands', {text});
-      result.textContent = r.tasks ? `Added: ${r.tasks.map(taskName).join(', ')}.` :
-                                     `Cancelled ${r.cancelled.length} task${r.cancelled.length === 1 ? '' : 's'}.`;
+      // 200 "already queued: ..." when the same sentence was said in the same minute.
+      result.textContent =
+          r.message ? `Already queued: ${r.already_queued.join(', ')}.` :
+          r.tasks ? `Added: ${r.tasks.map(taskName).join(', ')}.` :
+          r.routines ? `Added routines: ${r.routines.map((x) => x.name).join(', ')}.` :
+                       `Cancelled ${r.cancelled.length} task${r.cancelled.length === 1 ? '' : 's'}.`;
       showProblem('');
     } catch (err) {
       result.textContent = 'Not understood: ' + err.message;
