@@ -7,7 +7,7 @@
 // finds them cancelled already). The same tasks or routines queued again (a sentence said twice)
 // mark the request taken with "already queued: ID"; ids another request took are made free by
 // "~2" after them (service/said_again.h). A request that cannot be carried out (a node not on the
-// map) is marked taken with a `rejected` request event (code
+// map, an action the robot cannot run) is marked taken with a `rejected` request event (code
 // `invalid request`) that says why.
 //
 //   RequestIntake intake(clock, executor, db);

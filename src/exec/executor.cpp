@@ -96,7 +96,10 @@ Executor::~Executor() {
 Status Executor::accept(const Task& task) const {
   if (auto ok = validate(task, "task " + task.id); !ok) return ok;
   if (book_.contains(task.id)) return Error::invalid(fmt::format("task {}: the id is already taken", task.id));
-  return runs_here(task);
+  RONDO_RETURN_IF_ERROR(runs_here(task));
+  // Refused now rather than failed at its place: the robot says it cannot run one of its actions.
+  if (auto why = cannot_run(robot_, task.actions)) return Error::invalid(fmt::format("task {}: {}", task.id, *why));
+  return Status{};
 }
 
 Status Executor::runs_here(const Task& task) const {

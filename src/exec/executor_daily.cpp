@@ -22,9 +22,19 @@ std::chrono::year_month_day next_day(std::chrono::year_month_day d) {
 void Executor::create_routine_tasks(std::chrono::year_month_day day) {
   std::vector<Task> batch;
   const Time now = clock_.now();
-  for (const Routine& r : routines_)
-    for (Task& t : instances_on(r, day, zone_))
-      if (t.window && t.window->deadline > now && !book_.known(t.id)) batch.push_back(std::move(t));
+  for (const Routine& r : routines_) {
+    // A routine the robot says it cannot run (a deployment's, once its vehicle told what it runs)
+    // makes no task that day, with a `rejected` event; the others' tasks are added as always.
+    const std::optional<std::string> why = cannot_run(robot_, r.task.actions);
+    for (Task& t : instances_on(r, day, zone_)) {
+      if (!t.window || t.window->deadline <= now || book_.known(t.id)) continue;
+      if (why) {
+        book_.note_request(t.id, "rejected", Outcome::kInvalidRequest, fmt::format("from routine {}: {}", r.name, *why));
+        continue;
+      }
+      batch.push_back(std::move(t));
+    }
+  }
   if (batch.empty()) return;
   if (auto ok = add_tasks(std::move(batch), "routine"); !ok) book_.write_error(ok.error().message);
 }

@@ -68,6 +68,8 @@ Status Executor::add_routine_now(Routine routine) {
   for (const std::string* node : {&routine.task.start_node, &routine.task.end_node})
     if (!node->empty() && !map_.find_node(*node))
       return Error::invalid(fmt::format("routine '{}': node '{}' is not on the map", routine.name, *node));
+  if (auto why = cannot_run(robot_, routine.task.actions))
+    return Error::invalid(fmt::format("routine '{}': {}", routine.name, *why));
   const std::string name = routine.name;
   routines_.push_back(std::move(routine));
   if (!started_) return Status{};
@@ -97,6 +99,8 @@ Status Executor::add_routines_now(std::vector<Routine> routines, const store::Re
     for (const std::string* node : {&routine.task.start_node, &routine.task.end_node})
       if (valid && !node->empty() && !map_.find_node(*node))
         valid = Error::invalid(fmt::format("routine '{}': node '{}' is not on the map", routine.name, *node));
+    if (auto cannot = cannot_run(robot_, routine.task.actions); valid && cannot)
+      valid = Error::invalid(fmt::format("routine '{}': {}", routine.name, *cannot));
   }
   if (!valid) {
     const store::RequestTaken refused{taken.id, taken.at, "rejected: " + valid.error().message};

@@ -1,5 +1,10 @@
 #include "rondo/exec/robot.h"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+
 namespace rondo::exec {
 
 const char* to_string(EdgeOutcome outcome) {
@@ -28,6 +33,17 @@ const char* to_string(RobotFault::Kind kind) {
     case RobotFault::Kind::kConnectionLost: return "connection lost";
   }
   return "unknown";
+}
+
+std::optional<std::string> cannot_run(const Robot& robot, const std::vector<Action>& actions) {
+  const std::optional<ActionSupport> support = robot.supported_actions();
+  if (!support || support->actions.empty()) return std::nullopt;
+  for (const Action& a : actions) {
+    if (std::find(support->actions.begin(), support->actions.end(), a.name) != support->actions.end()) continue;
+    return fmt::format("{} cannot run the action '{}'; it runs: {}", support->robot, a.name,
+                       fmt::join(support->actions, ", "));
+  }
+  return std::nullopt;
 }
 
 }  // namespace rondo::exec

@@ -94,7 +94,8 @@ Json document() {
          responses({{201, "the tasks (or a repeated command's routines) added"},
                     {200, "the tasks cancelled, or the tasks (routines) already queued by the same sentence"},
                     {400, "malformed JSON"},
-                    {422, "the sentence is not understood: the word or place, field text"}}),
+                    {422, "the sentence is not understood (the word or place, field text), or a task the robot "
+                          "cannot run"}}),
          Json::array(), true, true);
   paths["/api/v1/tasks/{id}/confirm"]["post"] =
       op("Confirm the load or unload the task is doing now (body optional: {by}): the action ends done.",

@@ -1,5 +1,6 @@
 #include "rondo/vda5050/decode.h"
 
+#include <algorithm>
 #include <string>
 
 #include "rondo/core/document.h"
@@ -250,6 +251,15 @@ Result<Factsheet> decode_factsheet(std::string_view payload, const Compatibility
   if (auto phys = root.optional("physicalParameters")) {
     if (auto v = phys->optional("speedMax")) {
       RONDO_ASSIGN_OR_RETURN(f.max_speed, v->as_number());
+    }
+  }
+  if (auto features = root.optional("protocolFeatures")) {
+    RONDO_ASSIGN_OR_RETURN(auto actions, opt_items(*features, "agvActions"));
+    for (const Field& a : actions) {
+      RONDO_ASSIGN_OR_RETURN(std::string action_type, req_string(a, "actionType"));
+      if (action_type.empty()) return a.error_at("actionType", "must not be empty");
+      if (std::find(f.agv_actions.begin(), f.agv_actions.end(), action_type) == f.agv_actions.end())
+        f.agv_actions.push_back(std::move(action_type));
     }
   }
   return f;

@@ -85,6 +85,7 @@ struct Vda5050Robot::Impl {
   map::NodeIndex location;
   std::optional<AgvPosition> agv_position;
   std::optional<State> last_state;
+  std::optional<Factsheet> factsheet;  // the last one the vehicle sent
   double battery = 1.0;  // until the vehicle says
   bool charging = false;
   double distance_m = 0;

@@ -40,6 +40,12 @@ void Vda5050Robot::cancel() { impl_->cancel(); }
 double Vda5050Robot::battery() const { return impl_->battery; }
 bool Vda5050Robot::charging() const { return impl_->charging; }
 std::optional<exec::RobotFault> Vda5050Robot::fault() const { return impl_->reported_fault; }
+std::optional<exec::ActionSupport> Vda5050Robot::supported_actions() const {
+  if (!impl_->factsheet || impl_->factsheet->agv_actions.empty()) return std::nullopt;
+  return exec::ActionSupport{.robot = fmt::format("vehicle {}/{} (its factsheet)", impl_->config.topics.manufacturer,
+                                                  impl_->config.topics.serial_number),
+                             .actions = impl_->factsheet->agv_actions};
+}
 double Vda5050Robot::distance_m() const { return impl_->distance_m; }
 const std::vector<std::string>& Vda5050Robot::ignored() const { return impl_->ignored; }
 
@@ -135,12 +141,20 @@ void Vda5050Robot::Impl::ignore(const std::string& why) {
 }
 
 void Vda5050Robot::Impl::on_connected() {
-  // After every (re)connect: Paho has renewed the subscriptions; ask where the vehicle is now.
+  // After every (re)connect: Paho has renewed the subscriptions; ask where the vehicle is now, and
+  // what it is (its factsheet: the actions it runs). Two messages, so that a vehicle that does not
+  // know factsheetRequest still answers the stateRequest.
   const Header h = headers.next(Topic::kInstantActions, wall_now());
   Json j = encode_instant_actions(h, InstantActions{.actions = {state_request_action(
                                                         fmt::format("{}-state-{}", order_prefix, ++instant_count))}},
                                   config.compat);
   (void)publish(Topic::kInstantActions, j);
+  const Header f = headers.next(Topic::kInstantActions, wall_now());
+  (void)publish(Topic::kInstantActions,
+                encode_instant_actions(f,
+                                       InstantActions{.actions = {factsheet_request_action(
+                                                          fmt::format("{}-factsheet-{}", order_prefix, ++instant_count))}},
+                                       config.compat));
 }
 
 void Vda5050Robot::Impl::on_connection_lost(const std::string& cause) {
@@ -172,7 +186,7 @@ void Vda5050Robot::Impl::on_message(const std::string& topic, const std::string&
   if (*which == Topic::kFactsheet) {
     auto f = decode_factsheet(payload, config.compat);
     if (!f) return ignore(fmt::format("{}: {}", topic, f.error().message));
-    (void)inbox.admit(Topic::kFactsheet, f->header);
+    if (inbox.admit(Topic::kFactsheet, f->header)) factsheet = std::move(*f);
   }
 }
 

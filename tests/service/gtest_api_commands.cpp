@@ -2,9 +2,13 @@
 // repeated command's routines are added, a cancellation cancels what it names, and a word that is not understood is named in a 422.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 #include "live_service.h"
+#include "request_intake.h"
+#include "rondo/store/requests.h"
 #include "test_files.h"
 
 namespace rondo::test {
@@ -93,6 +97,52 @@ TEST(ApiCommands, TheSameSentenceTwiceInAMinuteIsAlreadyQueuedAndAnotherNeverCol
   ASSERT_EQ(two->status, 201) << two->body;
   EXPECT_EQ(body_of(two)["tasks"][0]["id"], id + "~5");
   EXPECT_EQ(body_of(two)["tasks"][1]["id"], "visit-waypoint5@2026-11-25T10:00~5");
+}
+
+// A robot that says which actions it runs (a VDA 5050 vehicle's factsheet) has a task with any
+// other action refused when it is submitted: 422 naming the action and the robot, in words, as a
+// task, as a routine, and as a queued request (rejected with that reason).
+TEST(ApiCommands, ATaskWithAnActionTheRobotCannotRunIsRefusedWhenSubmitted) {
+  LiveService s(fresh_dir("rondo-service-test", "commands-actions"),
+                {.robot_actions = std::vector<std::string>{"patrol", "visit"}});
+  auto cli = s.client();
+  const std::string cannot = "the test robot cannot run the action 'check'; it runs: patrol, visit";
+  auto check = cli.Post("/api/v1/commands", R"({"text": "check WayPoint3 tomorrow"})", "application/json");
+  ASSERT_EQ(check->status, 422) << check->body;
+  Json e = body_of(check)["error"];
+  EXPECT_EQ(e["field"], "text");
+  EXPECT_NE(e["message"].get<std::string>().find(cannot), std::string::npos) << e.dump();
+  EXPECT_EQ(cli.Post("/api/v1/commands", R"({"text": "patrol WayPoint3 tomorrow"})", "application/json")->status, 201);
+
+  auto routine = cli.Post("/api/v1/commands", R"({"text": "check WayPoint3 every day"})", "application/json");
+  ASSERT_EQ(routine->status, 422) << routine->body;
+  EXPECT_NE(body_of(routine)["error"]["message"].get<std::string>().find("routine 'check-waypoint3': " + cannot),
+            std::string::npos)
+      << routine->body;
+
+  const Time release = s.clock().now() + hours(1);
+  const std::string task = fmt::format(
+      R"({{"tasks": [{{"id": "door", "window": {{"release": "{}", "deadline": "{}"}}, "duration": 60,
+          "start_node": "WayPoint2", "actions": ["check"]}}]}})",
+      format_time(release), format_time(release + hours(2)));
+  auto posted = cli.Post("/api/v1/tasks", task, "application/json");
+  ASSERT_EQ(posted->status, 422) << posted->body;
+  EXPECT_NE(posted->body.find("task door: " + cannot), std::string::npos) << posted->body;
+
+  // The same task queued in the store (as `rondo task add --data` queues it): rejected when taken.
+  std::vector<store::RequestRow> rows;
+  s.on_clock([&] {
+    Json body = Json::parse(task);
+    body["timezone"] = "UTC";
+    ASSERT_TRUE(store::queue_request(s.store(), {.queued = s.clock().now(), .source = "words", .sentence = "check",
+                                                 .body = body})
+                    .ok());
+    app::RequestIntake intake(s.clock(), s.executor(), s.store());
+    ASSERT_TRUE(intake.take_waiting().ok());
+    rows = store::list_requests(s.store()).value();
+  });
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].outcome, "rejected: task door: " + cannot);
 }
 
 // With the deployment's places file (examples/office: places.yaml), rooms and their aliases are

@@ -36,12 +36,41 @@ exec::SystemClock::Sources starting_at(const std::string& start) {
           .steady = [] { return exec::SystemClock::Steady::now(); }};
 }
 
+// The simulated robot, saying which actions it runs (as a VDA 5050 vehicle's factsheet does).
+class RobotWithActions final : public exec::Robot {
+ public:
+  RobotWithActions(exec::Robot& robot, std::vector<std::string> actions)
+      : robot_(robot), support_{"the test robot", std::move(actions)} {}
+  void set_listener(exec::RobotListener* listener) override { robot_.set_listener(listener); }
+  Status activate() override { return robot_.activate(); }
+  void deactivate() override { robot_.deactivate(); }
+  map::NodeIndex location() const override { return robot_.location(); }
+  std::optional<map::Pose> position() const override { return robot_.position(); }
+  bool busy() const override { return robot_.busy(); }
+  void drive(const exec::Route& route) override { robot_.drive(route); }
+  void run_action(const Action& action, Duration expected) override { robot_.run_action(action, expected); }
+  void cancel() override { robot_.cancel(); }
+  double battery() const override { return robot_.battery(); }
+  bool charging() const override { return robot_.charging(); }
+  std::optional<exec::RobotFault> fault() const override { return robot_.fault(); }
+  std::optional<exec::ActionSupport> supported_actions() const override { return support_; }
+
+ private:
+  exec::Robot& robot_;
+  exec::ActionSupport support_;
+};
+
 }  // namespace
 
 LiveService::LiveService(const std::filesystem::path& data, LiveOptions o)
     : parts_(example_parts(o.deployment)), store_(open_store(data)), clock_(o.speed, starting_at(o.start)), token_(o.token) {
-  robot_ = std::make_unique<sim::SimRobot>(clock_, parts_.map, *parts_.world,
-                                           sim::SimRobotOptions{.start = parts_.dock, .dock = parts_.dock, .seed = 3});
+  sim_ = std::make_unique<sim::SimRobot>(clock_, parts_.map, *parts_.world,
+                                         sim::SimRobotOptions{.start = parts_.dock, .dock = parts_.dock, .seed = 3});
+  robot_ = sim_.get();
+  if (o.robot_actions) {
+    with_actions_ = std::make_unique<RobotWithActions>(*sim_, *o.robot_actions);
+    robot_ = with_actions_.get();
+  }
   exec::ExecutorOptions eo;
   eo.dock = parts_.dock;
   eo.forget_finished = true;  // as rondo serve: finished tasks are read from the store

@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "deployment.h"
 #include "deployment_parts.h"
@@ -36,6 +37,9 @@ struct LiveOptions {
   // Where the service's clock starts: a Wednesday morning (UTC), whatever the machine's date, so
   // that "tomorrow", today's schedule and an hour from now never straddle a midnight by chance.
   std::string start = "2026-11-25T10:00:00Z";
+  // The actions the robot says it runs (Robot::supported_actions), as a vehicle's factsheet
+  // lists them; nothing: it does not say (the simulated robot runs any action).
+  std::optional<std::vector<std::string>> robot_actions = std::nullopt;
 };
 
 class LiveService {
@@ -50,6 +54,7 @@ class LiveService {
   exec::SystemClock& clock() { return clock_; }
   const map::TopoMap& map() const { return parts_.map; }
   service::Server& server() { return *server_; }
+  store::Store& store() { return store_; }  // use it only on the clock's thread (on_clock)
   exec::Executor& executor() { return *executor_; }  // read it only on the clock's thread (on_clock)
   // Runs `f` on the clock's thread and waits (for reading the executor in a test).
   void on_clock(const std::function<void()>& f);
@@ -62,7 +67,9 @@ class LiveService {
   app::DeploymentParts parts_;
   store::Store store_;
   exec::SystemClock clock_;
-  std::unique_ptr<sim::SimRobot> robot_;
+  std::unique_ptr<sim::SimRobot> sim_;
+  std::unique_ptr<exec::Robot> with_actions_;  // LiveOptions::robot_actions: the simulated robot saying so
+  exec::Robot* robot_ = nullptr;               // the one the executor drives
   std::unique_ptr<exec::Executor> executor_;
   std::unique_ptr<service::Server> server_;
   std::optional<std::string> token_;

@@ -204,6 +204,25 @@ TEST(Vda5050Decode, ConnectionAndFactsheet) {
   ASSERT_TRUE(full.ok()) << full.error().message;
   EXPECT_EQ(full->series_name, "S1");
   EXPECT_EQ(full->max_speed, 1.5);
+  EXPECT_TRUE(full->agv_actions.empty());  // it lists none
+}
+
+// The actions a vehicle runs, from its factsheet's protocolFeatures.agvActions (VDA 5050 2.0.0,
+// 6.10.4): in order, each once; a malformed list is an error naming the field.
+TEST(Vda5050Decode, TheFactsheetListsTheActionsTheVehicleRuns) {
+  auto f = decode_factsheet(R"({"headerId":0,"timestamp":"2026-12-01T10:00:00Z","version":"2.0.0",
+      "manufacturer":"acme","serialNumber":"agv-7","typeSpecification":{"seriesName":"S1"},
+      "protocolFeatures":{"optionalParameters":[],"agvActions":[
+        {"actionType":"pick","actionScopes":["NODE"]},{"actionType":"drop","actionScopes":["NODE"]},
+        {"actionType":"pick","actionScopes":["INSTANT"]},{"actionType":"noop","actionScopes":["NODE"]}]}})");
+  ASSERT_TRUE(f.ok()) << f.error().message;
+  EXPECT_EQ(f->agv_actions, (std::vector<std::string>{"pick", "drop", "noop"}));
+  auto bad = decode_factsheet(R"({"headerId":0,"timestamp":"2026-12-01T10:00:00Z","version":"2.0.0",
+      "manufacturer":"acme","serialNumber":"agv-7","typeSpecification":{"seriesName":"S1"},
+      "protocolFeatures":{"agvActions":[{"actionScopes":["NODE"]}]}})");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("protocolFeatures.agvActions[0]: missing field 'actionType'"), std::string::npos)
+      << bad.error().message;
 }
 
 TEST(Vda5050Inbox, WrongVehicleAndBackwardsHeaderIdsAreIgnoredWithAReason) {

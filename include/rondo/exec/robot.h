@@ -29,6 +29,8 @@
 //   An edge that a fault interrupted ends with the outcome kRobotFault: it says nothing about the
 //   way, so it is not learning data.
 // - Times are the executor's clock: the robot reads the same Clock.
+// - A robot that knows which actions it can run says so (supported_actions()); the answer may
+//   come later (a vehicle's factsheet arrives after it connects).
 #pragma once
 
 #include <cstddef>
@@ -100,6 +102,13 @@ struct RobotFault {
 };
 const char* to_string(RobotFault::Kind kind);
 
+// The actions a robot says it can run, and who says so (for people: "vehicle acme/agv-7 (its
+// factsheet)").
+struct ActionSupport {
+  std::string robot;
+  std::vector<std::string> actions;  // action names, as Action::name
+};
+
 // What the robot tells the executor. Called on the executor's clock thread.
 class RobotListener {
  public:
@@ -143,9 +152,18 @@ class Robot {
   virtual bool charging() const = 0;
   // The current fault, if any.
   virtual std::optional<RobotFault> fault() const = 0;
+  // The actions the robot can run, when it says (a VDA 5050 vehicle's factsheet lists them); the
+  // executor refuses a task with any other action when it is submitted. Nothing: it does not say,
+  // and every action is tried (one it cannot run fails at its place).
+  virtual std::optional<ActionSupport> supported_actions() const { return std::nullopt; }
 
   // One edge, committed.
   void traverse(map::EdgeIndex edge) { drive(Route{.edges = {edge}, .committed = 1}); }
 };
+
+// Why the robot cannot run `actions`, for people ("vehicle acme/agv-7 (its factsheet) cannot run
+// the action 'check'; it runs: noop, pick, drop"), naming the first it cannot run; nothing when it
+// can run them all or does not say which it can.
+std::optional<std::string> cannot_run(const Robot& robot, const std::vector<Action>& actions);
 
 }  // namespace rondo::exec

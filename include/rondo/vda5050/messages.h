@@ -184,12 +184,15 @@ struct Connection {
   bool operator==(const Connection&) const = default;
 };
 
-// What rondo reads of a factsheet: the header always, the type specification when it is there.
+// What rondo reads of a factsheet: the header always, the type specification when it is there,
+// and the actions the vehicle runs when it lists them.
 struct Factsheet {
   Header header;
   bool header_only = false;         // only the header came (vda-5050-lib 1.4.0 sends this)
   std::string series_name;          // typeSpecification.seriesName
   std::optional<double> max_speed;  // physicalParameters.speedMax, m/s
+  // protocolFeatures.agvActions[].actionType, in order, without repeats; empty when none is listed
+  std::vector<std::string> agv_actions;
   bool operator==(const Factsheet&) const = default;
 };
 

@@ -28,7 +28,9 @@
 //   failed action's message.
 // - Every MQTT event reaches the robot through Clock::post(), so everything here, and every
 //   listener callback, runs on the clock's thread. Paho reconnects and re-subscribes by itself;
-//   after each (re)connect the robot asks the vehicle for its state (stateRequest).
+//   after each (re)connect the robot asks the vehicle for its state (stateRequest) and its
+//   factsheet (factsheetRequest); the actions a factsheet lists are supported_actions(), so the
+//   executor refuses a task with any other action when it is submitted.
 // - The vehicle is always interruptible (VDA 5050 has no such notion): on_interruptible_changed
 //   is never called.
 #pragma once
@@ -80,6 +82,9 @@ class Vda5050Robot final : public exec::Robot {
   double battery() const override;
   bool charging() const override;
   std::optional<exec::RobotFault> fault() const override;
+  // The actions the vehicle's factsheet lists (protocolFeatures.agvActions); nothing before a
+  // factsheet came, or when it lists none (vda-5050-lib 1.4.0's is a header only).
+  std::optional<exec::ActionSupport> supported_actions() const override;
 
   // Metres of edges the vehicle reported passed (succeeded attempts), for the run report.
   double distance_m() const;
