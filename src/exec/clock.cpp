@@ -46,6 +46,14 @@ std::vector<std::function<void()>> PostBox::take() {
   return std::exchange(callbacks_, {});
 }
 
+void PostBox::put_back(std::vector<std::function<void()>> callbacks) {
+  if (callbacks.empty()) return;
+  std::lock_guard lock(mutex_);
+  callbacks.insert(callbacks.end(), std::make_move_iterator(callbacks_.begin()),
+                   std::make_move_iterator(callbacks_.end()));
+  callbacks_ = std::move(callbacks);
+}
+
 bool PostBox::empty() const {
   std::lock_guard lock(mutex_);
   return callbacks_.empty();
@@ -136,7 +144,17 @@ std::size_t SystemClock::run_due() {
 
 void SystemClock::run_until(Time end) {
   while (!stopped()) {
-    for (auto& callback : posted_.take()) callback();
+    // The callbacks posted so far, until one of them stops the clock (`rondo serve` halts the
+    // robot and stops in one: what was posted after it, a message from the vehicle, the robot's
+    // report of it, must not reach an executor whose robot is gone).
+    std::vector<std::function<void()>> posted = posted_.take();
+    for (auto it = posted.begin(); it != posted.end(); ++it) {
+      (*it)();
+      if (stopped()) {
+        posted_.put_back({std::make_move_iterator(it + 1), std::make_move_iterator(posted.end())});
+        return;
+      }
+    }
     if (!queue_.empty() && queue_.next_time() <= as_key(steady_now())) {
       queue_.pop()();
       continue;

@@ -160,6 +160,28 @@ TEST(SystemClock, PostFromTwoThreadsWakesTheLoopAndStopEndsIt) {
   EXPECT_TRUE(clock.stopped());
 }
 
+// `rondo serve` halts the robot and stops the clock in one posted callback: what was posted
+// after it (a message from the vehicle, taken in the same batch) must not run on the executor
+// after that, and stays posted instead.
+TEST(SystemClock, StopEndsTheLoopAfterTheCallbackThatCalledItAndKeepsTheRestPosted) {
+  SystemClock clock;
+  std::vector<int> ran;
+  clock.post([&] { ran.push_back(1); });
+  clock.post([&] {
+    ran.push_back(2);
+    clock.stop();
+  });
+  clock.post([&] { ran.push_back(3); });
+  clock.post([&] { ran.push_back(4); });
+  clock.run_until(clock.now() + hours(1));
+  EXPECT_EQ(ran, (std::vector<int>{1, 2}));
+  clock.post([&] { ran.push_back(5); });
+  clock.run_until(clock.now() + hours(1));  // stopped: returns at once
+  EXPECT_EQ(ran, (std::vector<int>{1, 2}));
+  EXPECT_EQ(clock.run_due(), 3u);  // in their posting order
+  EXPECT_EQ(ran, (std::vector<int>{1, 2, 3, 4, 5}));
+}
+
 TEST(SystemClock, RunUntilRunsTimersAsTheyFallDue) {
   SystemClock clock(1000.0);  // a minute of clock time is 60 ms
   std::vector<int> ran;

@@ -81,6 +81,8 @@ class PostBox {
   bool put(std::function<void()> callback);
   // Takes every callback posted so far, in posting order.
   std::vector<std::function<void()>> take();
+  // Puts callbacks taken and not run back in front of those posted since, in their order.
+  void put_back(std::vector<std::function<void()>> callbacks);
   bool empty() const;
 
  private:
@@ -144,7 +146,8 @@ class SystemClock final : public Clock {
 
   // Runs events as they fall due until now() reaches `end` or stop() is called.
   void run_until(Time end);
-  // Thread-safe: makes run_until() return after the callback it is running, if any.
+  // Thread-safe: makes run_until() return after the callback it is running, if any; callbacks
+  // posted and not run yet stay posted (run_due() runs them; the destructor drops them).
   void stop();
   bool stopped() const;
   // Runs the posted callbacks and every timer due by the monotonic clock now, without waiting.
