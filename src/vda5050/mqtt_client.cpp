@@ -1,5 +1,6 @@
 #include "rondo/vda5050/mqtt_client.h"
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdlib>
 #include <map>
@@ -25,13 +26,33 @@ Result<std::string> paho_server_uri(const std::string& broker) {
   return "tcp://" + rest;
 }
 
+// What Paho's callbacks and the closures they post reach: shared with them, so it outlives the
+// client for as long as one of them holds it. stop() closes it; from then on a callback of Paho's
+// does nothing (it touches neither the client nor the owner), and a closure posted before and run
+// later does not call the handler. A callback holds the mutex while it runs, so once close() has
+// returned none is running on the client. (`post` may run a closure at once, on Paho's thread:
+// the closures read `open` without the mutex.)
+struct Gate {
+  Gate(MqttHandlers h, Post p) : handlers(std::move(h)), post(std::move(p)) {}
+  std::mutex mutex;
+  std::atomic<bool> open{true};  // written under mutex
+  const MqttHandlers handlers;
+  const Post post;
+
+  void close() {
+    std::lock_guard lock(mutex);
+    open = false;
+  }
+};
+
 struct MqttClient::Impl {
   Impl(const std::string& uri, MqttOptions o, MqttHandlers h, Post p)
-      : options(std::move(o)), handlers(std::move(h)), post(std::move(p)), client(uri, options.client_id, nullptr) {}
+      : options(std::move(o)),
+        gate(std::make_shared<Gate>(std::move(h), std::move(p))),
+        client(uri, options.client_id, nullptr) {}
 
   MqttOptions options;
-  MqttHandlers handlers;
-  Post post;
+  std::shared_ptr<Gate> gate;
   mqtt::async_client client;
   mqtt::connect_options connect_options;
   std::string host;  // of the broker, for set_tcp_nodelay_to
@@ -58,16 +79,23 @@ struct MqttClient::Impl {
     }
   }
 
-  // The first connection: Paho's automatic reconnect only covers a connection once made.
+  bool stop_asked() {
+    std::lock_guard lock(mutex);
+    return stopping;
+  }
+
+  // The first connection: Paho's automatic reconnect only covers a connection once made. An
+  // attempt in progress is looked at every 100 ms, so that stop() does not wait for it to end.
   void connect_until_connected() {
     auto backoff = options.min_retry;
-    for (;;) {
-      {
-        std::lock_guard lock(mutex);
-        if (stopping) return;
-      }
+    while (!stop_asked()) {
       try {
-        if (client.connect(connect_options)->wait_for(std::chrono::seconds(10))) return;
+        const mqtt::token_ptr attempt = client.connect(connect_options);
+        // Paho ends an attempt after its connect timeout (5 s); 10 s bounds the wait anyway.
+        for (int i = 0; i < 100; ++i) {
+          if (attempt->wait_for(std::chrono::milliseconds(100))) return;
+          if (stop_asked()) return;
+        }
       } catch (const mqtt::exception&) {
         // refused or unreachable: wait and try again
       }
@@ -104,25 +132,36 @@ Result<std::unique_ptr<MqttClient>> MqttClient::create(MqttOptions options, Mqtt
   }
   impl->connect_options = builder.finalize();
 
+  // Paho's callbacks hold the gate, not the client: one that comes after stop() finds it closed
+  // and returns (Paho may call back while the client is being destroyed). They touch the client
+  // (`self`) only while it is open, and stop() closes it before the client goes.
   Impl* self = impl.get();
+  const std::shared_ptr<Gate> gate = impl->gate;
   // Every connect, the first and each automatic reconnect: the session is clean, so subscribe
   // again before telling the owner.
-  self->client.set_connected_handler([self](const std::string&) {
+  self->client.set_connected_handler([self, gate](const std::string&) {
+    std::lock_guard lock(gate->mutex);
+    if (!gate->open) return;
     (void)set_tcp_nodelay_to(self->host, self->port);
     self->subscribe_all();
-    if (self->handlers.connected) self->post([self] { self->handlers.connected(); });
+    if (gate->handlers.connected)
+      gate->post([gate] {
+        if (gate->open) gate->handlers.connected();
+      });
   });
-  self->client.set_connection_lost_handler([self](const std::string& cause) {
-    if (self->handlers.connection_lost) {
-      self->post([self, cause] { self->handlers.connection_lost(cause); });
-    }
+  self->client.set_connection_lost_handler([gate](const std::string& cause) {
+    std::lock_guard lock(gate->mutex);
+    if (!gate->open || !gate->handlers.connection_lost) return;
+    gate->post([gate, cause] {
+      if (gate->open) gate->handlers.connection_lost(cause);
+    });
   });
-  self->client.set_message_callback([self](mqtt::const_message_ptr m) {
-    if (!m || !self->handlers.message) return;
-    std::string topic = m->get_topic();
-    std::string payload = m->to_string();
-    self->post(
-        [self, topic = std::move(topic), payload = std::move(payload)] { self->handlers.message(topic, payload); });
+  self->client.set_message_callback([gate](const mqtt::const_message_ptr& m) {
+    std::lock_guard lock(gate->mutex);
+    if (!m || !gate->open || !gate->handlers.message) return;
+    gate->post([gate, topic = m->get_topic(), payload = m->to_string()] {
+      if (gate->open) gate->handlers.message(topic, payload);
+    });
   });
   return std::unique_ptr<MqttClient>(new MqttClient(std::move(impl)));
 }
@@ -165,21 +204,24 @@ Status MqttClient::publish(const MqttMessage& message) {
   return {};
 }
 
-void MqttClient::stop(Duration timeout) {
+void MqttClient::stop(Duration timeout) noexcept {
   {
     std::lock_guard lock(impl_->mutex);
     if (impl_->stopping) return;
     impl_->stopping = true;
   }
+  // First: nothing more reaches the owner, whatever Paho does from now on.
+  impl_->gate->close();
   impl_->wake.notify_all();
   if (impl_->connector.joinable()) impl_->connector.join();
-  impl_->client.disable_callbacks();
+  // Paho's disconnect also ends its automatic reconnect, connected or not (then it throws, saying
+  // so). Nothing here may throw: stop() runs in destructors and on the way out of the service.
+  // (Paho C++'s disable_callbacks() is not used: it throws while a reconnect is in progress.)
   try {
-    if (impl_->client.is_connected()) {
-      impl_->client.disconnect(static_cast<int>(timeout.count()))->wait_for(timeout);
-    }
-  } catch (const mqtt::exception&) {
-    // already gone
+    const mqtt::token_ptr done = impl_->client.disconnect(static_cast<int>(timeout.count()));
+    (void)done->wait_for(timeout);
+  } catch (...) {
+    // not connected, or already gone
   }
 }
 

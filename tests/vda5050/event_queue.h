@@ -24,6 +24,12 @@ class EventQueue {
     };
   }
 
+  // Closures posted and not run yet.
+  std::size_t pending() {
+    std::lock_guard lock(mutex_);
+    return queue_.size();
+  }
+
   // Runs queued closures until `done()` holds (checked after each) or the deadline passes.
   bool run_until(const std::function<bool()>& done, std::chrono::milliseconds deadline) {
     const auto end = std::chrono::steady_clock::now() + deadline;

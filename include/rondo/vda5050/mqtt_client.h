@@ -11,6 +11,11 @@
 //
 // Nothing here blocks the caller: start() returns at once and the first connection, like every
 // reconnection, happens in the background (retrying with back-off until stop()).
+//
+// Stopping, in any order of events (the broker gone before, during or after it; a connect or
+// reconnect in progress; a message arriving meanwhile): stop() never throws; once it has
+// returned, `post` is not called again, and a closure posted before and run later does nothing
+// (it neither calls a handler nor touches the client, which may be gone by then).
 #pragma once
 
 #include <functional>
@@ -45,7 +50,8 @@ struct MqttHandlers {
   std::function<void(const std::string& cause)> connection_lost;
 };
 
-// Hands a closure to the owner's thread; must be callable from any thread.
+// Hands a closure to the owner's thread; must be callable from any thread. It may also run the
+// closure at once (a test's spy does), provided the handlers then never call stop().
 using Post = std::function<void(std::function<void()>)>;
 
 class MqttClient {
@@ -62,8 +68,9 @@ class MqttClient {
   void start();
   // Publishes when connected; an error (not an exception) when not connected or refused.
   Status publish(const MqttMessage& message);
-  // Disconnects cleanly (no last will) and stops reconnecting; waits at most `timeout`.
-  void stop(Duration timeout = seconds(2));
+  // Disconnects cleanly (no last will) and stops reconnecting; waits at most `timeout` for the
+  // broker (a first connect in progress is given up at once). Idempotent; the destructor calls it.
+  void stop(Duration timeout = seconds(2)) noexcept;
   bool connected() const;
 
  private:
