@@ -91,7 +91,10 @@ struct Api {
   std::atomic<bool> stopping{false};
   std::atomic<int> streams{0};
   std::atomic<std::size_t> http_threads{0};  // running now (HttpPool)
-  News news;
+  // The callbacks posted to the clock's thread hold what they need (the news, the group below),
+  // never the Api: one that runs after the server has gone (its requests withdrawn, the clock
+  // run on) reaches nothing of the server's.
+  std::shared_ptr<News> news = std::make_shared<News>();
 
   // Runs `work` on the clock's thread and waits for its reply (503 when it does not come within
   // the answer timeout, e.g. while shutting down).
@@ -104,9 +107,13 @@ struct Api {
   Reply on_clock_grouped(std::function<Reply()> work);
 
   struct Grouped;  // a write waiting for the clock's thread
-  std::mutex group_mutex{};
-  std::vector<std::shared_ptr<Grouped>> group{};  // guarded by group_mutex
-  void run_group();  // on the clock's thread: the writes waiting now, in one commit
+  struct Group {
+    std::mutex mutex;
+    std::vector<std::shared_ptr<Grouped>> waiting;  // guarded by mutex
+  };
+  std::shared_ptr<Group> group = std::make_shared<Group>();
+  // On the clock's thread: the writes waiting now, in one commit on `store`.
+  static void run_group(Group& group, store::Store& store, News& news);
 };
 
 using Handler = std::function<Reply(Api&, const httplib::Request&)>;

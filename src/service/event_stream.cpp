@@ -84,7 +84,7 @@ void event_stream(Api& api, const httplib::Request& req, httplib::Response& res)
       "text/event-stream",
       [&api, stream](std::size_t, httplib::DataSink& sink) {
         while (!api.stopping && sink.is_writable()) {
-          const std::uint64_t seen = api.news.count();
+          const std::uint64_t seen = api.news->count();
           auto events = store::read_events(stream->store, stream->last, kBatch);
           if (!events) return false;
           if (!events->empty()) {
@@ -102,7 +102,7 @@ void event_stream(Api& api, const httplib::Request& req, httplib::Response& res)
             stream->last_write = std::chrono::steady_clock::now();
             return true;
           }
-          api.news.wait(seen, api.options.stream_poll);  // waiting for news, not for a test
+          api.news->wait(seen, api.options.stream_poll);  // waiting for news, not for a test
         }
         sink.done();
         return true;

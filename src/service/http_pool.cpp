@@ -1,12 +1,18 @@
 #include "http_pool.h"
 
 #include <algorithm>
+#include <system_error>
 #include <utility>
 
 namespace rondo::service {
 
-HttpPool::HttpPool(std::size_t max_threads, std::chrono::milliseconds idle_exit, std::atomic<std::size_t>* gauge)
-    : max_threads_(std::max<std::size_t>(1, max_threads)), idle_exit_(idle_exit), gauge_(gauge) {}
+HttpPool::HttpPool(std::size_t max_threads, std::chrono::milliseconds idle_exit, std::atomic<std::size_t>* gauge,
+                   StartThread start_thread)
+    : max_threads_(std::max<std::size_t>(1, max_threads)),
+      idle_exit_(idle_exit),
+      gauge_(gauge),
+      start_thread_(start_thread ? std::move(start_thread)
+                                 : [](std::function<void()> body) { return std::thread(std::move(body)); }) {}
 
 HttpPool::~HttpPool() {
   shutdown();
@@ -19,8 +25,21 @@ void HttpPool::enqueue(std::function<void()> fn) {
   if (idle_ < jobs_.size() && workers_.size() < max_threads_) {
     // Started under the lock: the thread's first look at the queue waits for `*self` to be set.
     const Worker self = workers_.emplace(workers_.end());
-    *self = std::thread([this, self] { work(self); });
-    ++started_;
+    try {
+      *self = start_thread_([this, self] { work(self); });
+      ++started_;
+    } catch (const std::system_error&) {
+      // No thread to be had (the process's limit). The job waits for a running thread; with
+      // none, it runs here, on httplib's accepting thread.
+      workers_.erase(self);
+      if (workers_.empty()) {
+        std::function<void()> job = std::move(jobs_.back());
+        jobs_.pop_back();
+        lock.unlock();
+        job();
+        lock.lock();
+      }
+    }
     if (gauge_) *gauge_ = workers_.size();
   }
   lock.unlock();

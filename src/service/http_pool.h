@@ -29,14 +29,20 @@ namespace rondo::service {
 
 class HttpPool final : public httplib::TaskQueue {
  public:
+  // Starts a thread running `body` (std::thread's constructor; tests give one that fails, as it
+  // does with std::system_error at the process's thread limit).
+  using StartThread = std::function<std::thread(std::function<void()> body)>;
   // `gauge` (optional) follows threads(), for /metrics.
-  HttpPool(std::size_t max_threads, std::chrono::milliseconds idle_exit, std::atomic<std::size_t>* gauge = nullptr);
+  HttpPool(std::size_t max_threads, std::chrono::milliseconds idle_exit, std::atomic<std::size_t>* gauge = nullptr,
+           StartThread start_thread = nullptr);
   ~HttpPool() override;
   HttpPool(const HttpPool&) = delete;
   HttpPool& operator=(const HttpPool&) = delete;
 
   // Queues `fn`; starts a thread for it when fewer threads wait than jobs do and fewer than
-  // max_threads run. Ignored after shutdown() (httplib never does that).
+  // max_threads run. Ignored after shutdown() (httplib never does that). Never throws: when no
+  // thread can be started, `fn` waits for a running one, or with none runs here (an exception
+  // would end httplib's accepting thread, and the process with it).
   void enqueue(std::function<void()> fn) override;
   // Runs the queued jobs, then ends and joins every thread.
   void shutdown() override;
@@ -57,6 +63,7 @@ class HttpPool final : public httplib::TaskQueue {
   const std::size_t max_threads_;
   const std::chrono::milliseconds idle_exit_;
   std::atomic<std::size_t>* const gauge_;
+  const StartThread start_thread_;
   mutable std::mutex mutex_;
   std::condition_variable work_;           // a job was queued, or shutdown
   mutable std::condition_variable ended_;  // a thread ended or went idle

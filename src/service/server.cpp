@@ -56,7 +56,7 @@ Reply Api::on_clock(std::function<Reply()> work) {
   auto promise = std::make_shared<std::promise<Reply>>();
   auto stage = std::make_shared<std::atomic<int>>(kPending);
   std::future<Reply> answer = promise->get_future();
-  ctx.clock.post([this, promise, stage, work = std::move(work)] {
+  ctx.clock.post([news = news, promise, stage, work = std::move(work)] {
     int expected = kPending;
     if (!stage->compare_exchange_strong(expected, kStarted)) return;  // withdrawn: the client has its 503
     try {
@@ -64,7 +64,7 @@ Reply Api::on_clock(std::function<Reply()> work) {
     } catch (const std::exception& e) {
       promise->set_value(error_reply(500, "internal", fmt::format("internal error: {}", e.what())));
     }
-    news.tell();  // its commits, if any, are done: the event streams look now
+    news->tell();  // its commits, if any, are done: the event streams look now
   });
   if (answer.wait_for(options.answer_timeout) != std::future_status::ready) {
     int expected = kPending;
@@ -88,12 +88,12 @@ Reply Api::on_clock_grouped(std::function<Reply()> work) {
   std::future<Reply> answer = item->promise.get_future();
   bool first = false;
   {
-    std::lock_guard lock(group_mutex);
-    first = group.empty();
-    group.push_back(item);
+    std::lock_guard lock(group->mutex);
+    first = group->waiting.empty();
+    group->waiting.push_back(item);
   }
   // The first of a group asks the clock's thread to run it; the ones that come before it runs join.
-  if (first) ctx.clock.post([this] { run_group(); });
+  if (first) ctx.clock.post([group = group, &store = ctx.store, news = news] { run_group(*group, store, *news); });
   if (answer.wait_for(options.answer_timeout) != std::future_status::ready) {
     int expected = kPending;
     if (item->stage.compare_exchange_strong(expected, kWithdrawn))
@@ -102,15 +102,15 @@ Reply Api::on_clock_grouped(std::function<Reply()> work) {
   return answer.get();
 }
 
-void Api::run_group() {
+void Api::run_group(Group& group, store::Store& store, News& news) {
   std::vector<std::shared_ptr<Grouped>> items;
   {
-    std::lock_guard lock(group_mutex);
-    items.swap(group);
+    std::lock_guard lock(group.mutex);
+    items.swap(group.waiting);
   }
   std::vector<std::pair<std::shared_ptr<Grouped>, Reply>> done;
   {
-    store::Batch batch(ctx.store);  // each write's own Batch is a savepoint in it
+    store::Batch batch(store);  // each write's own Batch is a savepoint in it
     for (const std::shared_ptr<Grouped>& item : items) {
       int expected = 0;
       if (!item->stage.compare_exchange_strong(expected, 1)) continue;  // withdrawn: answered 503
@@ -128,7 +128,7 @@ void Api::run_group() {
 }
 
 struct Server::Impl {
-  Impl(ServiceContext c, ServerOptions o) : api{std::move(c), std::move(o), {}, {false}, {0}, {0}, {}} {}
+  Impl(ServiceContext c, ServerOptions o) : api{std::move(c), std::move(o), {}, {false}, {0}, {0}} {}
   Api api;
   httplib::Server http;
   std::vector<Route> routes;
@@ -275,6 +275,7 @@ void Server::run() {
 
 void Server::stop() {
   impl_->api.stopping = true;
+  impl_->api.news->tell();  // the event streams end now, not at their next look
   impl_->http.stop();
 }
 

@@ -8,6 +8,8 @@
 #include <condition_variable>
 #include <future>
 #include <mutex>
+#include <system_error>
+#include <thread>
 
 namespace rondo::service {
 namespace {
@@ -101,6 +103,42 @@ TEST(HttpPool, ShutdownRunsTheQueuedJobsAndEndsEveryThread) {
   EXPECT_EQ(pool.threads(), 0u);
   pool.enqueue([&ran] { ++ran; });  // after shutdown: ignored
   EXPECT_EQ(ran.load(), 4);
+}
+
+// At the process's thread limit std::thread throws. Before, the exception left enqueue() and
+// ended httplib's accepting thread (std::terminate), and the emptied worker slot it left held
+// shutdown() for ever. Now the job waits for a running thread, or with none runs at once.
+TEST(HttpPool, NoThreadToBeHadRunsTheJobOnARunningThreadOrAtOnce) {
+  std::atomic<bool> refuse{true};
+  const HttpPool::StartThread start = [&refuse](std::function<void()> body) {
+    if (refuse) throw std::system_error(std::make_error_code(std::errc::resource_unavailable_try_again));
+    return std::thread(std::move(body));
+  };
+  HttpPool pool(4, hours(1), nullptr, start);
+  const std::thread::id here = std::this_thread::get_id();
+  std::thread::id ran_on;
+  pool.enqueue([&ran_on] { ran_on = std::this_thread::get_id(); });
+  EXPECT_EQ(ran_on, here);  // no thread running: at once, on the caller's
+  EXPECT_EQ(pool.threads(), 0u);
+
+  refuse = false;
+  std::promise<void> go;
+  std::shared_future<void> gate = go.get_future().share();
+  std::promise<std::thread::id> first;
+  pool.enqueue([gate, &first] {
+    gate.wait();
+    first.set_value(std::this_thread::get_id());
+  });
+  refuse = true;
+  std::promise<std::thread::id> second;
+  pool.enqueue([&second] { second.set_value(std::this_thread::get_id()); });  // waits for the one thread
+  EXPECT_EQ(pool.threads(), 1u);
+  go.set_value();
+  const std::thread::id worker = first.get_future().get();
+  EXPECT_NE(worker, here);
+  EXPECT_EQ(second.get_future().get(), worker);
+  pool.shutdown();
+  EXPECT_EQ(pool.threads(), 0u);
 }
 
 }  // namespace
