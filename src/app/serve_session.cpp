@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <ostream>
 #include <thread>
 
@@ -44,6 +45,18 @@ void trim_heap_every(exec::Clock& clock, Duration period) {
   ::malloc_trim(0);
   clock.schedule_after(period, [&clock, period] { trim_heap_every(clock, period); });
 }
+
+// Runs `f` when the scope is left, also by an exception.
+class ScopeExit {
+ public:
+  explicit ScopeExit(std::function<void()> f) : f_(std::move(f)) {}
+  ~ScopeExit() { f_(); }
+  ScopeExit(const ScopeExit&) = delete;
+  ScopeExit& operator=(const ScopeExit&) = delete;
+
+ private:
+  std::function<void()> f_;
+};
 
 }  // namespace
 
@@ -155,31 +168,44 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
                      request.speed, request.data.string(), token ? "writes need the token" : "writes open on loopback")
       << std::flush;
 
+  // The HTTP thread and the signal thread are joined whichever way this function is left: a
+  // std::thread destroyed while it can still be joined ends the process (std::terminate), which
+  // is how an exception on the clock's thread once became "terminated without an exception".
   std::atomic<bool> http_done{false};
   std::thread http([&server, &http_done] {
     server.run();
     http_done = true;
   });
-  std::thread waiter([&] {
-    int sig = 0;
-    sigwait(&signals, &sig);
-    if (sig != SIGUSR1)
-      log << fmt::format("rondo serve: {}: stopping\n", sig == SIGTERM ? "SIGTERM" : "SIGINT") << std::flush;
-    // No new requests; the ones in progress are answered (the clock still runs). Asked again until
-    // the server has gone, in case the signal came before it was listening.
+  // No new requests; the ones in progress are answered (while the clock still runs). Asked again
+  // until the server has gone, in case the signal came before it was listening.
+  const auto end_http = [&] {
+    if (!http.joinable()) return;
     while (!http_done) {
       server.stop();
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
     http.join();
+  };
+  const ScopeExit join_http([&] { end_http(); });
+  std::thread waiter([&] {
+    int sig = 0;
+    sigwait(&signals, &sig);
+    if (sig != SIGUSR1)
+      log << fmt::format("rondo serve: {}: stopping\n", sig == SIGTERM ? "SIGTERM" : "SIGINT") << std::flush;
+    end_http();
+    // The last callback the executive runs: what was posted after it stays unrun (SystemClock::stop).
     clock.post([&] {
-      robot.deactivate();  // halts the robot where it is
+      robot.deactivate();  // halts the robot where it is; a vehicle's MQTT client disconnects
       clock.stop();
     });
   });
+  // SIGUSR1 wakes the signal thread when the clock's loop ends otherwise (an exception); a no-op
+  // when a signal already woke it.
+  const ScopeExit join_waiter([&] {
+    pthread_kill(waiter.native_handle(), SIGUSR1);
+    waiter.join();
+  });
   clock.run_until(clock.now() + hours(24 * 365 * 100));
-  pthread_kill(waiter.native_handle(), SIGUSR1);  // a no-op when a signal already woke it
-  waiter.join();
   log << "rondo serve: stopped\n";
   return Status{};
 }
