@@ -53,6 +53,7 @@ class Broker {
   void stop();
 
   int port() const { return port_; }
+  pid_t pid() const { return process_ ? process_->pid() : -1; }  // -1 when stopped
   std::string url() const { return "mqtt://127.0.0.1:" + std::to_string(port_); }
   const std::filesystem::path& dir() const { return dir_; }
 
