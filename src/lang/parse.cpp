@@ -153,9 +153,17 @@ class Parser {
                                         kMaxListPlaces));
     }
     std::map<Span, std::optional<Place>> resolved;
+    // A run of words across a comma is never one place: a comma always ends a part of the list
+    // (else "meeting room, table in A-111" read as one lenient "meeting room table in A-111" and
+    // the meeting room was dropped).
+    const auto across_a_comma = [&](std::size_t x, std::size_t y) {
+      for (std::size_t k = x + 1; k < y; ++k)
+        if (t_[k - 1].comma) return true;
+      return false;
+    };
     const auto lookup = [&](std::size_t x, std::size_t y) -> const std::optional<Place>& {
       auto [it, fresh] = resolved.try_emplace(Span{x, y});
-      if (fresh) {
+      if (fresh && !across_a_comma(x, y)) {
         if (auto p = place(x, y, false)) it->second = std::move(*p);
       }
       return it->second;

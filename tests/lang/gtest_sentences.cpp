@@ -411,6 +411,16 @@ RC_GTEST_PROP(Sentences, AListOfPlacesMakesOneTaskPerPlaceInOrder, ()) {
   RC_ASSERT(got == nodes);
 }
 
+// The case the property found: a lenient reading of two parts together ("meeting room table in
+// A-111") is not a known name that may not be cut: a comma always ends a part.
+TEST(Sentences, ACommaAlwaysEndsAPartOfAList) {
+  auto c = parse_command("check meeting room, table in A-111 and west exit", test::office_context());
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  std::vector<std::string> got;
+  for (const auto& t : c->tasks) got.push_back(t.start_node);
+  EXPECT_EQ(got, (std::vector<std::string>{"A-111", "A-111-Table", "Exit-West"}));
+}
+
 // A place whose own name holds "and" is that place, never two; a list that can be cut into known
 // places in two ways that mean different places is an error that shows both.
 TEST(Sentences, AKnownNameWithAndIsNeverCutAndTwoReadingsAreAnError) {
