@@ -153,9 +153,9 @@ class Parser {
                                         kMaxListPlaces));
     }
     std::map<Span, std::optional<Place>> resolved;
-    // A run of words across a comma is never one place: a comma always ends a part of the list
-    // (else "meeting room, table in A-111" read as one lenient "meeting room table in A-111" and
-    // the meeting room was dropped).
+    // A run of words across a comma is one place only when that place's own name holds a comma:
+    // otherwise the comma ends a part of the list ("meeting room, table in A-111" read, without its
+    // comma, as the known "meeting room table in A-111", and the meeting room was dropped).
     const auto across_a_comma = [&](std::size_t x, std::size_t y) {
       for (std::size_t k = x + 1; k < y; ++k)
         if (t_[k - 1].comma) return true;
@@ -163,8 +163,9 @@ class Parser {
     };
     const auto lookup = [&](std::size_t x, std::size_t y) -> const std::optional<Place>& {
       auto [it, fresh] = resolved.try_emplace(Span{x, y});
-      if (fresh && !across_a_comma(x, y)) {
-        if (auto p = place(x, y, false)) it->second = std::move(*p);
+      if (fresh) {
+        auto p = place(x, y, false);
+        if (p && (!across_a_comma(x, y) || p->name.find(',') != std::string::npos)) it->second = std::move(*p);
       }
       return it->second;
     };

@@ -411,14 +411,28 @@ RC_GTEST_PROP(Sentences, AListOfPlacesMakesOneTaskPerPlaceInOrder, ()) {
   RC_ASSERT(got == nodes);
 }
 
-// The case the property found: a lenient reading of two parts together ("meeting room table in
-// A-111") is not a known name that may not be cut: a comma always ends a part.
-TEST(Sentences, ACommaAlwaysEndsAPartOfAList) {
+// The case the property found: two parts said with a comma between them ("meeting room, table in
+// A-111") are not the known place their words make without it ("meeting room table in A-111"): a
+// comma ends a part of a list, unless the known name holds the comma itself.
+TEST(Sentences, ACommaEndsAPartOfAListUnlessAKnownNameHoldsIt) {
   auto c = parse_command("check meeting room, table in A-111 and west exit", test::office_context());
   ASSERT_TRUE(c.ok()) << c.error().message;
   std::vector<std::string> got;
   for (const auto& t : c->tasks) got.push_back(t.start_node);
   EXPECT_EQ(got, (std::vector<std::string>{"A-111", "A-111-Table", "Exit-West"}));
+
+  auto doc = Document::parse("places:\n  - {name: \"Smith, Jones office\", node: A-123}\n", DocumentFormat::kYaml,
+                             "places.yaml");
+  ASSERT_TRUE(doc.ok()) << doc.error().message;
+  auto places = Places::decode(*doc, test::office().map);
+  ASSERT_TRUE(places.ok()) << places.error().message;
+  CommandContext ctx = test::office_context();
+  ctx.places = &*places;
+  auto named = parse_command("check Smith, Jones office and A-110", ctx);
+  ASSERT_TRUE(named.ok()) << named.error().message;
+  got.clear();
+  for (const auto& t : named->tasks) got.push_back(t.start_node);
+  EXPECT_EQ(got, (std::vector<std::string>{"A-123", "A-110"}));
 }
 
 // A place whose own name holds "and" is that place, never two; a list that can be cut into known
