@@ -65,7 +65,7 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
   RONDO_RETURN_IF_ERROR(f.expect_keys({"navigation_overrun", "navigation_slack", "action_overrun", "action_slack",
                                        "dock_when_waiting_over", "max_failed_edges", "blocked_edge",
                                        "on_demand_patience", "person_patience", "refit_at",
-                                       "refit_window", "online_model", "slot_width", "scheduler_polls", "capacity",
+                                       "refit_window", "weekly_half_life", "online_model", "slot_width", "scheduler_polls", "capacity",
                                        "return_to", "return_within", "battery_reserve", "battery_threshold",
                                        "battery_resume", "battery_planning", "battery_margin", "risk_alpha",
                                        "navigation_alpha", "navigation_window", "route_threshold"}));
@@ -107,6 +107,11 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
   if (auto v = f.optional("refit_window")) {
     RONDO_ASSIGN_OR_RETURN(o.refit_window, v->as_duration());
     if (*o.refit_window < hours(24)) return v->error("must be at least 24h (or null: the whole log)");
+  }
+  if (f.has("weekly_half_life") && !f.optional("weekly_half_life")) o.weekly_half_life.reset();
+  if (auto v = f.optional("weekly_half_life")) {
+    RONDO_ASSIGN_OR_RETURN(o.weekly_half_life, v->as_duration());
+    if (*o.weekly_half_life < hours(24)) return v->error("must be at least 24h (or null: no live weekly term)");
   }
   if (auto v = f.optional("online_model")) { RONDO_ASSIGN_OR_RETURN(o.online_model, v->as_bool()); }
   if (auto v = f.optional("slot_width")) {

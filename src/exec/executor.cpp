@@ -15,6 +15,7 @@
 #include "loading_times.h"
 #include "opportunities.h"
 #include "scheduling.h"
+#include "rondo/learn/weekly_memory.h"
 #include "rondo/map/map_geometry.h"
 #include "rondo/schedule/default_scheduler.h"
 #include "task_run.h"

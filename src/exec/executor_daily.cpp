@@ -84,6 +84,7 @@ void Executor::refit() {
     book_.write_error(fitted.error().message);
     return;
   }
+  *fitted = with_week(std::move(*fitted));  // executor_weekly.cpp
   if (options_.risk_alpha) {
     // The chance constraint's travel-time distribution: attempt durations with their own laws.
     plan::AttemptLaws learned = learn_attempt_laws(**fitted, *log);

@@ -9,6 +9,7 @@
 #include "rondo/core/atomic_file.h"
 #include "rondo/core/document.h"
 #include "rondo/core/utf8.h"
+#include "rondo/learn/weekly_memory.h"
 
 namespace rondo::learn {
 namespace {
@@ -211,6 +212,17 @@ Result<std::shared_ptr<const EdgeModels>> EdgeModels::load(const std::filesystem
   auto models = from_json(doc->json());
   if (!models) return models.error().with_context(printable_path(file));
   return models;
+}
+
+std::shared_ptr<const EdgeModels> EdgeModels::with_weekly(const WeeklyMemory& memory) const {
+  auto copy = std::make_shared<EdgeModels>(*this);
+  for (Entry& e : copy->edges_) {
+    if (!e.model) continue;
+    const WeeklyChoice choice = memory.choice(e.spec.id, priors_->options);
+    e.model = e.model->with_week_shift(choice, choice.weekly ? memory.shift(e.spec.id, priors_->options)
+                                                             : std::vector<double>{});
+  }
+  return copy;
 }
 
 LiveEdgeModels::LiveEdgeModels(std::shared_ptr<const EdgeModels> models) : models_(std::move(models)) {

@@ -127,8 +127,10 @@ namespace {
 
 // Calls f(q) for the first-attempt estimate of every shifted histogram at `t` (with the
 // time-of-week term when `weekly`).
+// `shift`: the live time-of-week term's, added to each histogram's q (clamped).
 template <class F>
-void for_each_histogram(Time t, const EpisodePriors& priors, const EpisodeStats& live, bool weekly, F&& f) {
+void for_each_histogram(Time t, const EpisodePriors& priors, const EpisodeStats& live, bool weekly, double shift,
+                        F&& f) {
   const auto& o = priors.options;
   double successes = 0, attempts = 0;
   for (std::size_t b = 0; b < live.first_attempts.size(); ++b) {
@@ -138,15 +140,31 @@ void for_each_histogram(Time t, const EpisodePriors& priors, const EpisodeStats&
   const double edge = (successes + o.edge_prior * priors.first_success) / (attempts + o.edge_prior);
   const SlotCounts counts{live.first_successes.data(), live.first_attempts.data(), live.week_successes.data(),
                           live.week_attempts.data()};
-  for_each_bin_estimate(priors.week_slot(t), counts, edge, o, weekly, [&](double, double q) { f(q); });
+  for_each_bin_estimate(priors.week_slot(t), counts, edge, o, weekly,
+                        [&](double, double q) { f(shift == 0 ? q : std::clamp(q + shift, 0.0, 1.0)); });
 }
 
 }  // namespace
 
+std::shared_ptr<const EpisodeEdgeModel> EpisodeEdgeModel::with_week_shift(WeeklyChoice choice,
+                                                                          std::vector<double> shift) const {
+  auto copy = std::make_shared<EpisodeEdgeModel>(priors_, stats_, durations_, choice);
+  copy->weekly_.weekly = false;  // the statistics' own term: the shift replaces it
+  copy->weekly_.evidence = choice.evidence;
+  if (choice.weekly && shift.size() == static_cast<std::size_t>(kWeekSlots))
+    copy->week_shift_ = std::make_shared<const std::vector<double>>(std::move(shift));
+  copy->weekly_.weekly = choice.weekly && copy->week_shift_ != nullptr;
+  return copy;
+}
+
+double EpisodeEdgeModel::week_shift(Time t) const {
+  return week_shift_ ? (*week_shift_)[idx(priors_->week_slot(t))] : 0.0;
+}
+
 double EpisodeEdgeModel::first_attempt_probability(Time t, const EpisodeStats& live) const {
   double sum = 0;
   int count = 0;
-  for_each_histogram(t, *priors_, live, weekly_.weekly, [&](double q) {
+  for_each_histogram(t, *priors_, live, histogram_weekly(), week_shift(t), [&](double q) {
     sum += q;
     ++count;
   });
@@ -164,7 +182,7 @@ double EpisodeEdgeModel::offline_probability(Time t, const EpisodeStats& live) c
   const double length = retry_length(live);
   double sum = 0;
   int count = 0;
-  for_each_histogram(t, *priors_, live, weekly_.weekly, [&](double q) {
+  for_each_histogram(t, *priors_, live, histogram_weekly(), week_shift(t), [&](double q) {
     sum += q / (q + (1 - q) * length);
     ++count;
   });
@@ -173,7 +191,7 @@ double EpisodeEdgeModel::offline_probability(Time t, const EpisodeStats& live) c
 
 std::vector<double> EpisodeEdgeModel::slot_probabilities(const EpisodeStats& live, bool first_attempt) const {
   const auto& o = priors_->options;
-  const bool weekly = weekly_.weekly;
+  const bool weekly = histogram_weekly();
   // The edge's rate, as for_each_histogram sums it.
   double successes = 0, attempts = 0;
   for (std::size_t b = 0; b < live.first_attempts.size(); ++b) {
@@ -228,6 +246,7 @@ std::vector<double> EpisodeEdgeModel::slot_probabilities(const EpisodeStats& liv
         }
         week_q[static_cast<std::size_t>(w)] = q;
       }
+      if (week_shift_) q = std::clamp(q + (*week_shift_)[static_cast<std::size_t>(w)], 0.0, 1.0);
       sum[static_cast<std::size_t>(w)] += first_attempt ? q : q / (q + (1 - q) * length);
     }
     ++count;
@@ -243,8 +262,9 @@ double EpisodeEdgeModel::probability_from(Time t, const EpisodeStats& live, doub
   const auto s = idx(EpisodeStats::state_of(live.last_success, t - live.last_end));
   const double pooled =
       (priors_->state_successes[s] + o.pooled_state_prior * q) / (priors_->state_attempts[s] + o.pooled_state_prior);
-  return std::clamp((live.state_successes[s] + o.state_prior * pooled) / (live.state_attempts[s] + o.state_prior), 0.0,
-                    1.0);
+  return std::clamp((live.state_successes[s] + o.state_prior * pooled) / (live.state_attempts[s] + o.state_prior) +
+                        week_shift(t),
+                    0.0, 1.0);
 }
 
 double EpisodeEdgeModel::expected_seconds_from(Time t, const EpisodeStats& live, double slot_value) const {

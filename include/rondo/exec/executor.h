@@ -67,6 +67,10 @@
 #include "rondo/store/requests.h"
 #include "rondo/store/store.h"
 
+namespace rondo::learn {
+class WeeklyMemory;
+}  // namespace rondo::learn
+
 namespace rondo::exec {
 
 struct ScheduleAnswer;
@@ -350,6 +354,10 @@ class Executor final : public RobotListener {
   void schedule_midnight();
   void schedule_refit();
   void refit();
+  // The live weekly term (executor_weekly.cpp): adds the whole local days since the last refit to
+  // the weekly memory (loaded from the store the first time), saves it, and returns `fitted` with
+  // the term the memory chooses for each edge.
+  std::shared_ptr<const learn::EdgeModels> with_week(std::shared_ptr<const learn::EdgeModels> fitted);
 
   Clock& clock_;
   Robot& robot_;
@@ -400,6 +408,7 @@ class Executor final : public RobotListener {
   std::vector<TaskId> plan_before_break_;
   std::string look_alikes_;  // the last look-alike note
   std::unique_ptr<DoorModels> door_models_;
+  std::unique_ptr<learn::WeeklyMemory> weekly_memory_;  // null until the first refit
   std::unique_ptr<Background, BackgroundDeleter> background_;  // last: its worker goes first
 };
 

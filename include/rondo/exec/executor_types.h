@@ -93,6 +93,9 @@ struct ExecutorOptions {
   // The nightly refit reads the traversals that started within this long before it (nothing: the
   // whole log), so a night costs the same however long the robot has lived (docs/executor.md).
   std::optional<Duration> refit_window = hours(24 * 14);
+  // The live weekly term (learn::WeeklyMemory): first attempts by time of week, beside the refit's
+  // window, each count's weight halving in this long; nothing: no live weekly term.
+  std::optional<Duration> weekly_half_life = hours(24 * 28);
   // Travel estimates from the online edge model (each edge updated with every attempt, on the
   // nightly snapshot); false: the snapshot alone (plan::LearnedEdgeModels::Reading).
   bool online_model = true;

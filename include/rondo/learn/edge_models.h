@@ -31,6 +31,8 @@
 
 namespace rondo::learn {
 
+class WeeklyMemory;
+
 struct EdgeSpec {
   std::string id;
   double prior_seconds = 0;  // distance-based travel time estimate; <= 0 when unknown
@@ -62,12 +64,19 @@ class EdgeModels {
   int attempts(std::size_t index) const { return edges_[index].attempts; }
   // The edge's own fitted model (its weekly choice, statistics); null for the prior model.
   const EpisodeEdgeModel* model(std::size_t index) const { return edges_[index].model.get(); }
+  // What the fit pooled over its edges (its options among them).
+  const EpisodePriors& priors() const { return *priors_; }
 
   // Offline estimates (not conditioned on recent outcomes). Precondition: index < size().
   double success_probability(std::size_t index, Time t) const;
   double expected_seconds(std::size_t index, Time t) const;
   double quantile_seconds(std::size_t index, Time t, double q) const;
   Result<EdgeEstimate> estimate(std::string_view edge_id, Time t, std::span<const double> levels = {}) const;
+
+  // A copy in which every edge with a model of its own takes the live time-of-week term that
+  // `memory` chooses for it under this fit's options (WeeklyMemory::choice and shift); the term
+  // from the fit's own window is dropped. The rest is shared with this one.
+  std::shared_ptr<const EdgeModels> with_weekly(const WeeklyMemory& memory) const;
 
   Json to_json() const;
   static Result<std::shared_ptr<const EdgeModels>> from_json(const Json& j);

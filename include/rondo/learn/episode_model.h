@@ -229,6 +229,13 @@ class EpisodeEdgeModel {
   const std::shared_ptr<const EpisodePriors>& priors() const { return priors_; }
   // Whether q(t) has the time-of-week term, and why.
   const WeeklyChoice& weekly() const { return weekly_; }
+  // A copy with a live time-of-week term (WeeklyMemory, weekly_memory.h): `shift` (kWeekSlots
+  // values, one per slot of the local week) is added to each histogram's q(t) before the average
+  // and the offline probability, and to the online probability, each clamped to [0, 1]. The
+  // copy's term from its own statistics is off; `choice` says why the shift is there.
+  std::shared_ptr<const EpisodeEdgeModel> with_week_shift(WeeklyChoice choice, std::vector<double> shift) const;
+  // The live time-of-week shift at t (0 without one).
+  double week_shift(Time t) const;
   // The edge's part only (statistics and duration tables); the priors are saved once per set.
   Json to_json() const;
   static Result<EpisodeEdgeModel> from_json(const Json& j, std::shared_ptr<const EpisodePriors> priors);
@@ -236,11 +243,14 @@ class EpisodeEdgeModel {
  private:
   // The offline duration tables (kDaySlots), computed on the first call for the whole fit.
   const std::vector<QuantileTable>& offline_tables() const;
+  // Whether the histograms carry the weekly term from the statistics' week counts.
+  bool histogram_weekly() const { return weekly_.weekly && !week_shift_; }
 
   std::shared_ptr<const EpisodePriors> priors_;
   EpisodeStats stats_;
   DurationTables durations_;
   WeeklyChoice weekly_;
+  std::shared_ptr<const std::vector<double>> week_shift_;  // null: none
 };
 
 struct EpisodeFit {
