@@ -14,6 +14,7 @@
 #include "rondo/store/read_back.h"
 #include "rondo/store/robot_state.h"
 #include "rondo/store/task_table.h"
+#include "rondo/store/traversal_log.h"
 #include "scenario.h"
 
 namespace rondo::exec::testing {
@@ -72,6 +73,63 @@ Resume resume_point(const std::filesystem::path& db) {
 std::vector<store::Event> events_of(const std::filesystem::path& db, const std::string& id) {
   auto store = store::Store::open(db, {.mode = store::OpenMode::kReadOnly}).value();
   return store::read_events_of(store, id).value();
+}
+
+// Five weeks of Dock_Hall before the run, every 30 minutes: failing on Wednesdays 13:00-17:00.
+void weekly_history(store::Store& store, Time start) {
+  std::vector<Traversal> log;
+  for (Time t = start - hours(24 * 35); t < start; t += minutes(30)) {
+    const auto since_monday = (t - (start - hours(24 * 35))) % hours(24 * 7);
+    const bool closed = since_monday >= hours(24 * 2 + 13) && since_monday < hours(24 * 2 + 17);
+    log.push_back({"Dock_Hall", "Dock", "Hall", t, seconds(10), !closed, ""});
+  }
+  ASSERT_TRUE(store::add_traversals(store, log).ok());
+}
+
+bool dock_hall_weekly(Executor& e) {
+  const auto& models = e.models().models();
+  if (!models) return false;
+  const learn::EpisodeEdgeModel* m = models->model(*models->index_of("Dock_Hall"));
+  return m != nullptr && m->weekly().weekly;
+}
+
+// The live weekly term (issue 37, point 2): the first refit learns the week from the days the
+// memory can use, the store keeps the memory, and a restart reads it back, adds no day twice, and
+// plans with the term at once; a memory that cannot be read is said so and learned afresh.
+TEST(ExecutorRestore, TheWeeklyMemoryComesBackAndNoDayIsAddedTwice) {
+  const auto db = fresh_db_path();
+  const Time start = TimeZone::named("Europe/London").value().parse_time("2026-11-23T00:00").value();
+  std::string saved;
+  {
+    Life first(db, start);
+    weekly_history(first.store(), start);
+    first.executor().start();
+    first.run_until("03:00");  // past the refit at 02:00
+    EXPECT_TRUE(dock_hall_weekly(first.executor()));
+    auto stored = store::get_meta(first.store(), "learn.weekly_memory");
+    ASSERT_TRUE(stored && *stored);
+    saved = **stored;
+  }
+  {
+    Life second(db, resume_point(db).at + minutes(30));
+    ASSERT_TRUE(second.executor().restore());
+    second.executor().start();
+    EXPECT_TRUE(dock_hall_weekly(second.executor())) << "the term is planned with before the next refit";
+    EXPECT_EQ(store::get_meta(second.store(), "learn.weekly_memory").value().value(), saved);
+    EXPECT_TRUE(second.executor().write_errors().empty());
+    ASSERT_TRUE(store::set_meta(second.store(), "learn.weekly_memory", "{not json"));
+  }
+  Life third(db, resume_point(db).at + hours(1));
+  ASSERT_TRUE(third.executor().restore());
+  ASSERT_EQ(third.executor().write_errors().size(), 1u);
+  EXPECT_THAT(third.executor().write_errors()[0], HasSubstr("learned afresh"));
+  EXPECT_TRUE(dock_hall_weekly(third.executor()));
+  // Learned again from the same days: the same counts (its evidence was scored against this
+  // refit's pooled rate, a little different from the first's).
+  const Json again = Json::parse(store::get_meta(third.store(), "learn.weekly_memory").value().value());
+  const Json before = Json::parse(saved);
+  EXPECT_EQ(again["next_day"], before["next_day"]);
+  EXPECT_EQ(again["edges"]["Dock_Hall"]["slots"], before["edges"]["Dock_Hall"]["slots"]);
 }
 
 TEST(ExecutorRestore, ARunningTaskComesBackInterruptedThenQueuedAndIsCompleted) {
