@@ -56,7 +56,7 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
                                                     options_.route_threshold)),
       scheduler_(parts.scheduler ? std::move(parts.scheduler) : std::make_unique<schedule::DefaultScheduler>()),
       rng_(options.seed),
-      book_(store, clock),
+      book_(store, clock, options.robot_name),
       dispatcher_(std::make_unique<Dispatcher>(map_, *travel_, book_, options_, zone_)),
       deliveries_(std::make_unique<Deliveries>()),
       loading_(std::make_unique<LoadingTimes>()),

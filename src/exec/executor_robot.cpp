@@ -24,7 +24,7 @@ void Executor::learn_from(const EdgeAttempt& a) {
   if (is_learning_data(a.outcome)) {
     // Experience of the way: the traversal log, which the models learn from.
     const Traversal t{.edge_id = edge.id, .from = edge.from, .to = edge.to, .start = a.start, .duration = a.duration,
-                      .success = a.succeeded()};
+                      .success = a.succeeded(), .robot = options_.robot_name};
     if (auto ok = store::add_traversal(store_, t); !ok) book_.write_error(ok.error().message);
     // The online model of the edge: the next estimate reads it.
     models_->observe(
@@ -40,7 +40,7 @@ void Executor::learn_from(const EdgeAttempt& a) {
   if (a.outcome == EdgeOutcome::kCancelled && run_ && run_->stop_kind() == TaskRun::Stop::kOverrun &&
       a.duration > Duration{0}) {
     const store::Observation o{.what = kStoppedAttempt, .where = edge.id, .when = a.start,
-                               .value = to_seconds(a.duration), .text = run_->id()};
+                               .value = to_seconds(a.duration), .text = run_->id(), .robot = options_.robot_name};
     if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
   }
   // A cancelled attempt or one cut by a fault says nothing about the way: the event log only.
@@ -92,7 +92,7 @@ void Executor::learn_from(const ActionResult& result) {
                       result.start);
   if (result.outcome != ActionOutcome::kSucceeded) return;
   const store::Observation o{.what = result.name + " time", .where = place, .when = clock_.now(),
-                             .value = to_seconds(result.duration), .text = r.task.id};
+                             .value = to_seconds(result.duration), .text = r.task.id, .robot = options_.robot_name};
   if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
 }
 
@@ -162,7 +162,8 @@ void Executor::on_interruptible_changed(bool interruptible) {
 
 void Executor::log_battery() {
   const store::Observation o{.what = "battery", .where = map_.node(robot_.location()).name, .when = clock_.now(),
-                             .value = std::clamp(robot_.battery(), 0.0, 1.0), .text = std::nullopt};
+                             .value = std::clamp(robot_.battery(), 0.0, 1.0), .text = std::nullopt,
+                             .robot = options_.robot_name};
   if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
 }
 
@@ -183,7 +184,8 @@ void Executor::save_robot_state() {
 
 void Executor::on_observation(const Observation& seen) {
   const store::Observation o{.what = seen.what, .where = seen.where, .when = seen.when, .value = seen.value,
-                             .text = seen.text.empty() ? std::nullopt : std::optional<std::string>(seen.text)};
+                             .text = seen.text.empty() ? std::nullopt : std::optional<std::string>(seen.text),
+                             .robot = options_.robot_name};
   if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
   if (!started_ || seen.what != "door_open") return;
   ++assumption_stats_.door_observations;

@@ -29,7 +29,8 @@ Status TaskBook::add(std::vector<Task> tasks, std::string_view source, const sto
                     .state = to_string(TaskState::kQueued),
                     .created = now,
                     .updated = now,
-                    .source = std::string(source)});
+                    .source = std::string(source),
+                    .robot = robot_});
   }
   RONDO_RETURN_IF_ERROR(store::add_tasks(store_, rows, reason, to_string(Outcome::kAdded), taken));
   for (Task& t : tasks) {
@@ -175,7 +176,7 @@ void TaskBook::note(const TaskId& id, const std::string& event, Outcome outcome,
 void TaskBook::note_robot(const std::string& event, Outcome outcome, const std::string& reason) {
   append({.time = clock_.now(),
           .subject = store::Subject::kRobot,
-          .about = "robot",
+          .about = robot_,
           .event = event,
           .code = std::string(to_string(outcome)),
           .reason = reason});

@@ -17,7 +17,8 @@ namespace {
 constexpr std::array<std::pair<Subject, const char*>, 4> kSubjects{
     {{Subject::kTask, "task"}, {Subject::kRobot, "robot"}, {Subject::kRequest, "request"}, {Subject::kSchedule, "schedule"}}};
 
-constexpr const char* kSelect = "SELECT seq, time_ms, subject, COALESCE(task_id, ''), about, event, code, reason FROM events";
+constexpr const char* kSelect =
+    "SELECT seq, time_ms, subject, COALESCE(task_id, ''), about, event, code, reason, robot FROM events";
 
 Event event_from_row(const SQLite::Statement& row) {
   Event e;
@@ -30,6 +31,7 @@ Event event_from_row(const SQLite::Statement& row) {
   e.event = row.getColumn(5).getString();
   e.code = row.getColumn(6).getString();
   e.reason = row.getColumn(7).getString();
+  e.robot = row.getColumn(8).getString();
   return e;
 }
 
@@ -54,8 +56,11 @@ Result<Subject> parse_subject(std::string_view text) {
 }
 
 std::int64_t insert_event_row(SQLite::Database& db, const Event& e) {
-  SQLite::Statement insert(
-      db, "INSERT INTO events (time_ms, subject, task_id, about, event, code, reason) VALUES (?, ?, ?, ?, ?, ?, ?)");
+  // The robot: the event's own; else a robot event's subject, or a task event's task's robot.
+  SQLite::Statement insert(db,
+                           "INSERT INTO events (time_ms, subject, task_id, about, event, code, reason, robot) "
+                           "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, COALESCE(NULLIF(?8, ''), "
+                           "(SELECT robot FROM tasks WHERE id = ?3), ''))");
   insert.bind(1, to_db(e.time));
   insert.bind(2, to_string(e.subject));
   if (e.subject == Subject::kTask)
@@ -66,6 +71,7 @@ std::int64_t insert_event_row(SQLite::Database& db, const Event& e) {
   insert.bind(5, e.event);
   insert.bind(6, e.code);
   insert.bind(7, e.reason);
+  insert.bind(8, !e.robot.empty() || e.subject != Subject::kRobot ? e.robot : e.about);
   insert.exec();
   return db.getLastInsertRowid();
 }

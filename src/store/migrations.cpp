@@ -133,11 +133,35 @@ ALTER TABLE tasks ADD COLUMN planned_start_ms INTEGER;
 ALTER TABLE tasks ADD COLUMN planned_end_ms INTEGER;
 )sql";
 
+// Version 5 (a fleet, issue 38): every task, event, traversal and observation names its robot.
+// tasks.robot is the robot the task is allocated to (NULL: none); in events, traversals and
+// observations '' is none (a request's or the schedule's event, an imported traversal). A store
+// of a single-robot version held one robot: its rows get that robot's name (robot_state's only
+// row, else the default name 'robot'); imported traversals (with an origin) stay ''.
+constexpr std::string_view kSchemaV5 = R"sql(
+ALTER TABLE tasks ADD COLUMN robot TEXT;
+ALTER TABLE events ADD COLUMN robot TEXT NOT NULL DEFAULT '';
+ALTER TABLE traversals ADD COLUMN robot TEXT NOT NULL DEFAULT '';
+ALTER TABLE observations ADD COLUMN robot TEXT NOT NULL DEFAULT '';
+CREATE TEMP TABLE v5_single_robot AS
+  SELECT COALESCE((SELECT robot FROM robot_state WHERE (SELECT COUNT(*) FROM robot_state) = 1), 'robot') AS name;
+UPDATE tasks SET robot = (SELECT name FROM v5_single_robot);
+UPDATE traversals SET robot = (SELECT name FROM v5_single_robot) WHERE origin IS NULL;
+UPDATE observations SET robot = (SELECT name FROM v5_single_robot);
+DROP TRIGGER events_no_update;
+UPDATE events SET robot = (SELECT name FROM v5_single_robot) WHERE subject IN ('task', 'robot');
+CREATE TRIGGER events_no_update BEFORE UPDATE ON events
+BEGIN SELECT RAISE(ABORT, 'events is append-only'); END;
+DROP TABLE v5_single_robot;
+CREATE INDEX traversals_by_robot_start ON traversals (robot, start_ms);
+)sql";
+
 constexpr Migration kMigrations[] = {
     {1, "tasks, task_events (append-only), traversals, observations", kSchemaV1},
     {2, "events with subject and outcome code; task source and progress; robot_state; meta", kSchemaV2},
     {3, "requests: the queue of requests written by other processes (rondo task add --data)", kSchemaV3},
     {4, "tasks: planned start and end", kSchemaV4},
+    {5, "the robot of every task, event, traversal and observation", kSchemaV5},
 };
 
 int read_user_version(SQLite::Database& db) {

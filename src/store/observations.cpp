@@ -17,7 +17,7 @@ Result<std::int64_t> add_observation(Store& store, const Observation& observatio
   }
   return guarded(store, "adding an observation", [&]() -> Result<std::int64_t> {
     SQLite::Database& db = connection(store);
-    SQLite::Statement insert(db, "INSERT INTO observations (what, place, time_ms, value, note) VALUES (?, ?, ?, ?, ?)");
+    SQLite::Statement insert(db, "INSERT INTO observations (what, place, time_ms, value, note, robot) VALUES (?, ?, ?, ?, ?, ?)");
     insert.bind(1, observation.what);
     insert.bind(2, observation.where);
     insert.bind(3, to_db(observation.when));
@@ -27,6 +27,7 @@ Result<std::int64_t> add_observation(Store& store, const Observation& observatio
     } else {
       insert.bind(5);
     }
+    insert.bind(6, observation.robot);
     insert.exec();
     return db.getLastInsertRowid();
   });
@@ -34,7 +35,7 @@ Result<std::int64_t> add_observation(Store& store, const Observation& observatio
 
 Result<std::vector<Observation>> find_observations(const Store& store, const ObservationQuery& query) {
   return guarded(store, "reading observations", [&]() -> Result<std::vector<Observation>> {
-    std::string sql = "SELECT what, place, time_ms, value, note FROM observations WHERE 1";
+    std::string sql = "SELECT what, place, time_ms, value, note, robot FROM observations WHERE 1";
     if (query.what) sql += " AND what = :what";
     if (query.where) sql += " AND place = :place";
     if (query.from) sql += " AND time_ms >= :from";
@@ -53,6 +54,7 @@ Result<std::vector<Observation>> find_observations(const Store& store, const Obs
       o.when = time_from_db(select.getColumn(2).getInt64());
       o.value = select.getColumn(3).getDouble();
       if (!select.isColumnNull(4)) o.text = select.getColumn(4).getString();
+      o.robot = select.getColumn(5).getString();
       out.push_back(std::move(o));
     }
     return out;

@@ -16,8 +16,8 @@ namespace rondo::store {
 namespace {
 
 constexpr const char* kSelectTask =
-    "SELECT id, state, task_json, created_ms, updated_ms, source, progress_json, planned_start_ms, planned_end_ms "
-    "FROM tasks";
+    "SELECT id, state, task_json, created_ms, updated_ms, source, progress_json, planned_start_ms, planned_end_ms, "
+    "COALESCE(robot, '') FROM tasks";
 
 std::optional<Time> optional_time(const SQLite::Column& c) {
   return c.isNull() ? std::nullopt : std::optional<Time>(time_from_db(c.getInt64()));
@@ -49,6 +49,7 @@ Result<TaskRow> task_from_row(const Store& store, const SQLite::Statement& row) 
   }
   r.planned_start = optional_time(row.getColumn(7));
   r.planned_end = optional_time(row.getColumn(8));
+  r.robot = row.getColumn(9).getString();
   return r;
 }
 
@@ -81,7 +82,7 @@ Status add_tasks(Store& store, std::span<const TaskRow> tasks, std::string_view 
     WriteTx tx(db);
     SQLite::Statement insert(db,
                              "INSERT INTO tasks (id, state, task_json, created_ms, updated_ms, source, progress_json, "
-                             "planned_start_ms, planned_end_ms) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?) "
+                             "planned_start_ms, planned_end_ms, robot) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, NULLIF(?, '')) "
                              "ON CONFLICT (id) DO NOTHING");
     for (const TaskRow& task : tasks) {
       insert.reset();
@@ -97,6 +98,7 @@ Status add_tasks(Store& store, std::span<const TaskRow> tasks, std::string_view 
         insert.bind(7, task.progress.dump());
       bind_optional_time(insert, 8, task.planned_start);
       bind_optional_time(insert, 9, task.planned_end);
+      insert.bind(10, task.robot);
       if (insert.exec() == 0) {  // the transaction rolls back: none of `tasks` is stored
         return Error::invalid(fmt::format("{}: task '{}' is already stored", store.file().string(), task.id));
       }
@@ -108,6 +110,16 @@ Status add_tasks(Store& store, std::span<const TaskRow> tasks, std::string_view 
     }
     if (taken) RONDO_RETURN_IF_ERROR(mark_request_taken(db, store.file(), *taken));
     tx.commit();  // with synchronous=FULL the WAL is synced to disk here
+    return {};
+  });
+}
+
+Status set_task_robot(Store& store, std::string_view id, std::string_view robot) {
+  return guarded(store, fmt::format("allocating task '{}'", id), [&]() -> Status {
+    SQLite::Statement update(connection(store), "UPDATE tasks SET robot = NULLIF(?, '') WHERE id = ?");
+    update.bind(1, std::string(robot));
+    update.bind(2, std::string(id));
+    if (update.exec() == 0) return Error::not_found(fmt::format("{}: no task '{}'", store.file().string(), id));
     return {};
   });
 }

@@ -14,8 +14,8 @@ namespace {
 // The one INSERT of the log. A stored origin makes it a no-op (exec() returns 0 changes); NULL
 // origins never conflict, so live traversals are always stored.
 constexpr const char* kInsert =
-    "INSERT INTO traversals (edge_id, from_node, to_node, start_ms, duration_ms, success, origin) "
-    "VALUES (?, ?, ?, ?, ?, ?, ?) ON CONFLICT (origin) DO NOTHING";
+    "INSERT INTO traversals (edge_id, from_node, to_node, start_ms, duration_ms, success, origin, robot) "
+    "VALUES (?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (origin) DO NOTHING";
 
 // Binds `t` to a prepared kInsert, runs it, and resets it for reuse; true if a row was added.
 bool insert(SQLite::Statement& statement, const Traversal& t) {
@@ -30,6 +30,7 @@ bool insert(SQLite::Statement& statement, const Traversal& t) {
   } else {
     statement.bind(7, t.origin);
   }
+  statement.bind(8, t.robot);
   const int changed = statement.exec();
   statement.reset();
   return changed == 1;
@@ -44,6 +45,7 @@ Traversal traversal_from_row(const SQLite::Statement& row) {
   t.duration = duration_from_db(row.getColumn(4).getInt64());
   t.success = row.getColumn(5).getInt() != 0;
   if (!row.isColumnNull(6)) t.origin = row.getColumn(6).getString();
+  t.robot = row.getColumn(7).getString();
   return t;
 }
 
@@ -77,13 +79,15 @@ Result<InsertCounts> add_traversals(Store& store, std::span<const Traversal> tra
 Result<std::vector<Traversal>> find_traversals(const Store& store, const TraversalQuery& query) {
   return guarded(store, "reading traversals", [&]() -> Result<std::vector<Traversal>> {
     std::string sql =
-        "SELECT edge_id, from_node, to_node, start_ms, duration_ms, success, origin FROM traversals WHERE 1";
+        "SELECT edge_id, from_node, to_node, start_ms, duration_ms, success, origin, robot FROM traversals WHERE 1";
     if (query.edge_id) sql += " AND edge_id = :edge";
+    if (query.robot) sql += " AND robot = :robot";
     if (query.from) sql += " AND start_ms >= :from";
     if (query.until) sql += " AND start_ms < :until";
     sql += " ORDER BY start_ms, edge_id, id";
     SQLite::Statement select(connection(store), sql);
     if (query.edge_id) select.bind(":edge", *query.edge_id);
+    if (query.robot) select.bind(":robot", *query.robot);
     if (query.from) select.bind(":from", to_db(*query.from));
     if (query.until) select.bind(":until", to_db(*query.until));
     std::vector<Traversal> out;

@@ -9,7 +9,10 @@
 #include <vector>
 
 #include "rondo/store/store.h"
+#include "rondo/store/events.h"
+#include "rondo/store/observations.h"
 #include "rondo/store/task_table.h"
+#include "rondo/store/traversal_log.h"
 #include "store/temp_db.h"
 
 namespace rondo::store {
@@ -114,6 +117,55 @@ TEST(Migrations, Version3TasksGainNoPlannedTimes) {
   ASSERT_TRUE(now.ok()) << now.error().message;
   EXPECT_EQ(now->planned_start, Time{seconds(42)});
   EXPECT_EQ(now->planned_end, Time{seconds(48)});
+}
+
+// Version 4 -> 5 (a fleet): the rows of a single-robot store get its robot's name (robot_state's
+// only row), except imported traversals and the events of requests and of the schedule; a task
+// event appended later names its task's robot, a robot event its subject.
+TEST(Migrations, Version4RowsGetTheirRobotsName) {
+  TempDb tmp;
+  {
+    auto db = raw_db(tmp);
+    ASSERT_TRUE(migrate(db, schema_migrations().first(4), tmp.path()).ok());
+    db.exec("INSERT INTO tasks (id, state, task_json, created_ms, updated_ms) VALUES ('t1', 'queued', '{}', 10, 10)");
+    db.exec("INSERT INTO events (time_ms, subject, task_id, event) VALUES (10, 'task', 't1', 'queued')");
+    db.exec("INSERT INTO events (time_ms, subject, about, event) VALUES (11, 'robot', 'r1', 'departed'), "
+            "(12, 'schedule', 'schedule', 'assumptions')");
+    db.exec("INSERT INTO traversals (edge_id, from_node, to_node, start_ms, duration_ms, success, origin) VALUES "
+            "('A_B', 'A', 'B', 10, 5, 1, NULL), ('A_B', 'A', 'B', 20, 5, 1, 'witham:A_B.data:1')");
+    db.exec("INSERT INTO observations (what, place, time_ms, value) VALUES ('battery', 'A', 10, 0.5)");
+    db.exec("INSERT INTO robot_state (robot, node, updated_ms) VALUES ('r1', 'A', 10)");
+  }
+  auto store = Store::open(tmp.path());
+  ASSERT_TRUE(store.ok()) << store.error().message;
+  EXPECT_EQ(get_task(*store, "t1")->robot, "r1");
+  const std::vector<Event> events = read_events(*store).value();
+  ASSERT_EQ(events.size(), 3u);
+  EXPECT_EQ(events[0].robot, "r1");
+  EXPECT_EQ(events[1].robot, "r1");
+  EXPECT_EQ(events[2].robot, "");
+  const std::vector<Traversal> log = find_traversals(*store).value();
+  ASSERT_EQ(log.size(), 2u);
+  EXPECT_EQ(log[0].robot, "r1");
+  EXPECT_EQ(log[1].robot, "") << "an imported traversal's robot is not known";
+  EXPECT_EQ(find_observations(*store).value().at(0).robot, "r1");
+  EXPECT_EQ(find_traversals(*store, {.robot = "r1"}).value().size(), 1u);
+  // From then on: a task event names its task's robot, a robot event its subject, unless told.
+  ASSERT_TRUE(add_task(*store, TaskRow{.id = "t2", .task = Json{{"id", "t2"}}, .state = "queued",
+                                       .created = Time{seconds(40)}, .updated = Time{seconds(40)}, .robot = "r2"}));
+  ASSERT_TRUE(set_task_state(*store, "t2", "navigating", Time{seconds(41)}, "", ""));
+  ASSERT_TRUE(append_event(*store, {.time = Time{seconds(42)}, .subject = Subject::kRobot, .about = "r3",
+                                    .event = "fault"}));
+  ASSERT_TRUE(set_task_robot(*store, "t2", "r4"));
+  ASSERT_TRUE(set_task_state(*store, "t2", "queued", Time{seconds(43)}, "", ""));
+  const std::vector<Event> later = read_events(*store, events.back().seq).value();
+  ASSERT_EQ(later.size(), 4u);
+  EXPECT_EQ(later[0].robot, "r2");
+  EXPECT_EQ(later[1].robot, "r2");
+  EXPECT_EQ(later[2].robot, "r3");
+  EXPECT_EQ(later[3].robot, "r4");
+  EXPECT_EQ(get_task(*store, "t2")->robot, "r4");
+  EXPECT_FALSE(set_task_robot(*store, "nope", "r1"));
 }
 
 // Every older version of the real schema opens and ends at the latest one.

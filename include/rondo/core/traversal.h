@@ -21,6 +21,9 @@ struct Traversal {
   // Where the record came from, unique per record: "witham:Aisle1_Aisle2.data:17" for an imported
   // log line; empty for a traversal the robot just made.
   std::string origin{};
+  // The robot that made the attempt (a fleet's robots feed one log); empty when not known, as in
+  // an imported log.
+  std::string robot{};
 
   bool operator==(const Traversal&) const = default;
 };

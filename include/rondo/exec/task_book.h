@@ -93,8 +93,10 @@ struct TaskRecord {
 
 class TaskBook {
  public:
-  // Precondition: store and clock outlive the book.
-  TaskBook(store::Store& store, const Clock& clock) : store_(store), clock_(clock) {}
+  // Precondition: store and clock outlive the book. `robot`: the robot its tasks are allocated to
+  // and its robot events are about (the store's tasks.robot, events.robot).
+  TaskBook(store::Store& store, const Clock& clock, std::string robot = "robot")
+      : store_(store), clock_(clock), robot_(std::move(robot)) {}
 
   // Stores the tasks, all or nothing, then records them as queued. kInvalidInput for an empty or
   // repeated id or one already in the book or the store (which also holds the finished tasks that
@@ -181,6 +183,7 @@ class TaskBook {
 
   store::Store& store_;
   const Clock& clock_;
+  std::string robot_;
   std::map<TaskId, TaskRecord> records_;
   std::vector<TaskId> order_;
   std::map<std::string, std::map<Outcome, int>> event_counts_;

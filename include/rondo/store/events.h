@@ -37,6 +37,9 @@ struct Event {
   std::string event{};    // a state name for state changes ("queued", "failed", ...) or another event
   std::string code{};     // the outcome code (docs/executor.md), e.g. "too late"; empty when none
   std::string reason{};   // why, for people; may be empty
+  // The robot it is about: when appended empty, a robot event's `about` or a task event's task's
+  // robot (tasks.robot), else none (''); a request's or the schedule's event has none.
+  std::string robot{};
 
   bool operator==(const Event&) const = default;
 };

@@ -25,6 +25,7 @@ struct Observation {
   Time when;
   double value = 0.0;               // 1/0 for binary observations; a measurement otherwise
   std::optional<std::string> text;  // anything else worth keeping, for people
+  std::string robot{};              // the robot that saw it; empty: none (the building's)
 
   bool operator==(const Observation&) const = default;
 };

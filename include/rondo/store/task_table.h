@@ -36,6 +36,8 @@ struct TaskRow {
   // When it was planned to start and end at its latest state change (set_task_state); none when
   // it was not planned then.
   std::optional<Time> planned_start{}, planned_end{};
+  // The robot the task is allocated to (a fleet's); empty: none. Its state-change events name it.
+  std::string robot{};
 
   bool operator==(const TaskRow&) const = default;
 };
@@ -70,6 +72,9 @@ Status set_task_progress(Store& store, std::string_view id, const Json& progress
 // Replaces task `id`'s definition (its window or priority changed while it waits; the executor
 // appends the event that says so). Errors: kNotFound (no such task), kStorage.
 Status set_task_definition(Store& store, std::string_view id, const Json& task);
+
+// Allocates a stored task to `robot` ('' : to none). Errors: kNotFound, kStorage.
+Status set_task_robot(Store& store, std::string_view id, std::string_view robot);
 
 // Errors: kNotFound (no such task), kStorage (including stored JSON that no longer parses).
 Result<TaskRow> get_task(const Store& store, std::string_view id);

@@ -51,6 +51,7 @@ struct TraversalQuery {
   std::optional<std::string> edge_id = std::nullopt;
   std::optional<Time> from = std::nullopt;   // start >= from
   std::optional<Time> until = std::nullopt;  // start < until
+  std::optional<std::string> robot = std::nullopt;  // the robot that made it ('' : imported)
 };
 
 // The matching traversals ordered by start time, then edge, then insertion order. Queries by edge
