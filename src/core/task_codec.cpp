@@ -107,6 +107,8 @@ Status decode_task_body(const Field& f, Task& t, const PlaceCheck* places) {
     RONDO_ASSIGN_OR_RETURN(auto delivery, decode_delivery(*d));
     t.delivery = std::move(delivery);
   }
+  RONDO_ASSIGN_OR_RETURN(t.robot, optional_string(f, "robot"));
+  if (f.has("robot") && t.robot.empty()) return f.error_at("robot", "a robot's name must not be empty");
   if (auto after = f.optional("after")) {
     RONDO_ASSIGN_OR_RETURN(auto items, after->items());
     for (const auto& item : items) {
@@ -187,7 +189,7 @@ std::string format_date(std::chrono::year_month_day d) {
 
 Result<Task> decode_task(const Field& f, const TimeZone* zone, const PlaceCheck* places) {
   RONDO_RETURN_IF_ERROR(f.expect_keys({"id", "activity", "kind", "window", "duration", "priority", "start_node",
-                                       "end_node", "actions", "interruptible", "delivery", "after"}));
+                                       "end_node", "actions", "interruptible", "delivery", "after", "robot"}));
   Task t;
   RONDO_ASSIGN_OR_RETURN(auto id, f.required("id"));
   RONDO_ASSIGN_OR_RETURN(t.id, id.as_string());
@@ -219,7 +221,7 @@ Result<Routine> decode_routine(const Field& f, const PlaceCheck* places) {
   RONDO_ASSIGN_OR_RETURN(r.name, name.as_string());
   RONDO_ASSIGN_OR_RETURN(auto task, f.required("task"));
   RONDO_RETURN_IF_ERROR(task.expect_keys(
-      {"activity", "duration", "priority", "start_node", "end_node", "actions", "interruptible"}));
+      {"activity", "duration", "priority", "start_node", "end_node", "actions", "interruptible", "robot"}));
   RONDO_RETURN_IF_ERROR(decode_task_body(task, r.task, places));
   RONDO_ASSIGN_OR_RETURN(auto window, f.required("window"));
   RONDO_RETURN_IF_ERROR(window.expect_keys({"from", "to"}));
@@ -364,6 +366,7 @@ void encode_task_body(const Task& t, Json& j) {
     j["delivery"] = std::move(dj);
   }
   if (!t.after.empty()) j["after"] = t.after;
+  if (!t.robot.empty()) j["robot"] = t.robot;
 }
 
 }  // namespace

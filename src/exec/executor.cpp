@@ -104,6 +104,9 @@ Status Executor::accept(const Task& task) const {
 }
 
 Status Executor::runs_here(const Task& task) const {
+  if (!task.robot.empty() && task.robot != options_.robot_name)
+    return Error::invalid(fmt::format("task {}: robot '{}' is not in this deployment (its robot is '{}')", task.id,
+                                      task.robot, options_.robot_name));
   for (const std::string* node : {&task.start_node, &task.end_node}) {
     if (!node->empty() && !map_.find_node(*node))
       return Error::invalid(fmt::format("task {}: node '{}' is not on the map", task.id, *node));

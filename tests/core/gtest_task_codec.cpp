@@ -52,6 +52,8 @@ TEST(TaskCodec, MalformedFilesNameWhereAndWhat) {
       {"unknown time zone", "timezone: Europe/Lincoln\n", "day.yaml:1: timezone: time zone 'Europe/Lincoln'"},
       {"missing id", "tasks:\n  - kind: on-demand\n", "day.yaml:2: tasks[0]: missing field 'id'"},
       {"unknown kind", head + "    kind: urgent\n", "day.yaml:3: tasks[0].kind: unknown task kind 'urgent'"},
+      {"empty robot", head + "    kind: on-demand\n    robot: ''\n",
+       "day.yaml:4: tasks[0].robot: a robot's name must not be empty"},
       {"after unknown", head + "    kind: on-demand\n    after: [b]\n", "day.yaml:4: tasks[0].after[0]: no task 'b'"},
       {"routines without zone", "routines: []\n", "day.yaml:1: routines: routines run at local times"},
       {"routine window backwards",

@@ -35,6 +35,7 @@ inline rc::Gen<Task> gen_task(std::string id) {
       t.actions.push_back(std::move(a));
     }
     t.interruptible = *rc::gen::arbitrary<bool>();
+    if (*rc::gen::arbitrary<bool>()) t.robot = *rc::gen::element<std::string>("r1", "robot", "Tug 2");
     return t;
   });
 }

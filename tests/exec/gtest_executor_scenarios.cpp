@@ -43,6 +43,24 @@ void on_demand_while_a_acts(Scenario& s, bool a_interruptible) {
   s.run_until("12:00");
 }
 
+// A task may name the robot that must do it (`robot:`): a fleet of one takes it when it names its
+// own robot and refuses it, saying so, when it names another; the store records the robot.
+TEST(ExecutorScenario, ATaskNamingAnotherRobotIsRefusedAndOneNamingThisRobotIsTaken) {
+  Scenario s(kCalmWorld);
+  s.executor().start();
+  Task elsewhere = task("R2", "Office", s.at("09:00"), s.at("10:00"), minutes(5));
+  elsewhere.robot = "r2";
+  const Status refused = s.executor().add_task(elsewhere, "test");
+  ASSERT_FALSE(refused);
+  EXPECT_THAT(refused.error().message, HasSubstr("robot 'r2' is not in this deployment (its robot is 'robot')"));
+  Task here = task("Mine", "Office", s.at("09:00"), s.at("10:00"), minutes(5));
+  here.robot = "robot";
+  ASSERT_TRUE(s.executor().add_task(here, "test"));
+  s.clock().run_until(s.at("11:00"));
+  EXPECT_EQ(s.final_state("Mine"), "succeeded");
+  EXPECT_EQ(store::get_task(s.store(), "Mine").value().robot, "robot");
+}
+
 TEST(ExecutorScenario, OnDemandPreemptsAnInterruptibleTaskAndTheRestIsRescheduled) {
   Scenario s(kCalmWorld);
   ASSERT_NO_FATAL_FAILURE(on_demand_while_a_acts(s, /*a_interruptible=*/true));

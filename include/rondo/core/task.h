@@ -71,6 +71,7 @@ struct Task {
   bool interruptible = true;         // initial value; the running task may change it
   std::optional<Delivery> delivery;
   std::vector<TaskId> after;         // tasks that must end before this one starts
+  std::string robot;                 // the robot that must do it (a fleet's name); empty: any robot
 
   // Where the robot is when the task ends.
   const std::string& end_location() const { return end_node.empty() ? start_node : end_node; }
