@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "rondo/exec/map_travel.h"
 #include "rondo/plan/travel_planner.h"
@@ -109,24 +110,69 @@ void NavigateStep::overran(const std::string& why) {
     gave_up_ = StepEnd{.status = StepEnd::Status::kFailed, .outcome = Outcome::kNavigationOverrun, .reason = why};
     return halt();
   }
-  const std::optional<Time> until = window_open_until();
-  if (!until) return hooks_.overrun(Outcome::kNavigationOverrun, why);
   const Time now = ctx_.clock.now();
-  if (const std::optional<double> chance = success_chance(now); chance && *chance < 0.5) {
+  // Fired only to see whether the attempt in progress hangs (watch_until): nothing else is decided.
+  const bool hang_check = std::exchange(hang_check_, false);
+  const std::optional<Time> until = window_open_until();
+  if (!until) {
     return hooks_.overrun(Outcome::kNavigationOverrun,
-                          fmt::format("{}; an attempt of {} still running after {} is more likely to fail, by its "
-                                      "learned attempt times",
-                                      why, ctx_.map.edge(*edge_).id, duration_text(now - edge_since_)));
+                          hang_check ? fmt::format("navigation overrun: still travelling at {}, after {}; the task "
+                                                   "can no longer be expected to start in its window",
+                                                   ctx_.clock_text(now), duration_text(now - started_))
+                                     : why);
   }
-  if (!window_watch_)
-    ctx_.book.note(*task_, "overrun", Outcome::kWindowStillOpen,
-                   fmt::format("{}; the task can still start in its window, so the journey goes on until {}", why,
-                               ctx_.clock_text(*until)));
-  window_watch_ = true;
-  monitor_.extend({.after = *until - now,
+  if (const std::optional<Time> hangs = hangs_at(); hangs && now >= *hangs) {
+    return hooks_.overrun(Outcome::kNavigationOverrun,
+                          fmt::format("navigation overrun: an attempt of {} still running after {}, past {:g} x the "
+                                      "longest of its learned attempt times + {}: taken to hang",
+                                      ctx_.map.edge(*edge_).id, duration_text(now - edge_since_), kHangFactor,
+                                      duration_text(ctx_.options.navigation_slack)));
+  }
+  if (!hang_check) {
+    if (const std::optional<double> chance = success_chance(now); chance && *chance < 0.5) {
+      return hooks_.overrun(Outcome::kNavigationOverrun,
+                            fmt::format("{}; an attempt of {} still running after {} is more likely to fail, by its "
+                                        "learned attempt times",
+                                        why, ctx_.map.edge(*edge_).id, duration_text(now - edge_since_)));
+    }
+    if (!window_watch_)
+      ctx_.book.note(*task_, "overrun", Outcome::kWindowStillOpen,
+                     fmt::format("{}; the task can still start in its window, so the journey goes on until {}", why,
+                                 ctx_.clock_text(*until)));
+    window_watch_ = true;
+  }
+  watch_until(*until);
+}
+
+void NavigateStep::watch_until(Time until) {
+  const Time now = ctx_.clock.now();
+  if (const std::optional<Time> hangs = hangs_at(); hangs && *hangs < until) {
+    hang_check_ = true;
+    monitor_.extend({.after = *hangs - now, .reason = "navigation overrun: the attempt in progress may hang"});
+    return;
+  }
+  monitor_.extend({.after = until - now,
                    .reason = fmt::format("navigation overrun: still travelling at {}, after {}; the task can no "
                                          "longer be expected to start in its window",
-                                         ctx_.clock_text(*until), duration_text(*until - started_))});
+                                         ctx_.clock_text(until), duration_text(until - started_))});
+}
+
+// A hung navigation (the vehicle stuck, no progress, no failure reported) would otherwise run on to
+// the window's end, since past every learned attempt success_chance() says nothing. The longest
+// learned attempt is a group mean of the tail, so the factor is wide: no successful attempt of the
+// validation runs ran past it.
+std::optional<Time> NavigateStep::hangs_at() const {
+  if (!edge_) return std::nullopt;
+  const plan::EdgeOutcome o = ctx_.models.outcome(*edge_, edge_since_);
+  plan::RouteLeg leg{.success_probability = std::clamp(o.success_probability, 0.0, 1.0),
+                     .attempt_seconds = o.expected_seconds};
+  ctx_.models.attempt_laws(*edge_, edge_since_, leg);
+  if (leg.success_law.empty() && leg.failure_law.empty()) return std::nullopt;
+  double longest = 0.0;
+  for (const std::vector<plan::DurationPoint>* law : {&leg.success_law, &leg.failure_law})
+    for (const plan::DurationPoint& d : *law) longest = std::max(longest, d.seconds);
+  if (!(longest > 0.0) || !std::isfinite(longest)) return std::nullopt;
+  return edge_since_ + from_seconds(kHangFactor * longest) + ctx_.options.navigation_slack;
 }
 
 std::optional<double> NavigateStep::success_chance(Time now) const {

@@ -62,6 +62,11 @@ class RobotStep : public Step {
 class NavigateStep final : public RobotStep {
  public:
   using Purpose = JourneyPurpose;
+  // An attempt still running this many times its edge's longest learned attempt (+ the slack) is
+  // taken to hang. On the validation runs (Witham Wharf seeds 101-105 and G4S 101-103, 21 days) the
+  // slowest successful attempt ran 6.9 and 8.1 times its edge's longest learned one
+  // (docs/executor.md, "The window watch").
+  static constexpr double kHangFactor = 10;
   NavigateStep(StepContext& ctx, StepHooks hooks, Purpose purpose, std::optional<TaskId> task, map::NodeIndex target);
   void start() override;
   void on_edge_finished(const EdgeAttempt& attempt) override;
@@ -85,6 +90,13 @@ class NavigateStep final : public RobotStep {
   // the (1 − risk_alpha)-quantile of the way on from the node the robot is heading for still
   // reaches the task's latest start; nothing when that moment is past or the watch is off.
   std::optional<Time> window_open_until() const;
+  // When the attempt in progress is taken to hang (ExecutorOptions::navigation_window): past
+  // kHangFactor x the longest attempt its edge's learned laws hold (successes, failures and stopped
+  // ones, at the attempt's start) + navigation_slack after it began. Nothing without laws.
+  std::optional<Time> hangs_at() const;
+  // Under the window watch, the monitor runs on to the window's end `until`, or to an earlier moment
+  // at which the attempt in progress would be taken to hang.
+  void watch_until(Time until);
   // The chance that the attempt in progress, still running now, is one that succeeds, by its
   // edge's learned laws (ExecutorOptions::risk_alpha): of the learned attempts that ran this long,
   // the share of successes, each way weighted by its probability. Nothing without laws, or when no
@@ -115,6 +127,7 @@ class NavigateStep final : public RobotStep {
   int failures_in_a_row_ = 0;
   double run_chance_ = 1;
   bool window_watch_ = false;  // the monitor's limit passed while the window was open
+  bool hang_check_ = false;    // the monitor was extended to hangs_at(), not to the window's end
   std::optional<StepEnd> gave_up_;  // an own journey's monitor fired: how it ends once halted
 };
 

@@ -5,10 +5,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 
 #include "rondo/plan/learned_edge_models.h"
+#include "rondo/store/events.h"
+#include "steps.h"
 #include "scenario.h"
 #include "scripted_executor.h"
 
@@ -77,6 +80,35 @@ TEST(WindowWatch, AnAttemptTheLawsCallASlowSuccessGoesOnWhileTheWindowIsOpen) {
   s.robot().finish_edge(EdgeOutcome::kSucceeded, minutes(9));
   s.settle();
   EXPECT_EQ(s.state("A"), "acting");
+}
+
+// A hung navigation (issue 37 point 6): the same laws as above, and the attempt never ends. Past
+// every learned attempt the laws say nothing, and the window alone let it run to 09:55; it is taken
+// to hang once it has run kHangFactor x the longest learned attempt (30 x the edge's expected
+// attempt time) + the slack, and stopped there as an overrun.
+TEST(WindowWatch, AnAttemptFarPastEveryLearnedOneIsTakenToHangAndStopped) {
+  const map::TopoMap map = scenario_map();
+  auto models = models_with(map, {.success = {{1.0, 0.9}, {30.0, 0.1}}, .failure = {{0.5, 1.0}}});
+  ScriptedExecutor s(kRisk, map, ExecutorParts{.models = models});
+  ASSERT_NO_FATAL_FAILURE(hold_the_last_edge(s));
+  EXPECT_EQ(s.code_of("A", "overrun"), "window still open");  // a slow journey is still let go on
+  const Time edge_start = s.at("08:00") + seconds(20);
+  const map::EdgeIndex edge = *map.find_edge("Hall_Office");
+  const double longest = 30.0 * models->outcome(edge, edge_start).expected_seconds;
+  const Time hangs = edge_start + from_seconds(NavigateStep::kHangFactor * longest) + kRisk.navigation_slack;
+  ASSERT_LT(hangs, s.at("09:55"));
+  s.run_until("09:56");
+
+  EXPECT_EQ(s.state("A"), "failed");
+  EXPECT_EQ(s.code_of("A", "failed"), "navigation overrun");
+  EXPECT_THAT(s.reason_of("A", "failed"), HasSubstr("an attempt of Hall_Office still running after"));
+  EXPECT_THAT(s.reason_of("A", "failed"), HasSubstr("the longest of its learned attempt times"));
+  EXPECT_THAT(s.reason_of("A", "failed"), HasSubstr("taken to hang"));
+  EXPECT_TRUE(s.robot().asked("cancel"));
+  const std::vector<store::Event> events = store::read_events_of(s.store(), "A").value();
+  const auto failed = std::find_if(events.begin(), events.end(), [](const store::Event& e) { return e.event == "failed"; });
+  ASSERT_NE(failed, events.end());
+  EXPECT_NEAR(to_seconds(failed->time - hangs), 0.0, 1.0);
 }
 
 // Without laws (no refit yet) nothing tells a slow success from a failure: the window decides.
