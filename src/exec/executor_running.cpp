@@ -54,6 +54,10 @@ void Executor::next() {
       case Decision::Kind::kDock: return go_to_dock(JourneyPurpose::kDock);
       case Decision::Kind::kIdleUntil: return look_again_at(d.until);
       case Decision::Kind::kCharge:
+        // The battery already holds what the charge is for (full, say): nothing to charge. Started,
+        // it would end at once, and the reschedule after it could plan it again at the same moment,
+        // again and again (examples/battery, seed 14, 90 days: a second of simulated time a round).
+        if (charging_->level() >= std::max(d.level, charging_->resume_level())) continue;
         charging_->start_planned(d.until, d.length, d.level);
         return charge();
       case Decision::Kind::kStay:
