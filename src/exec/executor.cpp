@@ -18,6 +18,7 @@
 #include "rondo/learn/weekly_memory.h"
 #include "rondo/map/map_geometry.h"
 #include "rondo/schedule/default_scheduler.h"
+#include "found_blocked.h"
 #include "task_run.h"
 
 namespace rondo::exec {
@@ -61,8 +62,10 @@ Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::S
       deliveries_(std::make_unique<Deliveries>()),
       loading_(std::make_unique<LoadingTimes>()),
       // With the online model off the executor plans with the snapshot itself: no second cache.
+      found_blocked_(std::make_unique<FoundBlocked>()),
       steps_{clock_,    robot_, map_,   book_,        *travel_, options_.online_model ? *offline_travel_ : *travel_,
-             *planner_, options_, zone_, stats_, navigations_, in_fault_, *models_, [this] { read_battery(); }},
+             *planner_, options_, zone_, stats_, navigations_, in_fault_, *models_, [this] { read_battery(); },
+             *found_blocked_},
       assumption_map_(std::make_unique<AssumptionMap>(map_, options_.dock)),
       opportunities_(std::make_unique<Opportunities>()),
       door_models_(std::make_unique<DoorModels>(zone_)) {

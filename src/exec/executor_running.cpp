@@ -7,6 +7,7 @@
 
 #include "charging.h"
 #include "dispatcher.h"
+#include "found_blocked.h"
 #include "rondo/exec/executor.h"
 #include "task_run.h"
 
@@ -228,11 +229,7 @@ bool Executor::hold_back(const TaskId& id, map::EdgeIndex edge, std::optional<Ti
 }
 
 std::optional<std::pair<Time, double>> Executor::passable_again(map::EdgeIndex edge, Time until) const {
-  for (Time t = planner_->slot_start(clock_.now()) + options_.slot_width; t <= until; t += options_.slot_width) {
-    const double p = models_->outcome(edge, t).success_probability;
-    if (p >= kLikelyPassable) return std::pair{t, p};
-  }
-  return std::nullopt;
+  return exec::passable_again(*models_, *planner_, options_.slot_width, edge, clock_.now(), until);
 }
 
 void Executor::hold_on_demand(const TaskId& id, Outcome outcome, const std::string& reason) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "found_blocked.h"
 #include "rondo/exec/map_travel.h"
 #include "rondo/plan/travel_planner.h"
 #include "steps.h"
@@ -97,7 +98,6 @@ void NavigateStep::advance() {
   }
   // The next edge is committed; the rest of the policy's expected route is the horizon.
   std::vector<map::EdgeIndex> route = expected_route(here);
-  if (edge_ != route.front()) failures_in_a_row_ = 0;
   edge_ = route.front();
   edge_since_ = ctx_.clock.now();
   edge_p_ = std::clamp(ctx_.models.outcome(*edge_, edge_since_).success_probability, 0.0, 1.0);
@@ -249,17 +249,23 @@ void NavigateStep::arrived() {
 }
 
 void NavigateStep::on_edge_finished(const EdgeAttempt& a) {
+  // What every journey knows of the edge (FoundBlocked): a run of failures, whichever journey made it.
+  if (a.outcome == EdgeOutcome::kSucceeded) ctx_.found_blocked.passed(a.edge);
+  if (a.outcome == EdgeOutcome::kFailed)
+    ctx_.found_blocked.failed(a.edge, edge_ == a.edge ? edge_p_ : 0.0, ctx_.clock.now());  // 0: no surprise
   if (a.outcome == EdgeOutcome::kCancelled) return end(halted_end());
   if (ctx_.robot.busy()) return;  // more of a committed route to come
   if (halting()) return end(halted_end());
-  if (a.outcome == EdgeOutcome::kSucceeded) failures_in_a_row_ = 0;
   if (a.outcome == EdgeOutcome::kFailed) {
     ++failed_edges_;
-    run_chance_ = (failures_in_a_row_ == 0 ? 1.0 : run_chance_) * (1 - edge_p_);
-    ++failures_in_a_row_;
     if (purpose_ != Purpose::kToEnd && ctx_.options.blocked_edge != ExecutorOptions::BlockedEdge::kRetry) {
       if (std::optional<std::string> why = not_worth_trying(a)) {
         const bool wait = ctx_.options.blocked_edge == ExecutorOptions::BlockedEdge::kWait;
+        // Found blocked: every journey holds it so until the live model holds it likely passable.
+        const Time now = ctx_.clock.now();
+        if (const auto open = passable_again(ctx_.models, ctx_.planner, ctx_.options.slot_width, a.edge, now,
+                                             now + hours(24)))
+          ctx_.found_blocked.hold(a.edge, open->first);
         monitor_.cancel();
         return end({.status = wait ? StepEnd::Status::kBlocked : StepEnd::Status::kFailed,
                     .outcome = Outcome::kNoRouteNow,
@@ -288,36 +294,55 @@ void NavigateStep::on_edge_finished(const EdgeAttempt& a) {
 // may arrive sooner. The slot starts up to the task's latest start (at most a day ahead) are read.
 std::optional<StepEnd> NavigateStep::leave_later(map::NodeIndex here, Time now) const {
   if (ctx_.options.blocked_edge != ExecutorOptions::BlockedEdge::kWait) return std::nullopt;
+  const Time day = now + hours(24);
+  const Time latest = task_ ? std::min(ctx_.book.at(*task_).latest_start(ctx_.options.on_demand_patience), day) : day;
+  const std::vector<map::EdgeIndex> route = expected_route(here);
   std::optional<map::EdgeIndex> blocked;
   double p = 1;
-  for (map::EdgeIndex e : expected_route(here)) {
+  for (map::EdgeIndex e : route) {
     p = ctx_.models.outcome(e, now).success_probability;
     if (p < kLikelyPassable) {
       blocked = e;
       break;
     }
   }
-  if (!blocked) return std::nullopt;
-  const Time day = now + hours(24);
-  const Time latest = task_ ? std::min(ctx_.book.at(*task_).latest_start(ctx_.options.on_demand_patience), day) : day;
-  Time leave = now;
-  Time arrive = now + expected_;
-  for (Time t = ctx_.travel.slot_start(now) + ctx_.options.slot_width; t <= latest; t += ctx_.options.slot_width) {
-    const Duration d = ctx_.travel.at_slot(here, target_, t);
-    if (d < kUnreachable && t + d < arrive) {
-      leave = t;
-      arrive = t + d;
+  if (blocked) {
+    Time leave = now;
+    Time arrive = now + expected_;
+    for (Time t = ctx_.travel.slot_start(now) + ctx_.options.slot_width; t <= latest; t += ctx_.options.slot_width) {
+      const Duration d = ctx_.travel.at_slot(here, target_, t);
+      if (d < kUnreachable && t + d < arrive) {
+        leave = t;
+        arrive = t + d;
+      }
     }
+    if (leave != now)
+      return StepEnd{.status = StepEnd::Status::kBlocked,
+                     .outcome = Outcome::kNoRouteNow,
+                     .reason = fmt::format("no route now: the way to {} crosses {}, held to be blocked (p = {:.2f}); "
+                                           "leaving at {} is expected to arrive at {}, sooner than leaving now ({})",
+                                           ctx_.map.node(target_).name, ctx_.map.edge(*blocked).id, p,
+                                           ctx_.clock_text(leave), ctx_.clock_text(arrive),
+                                           ctx_.clock_text(now + expected_)),
+                     .edge = blocked,
+                     .not_before = leave};
   }
-  if (leave == now) return std::nullopt;
-  return StepEnd{.status = StepEnd::Status::kBlocked,
-                 .outcome = Outcome::kNoRouteNow,
-                 .reason = fmt::format("no route now: the way to {} crosses {}, held to be blocked (p = {:.2f}); "
-                                       "leaving at {} is expected to arrive at {}, sooner than leaving now ({})",
-                                       ctx_.map.node(target_).name, ctx_.map.edge(*blocked).id, p,
-                                       ctx_.clock_text(leave), ctx_.clock_text(arrive), ctx_.clock_text(now + expected_)),
-                 .edge = blocked,
-                 .not_before = leave};
+  // An edge a journey found blocked (FoundBlocked): held so until it is likely passable again, when
+  // this journey can wait that long (else it goes now, and may find it open).
+  for (map::EdgeIndex e : route) {
+    const std::optional<Time> held = ctx_.found_blocked.held_until(e, now);
+    if (!held || *held > latest) continue;
+    const FoundBlocked::Run run = ctx_.found_blocked.run(e, now);
+    return StepEnd{.status = StepEnd::Status::kBlocked,
+                   .outcome = Outcome::kNoRouteNow,
+                   .reason = fmt::format("no route now: the way to {} crosses {}, found blocked at {} ({} failed "
+                                         "attempts in a row); held so until {}, when it is likely passable again",
+                                         ctx_.map.node(target_).name, ctx_.map.edge(e).id, ctx_.clock_text(run.last),
+                                         run.failures, ctx_.clock_text(*held)),
+                   .edge = e,
+                   .not_before = *held};
+  }
+  return std::nullopt;
 }
 
 std::optional<std::string> NavigateStep::not_worth_trying(const EdgeAttempt& failed) const {
@@ -329,14 +354,17 @@ std::optional<std::string> NavigateStep::not_worth_trying(const EdgeAttempt& fai
   const Duration left = ctx_.travel.travel(here, target_, now);
   if (left >= kUnreachable) return std::nullopt;  // no way at all from here: advance() says so
   const map::Edge& e = ctx_.map.edge(failed.edge);
-  // The attempts left before giving up, each as likely to pass as the live model says the next one is.
-  // An own journey has no window to meet: a run of failures that the live model gave less than
+  // A run of failures (by this journey and those before it) that the live model gave less than
   // kRefuted of a chance says the model has not learned this closure yet, and the robot need not
-  // learn it by hammering (a task's journey tries on: it has a window to meet, and a burst of
+  // learn it by hammering. An own journey has no window to meet; a task's journey stops only when
+  // its task can wait until the edge is likely passable again (else it tries on: a burst of
   // failures often clears).
-  if (!task_ && failures_in_a_row_ >= 2 && run_chance_ < kRefuted)
+  if (const FoundBlocked::Run run = ctx_.found_blocked.run(failed.edge, now);
+      run.refuted() &&
+      (!task_ || passable_again(ctx_.models, ctx_.planner, ctx_.options.slot_width, failed.edge, now,
+                                ctx_.book.at(*task_).latest_start(ctx_.options.on_demand_patience))))
     return fmt::format("no route now: {} failed {} times in a row, a run the live model gave a chance of {:.2g}",
-                       e.id, failures_in_a_row_, run_chance_);
+                       e.id, run.failures, run.chance);
   const int tries = ctx_.options.max_failed_edges - failed_edges_;
   const double p = std::clamp(ctx_.models.outcome(failed.edge, now).success_probability, 0.0, 1.0);
   if (tries > 0 && std::pow(1 - p, tries) > 0.5)

@@ -122,10 +122,6 @@ class NavigateStep final : public RobotStep {
   std::optional<map::EdgeIndex> edge_;  // the edge last sent to the robot, and when
   Time edge_since_{};
   double edge_p_ = 1;  // the live model's success probability of that attempt, when it was sent
-  // The failures of the same edge in a row on this journey, and the chance the live model gave
-  // that run when each attempt was sent (the product of 1 − p).
-  int failures_in_a_row_ = 0;
-  double run_chance_ = 1;
   bool window_watch_ = false;  // the monitor's limit passed while the window was open
   bool hang_check_ = false;    // the monitor was extended to hangs_at(), not to the window's end
   std::optional<StepEnd> gave_up_;  // an own journey's monitor fired: how it ends once halted

@@ -67,8 +67,9 @@ TEST(RunCommand, TheSameSeedGivesAByteIdenticalReport) {
 
 // examples/battery: the G4S example on a battery too small for a day. With planned charging the
 // schedules insert charges and the battery stays above the 20 % reserve in the first three days;
-// with idle charging only (idle-charging.yaml) it runs flat on the third. The report says so, and learns the
-// battery's costs; the same seed gives the same report.
+// with idle charging only (idle-charging.yaml) it falls below the reserve (18 % on the second day; it ran
+// flat on the third while every journey tried the closed corridor again: issue 37 point 6). The report
+// says so, and learns the battery's costs; the same seed gives the same report.
 TEST(RunCommand, TheBatteryExampleReportsItsBattery) {
   const auto on = fresh_dir("battery-on"), again = fresh_dir("battery-again"), idle = fresh_dir("battery-idle");
   const auto run = [](const char* file, const std::filesystem::path& out) {
@@ -92,8 +93,7 @@ TEST(RunCommand, TheBatteryExampleReportsItsBattery) {
   EXPECT_NEAR(b["learned"]["charging_per_hour"].get<double>(), b["truth"]["charging_per_hour"].get<double>(), 0.01);
   const Json flat = run("examples/battery/idle-charging.yaml", idle);
   EXPECT_EQ(flat["below_threshold"].get<int>(), 0);
-  EXPECT_GE(flat["days_flat"].get<int>(), 1);
-  EXPECT_EQ(flat["lowest"].get<double>(), 0.0);
+  EXPECT_LT(flat["lowest"].get<double>(), 0.2);
   std::filesystem::remove_all(on.parent_path());
 }
 

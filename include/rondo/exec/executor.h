@@ -80,6 +80,7 @@ class AssumptionMap;
 class Charging;
 class Deliveries;
 class DoorModels;
+class FoundBlocked;
 class LoadingTimes;
 class Dispatcher;
 class NavigateStep;
@@ -384,6 +385,7 @@ class Executor final : public RobotListener {
   ExecutorStats stats_;
   std::vector<NavigationRecord> navigations_;
   bool in_fault_ = false;
+  std::unique_ptr<FoundBlocked> found_blocked_;  // what journeys found of the edges (steps_ holds it)
   StepContext steps_;  // what every step works with
 
   std::unique_ptr<TaskRun> run_;        // the task waited for, navigated to or acted on

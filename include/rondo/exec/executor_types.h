@@ -16,8 +16,9 @@ namespace rondo::exec {
 // An edge whose live success probability is below this is held to be blocked for now
 // (ExecutorOptions::blocked_edge).
 inline constexpr double kLikelyPassable = 0.5;
-// An own journey (to the dock, to charge) holds an edge blocked for now after two or more failures
-// of it in a row that the live model, when each was tried, gave less than this chance together.
+// A journey holds an edge blocked for now after two or more failures of it in a row (by any
+// journey) that the live model, when each was tried, gave less than this chance together; a task's
+// journey only when its task can wait until the edge is likely passable again.
 inline constexpr double kRefuted = 0.01;
 
 // The α a deployment plans with when its file does not say (`executor.risk_alpha`; null: expected

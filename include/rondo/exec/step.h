@@ -31,6 +31,7 @@ class TravelPlanner;
 namespace rondo::exec {
 
 class TravelCache;
+class FoundBlocked;
 
 // What a journey (exec::NavigateStep) is for: a task's way to its place or to its end place; the
 // executor's own way to the dock when idle, when out of service, or to charge.
@@ -84,6 +85,8 @@ struct StepContext {
   const bool& in_fault;  // the robot reports a fault: steps send nothing new to it
   const plan::EdgeModelView& models;  // what the planner reads (the live model, when online)
   std::function<void()> before_command;  // called just before every drive() and run_action()
+  // What journeys found of the edges (failures in a row, edges held blocked), known to every journey.
+  FoundBlocked& found_blocked;
 
   std::string clock_text(Time t) const { return zone.format_clock(t); }
 };
