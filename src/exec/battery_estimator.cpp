@@ -130,6 +130,30 @@ BatteryPrediction BatteryEstimator::predict(const BatteryUse& plan) const {
   return {.mean = dot(x, r), .standard_error = noise_sd() * std::sqrt(std::max(dot(x, cx), 0.0))};
 }
 
+BatteryEstimator::State BatteryEstimator::state() const {
+  return {.a = a_, .b = b_, .yy = yy_, .noise_ss = noise_ss_, .noise_weight = noise_weight_, .n = n_};
+}
+
+bool BatteryEstimator::restore(const State& s) {
+  const auto finite = [](double v) { return std::isfinite(v); };
+  for (std::size_t i = 0; i < kN; ++i) {
+    if (!finite(s.b[i]) || !(s.a[i][i] > 0) || !finite(s.a[i][i])) return false;
+    for (std::size_t j = 0; j < kN; ++j)
+      if (!finite(s.a[i][j]) || s.a[i][j] != s.a[j][i]) return false;
+  }
+  if (!finite(s.yy) || s.yy < 0 || !finite(s.noise_ss) || s.noise_ss < 0 || !finite(s.noise_weight) ||
+      !(s.noise_weight > 0))
+    return false;
+  a_ = s.a;
+  b_ = s.b;
+  yy_ = s.yy;
+  noise_ss_ = s.noise_ss;
+  noise_weight_ = s.noise_weight;
+  n_ = s.n;
+  solved_ = false;
+  return true;
+}
+
 double BatteryEstimator::hours_to_charge(double from, double to) const {
   const double rate = rates().charging_per_hour;
   if (rate <= 0) return -1;

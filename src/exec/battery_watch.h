@@ -38,6 +38,8 @@ class BatteryWatch {
   // The last reading (1 before the first).
   double level() const { return last_ ? last_->level : 1.0; }
   const BatteryEstimator& estimator() const { return estimator_; }
+  // Goes on from what an estimator learned before (a restart); false when `state` is not one.
+  bool restore_estimator(const BatteryEstimator::State& state) { return estimator_.restore(state); }
   // The figures so far (BatteryFigures::low_battery is the executor's to fill in).
   BatteryFigures figures() const;
 

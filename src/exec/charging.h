@@ -54,6 +54,7 @@ class Charging {
   BatteryWatch& watch() { return watch_; }
   double level() const { return watch_.level(); }
   const BatteryEstimator& estimator() const { return watch_.estimator(); }
+  bool restore_estimator(const BatteryEstimator::State& state) { return watch_.restore_estimator(state); }
   PlanDrift& drift() { return drift_; }
   // The figures so far, with the times the battery fell below the hard threshold.
   BatteryFigures figures() const;

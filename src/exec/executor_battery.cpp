@@ -9,9 +9,11 @@
 #include <algorithm>
 #include <string>
 
+#include "battery_memory.h"
 #include "charging.h"
 #include "dispatcher.h"
 #include "rondo/exec/executor.h"
+#include "rondo/store/robot_state.h"
 #include "task_run.h"
 #include "text.h"
 
@@ -21,8 +23,33 @@ void Executor::read_battery() { charging_->read(); }
 
 bool Executor::charging_as_planned() {
   if (charging_->planned_goes_on()) return true;
+  save_battery();
   reschedule({}, "charged as planned");
   return false;
+}
+
+void Executor::save_battery() {
+  const std::string text = encode_battery_state(charging_->estimator().state());
+  if (auto ok = store::set_meta(store_, battery_meta_key(options_.robot_name), text); !ok)
+    book_.write_error(ok.error().message);
+}
+
+void Executor::restore_battery() {
+  const std::string key = battery_meta_key(options_.robot_name);
+  const Result<std::optional<std::string>> stored = store::get_meta(store_, key);
+  if (!stored.ok()) return book_.write_error(stored.error().message);
+  if (!*stored) return;  // nothing learned yet
+  std::string why;
+  if (Result<BatteryEstimator::State> state = decode_battery_state(**stored); !state.ok())
+    why = state.error().message;
+  else if (!charging_->restore_estimator(*state))
+    why = "its numbers are not an estimate (not finite, or not a positive-definite information matrix)";
+  else
+    return;
+  book_.note_robot("battery estimate reset", Outcome::kBattery,
+                   fmt::format("the stored battery estimate ({}) could not be read: {}; the estimator starts again "
+                               "from its prior",
+                               key, why));
 }
 
 bool Executor::reoffer_for_battery() {
@@ -78,6 +105,7 @@ bool Executor::must_charge() {
                    fmt::format("battery {} after {} since it fell below {}: dispatch resumes",
                                percent(charging_->level()), duration_text(clock_.now() - charging_->low_since()),
                                percent(options_.battery_threshold)));
+  save_battery();
   reschedule({}, "charged");  // still charging for it: what no longer fits is dropped for the charge
   charging_->resumed();
   return false;

@@ -40,6 +40,7 @@ Status Executor::restore() {
   }
   RONDO_RETURN_IF_ERROR(restore_loading_times());
   RONDO_RETURN_IF_ERROR(restore_door_models());  // executor_observations.cpp
+  restore_battery();  // executor_battery.cpp
 
   const Time now = clock_.now();
   for (const TaskId& id : book_.order()) {

@@ -165,6 +165,7 @@ void Executor::log_battery() {
                              .value = std::clamp(robot_.battery(), 0.0, 1.0), .text = std::nullopt,
                              .robot = options_.robot_name};
   if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
+  save_battery();  // what the estimator learned, at the end of every task
 }
 
 void Executor::save_robot_state() {

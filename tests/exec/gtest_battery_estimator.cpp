@@ -3,10 +3,13 @@
 // estimate does not depend on the order of the intervals, and it agrees with batch least squares.
 #include "rondo/exec/battery_estimator.h"
 
+#include "battery_memory.h"
+
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
 #include <algorithm>
+#include <string>
 #include <cmath>
 #include <vector>
 
@@ -217,6 +220,72 @@ RC_GTEST_PROP(BatteryEstimatorProperty, TheEstimateDoesNotDependOnTheOrderOfTheR
   const std::vector<double> a = as_list(forward.rates()), b = as_list(shuffled.rates());
   for (std::size_t i = 0; i < 5; ++i) RC_ASSERT(std::abs(a[i] - b[i]) <= 1e-9 + 1e-9 * std::abs(a[i]));
   RC_ASSERT(std::abs(forward.noise_sd() - shuffled.noise_sd()) <= 1e-9);
+}
+
+// What it learned, stored as text and read back into a fresh estimator (a restart): the same
+// rates, standard errors and predictions, to the bit.
+TEST(BatteryEstimator, ItsStateStoredAsTextGoesOnExactlyWhereItWas) {
+  BatteryEstimator learned;
+  for (const Interval& iv : simulated(kTruth, 200, 7, /*resolution=*/0.001)) learned.observe(iv.from, iv.to, iv.use);
+  const std::string text = encode_battery_state(learned.state());
+  const Result<BatteryEstimator::State> state = decode_battery_state(text);
+  ASSERT_TRUE(state.ok()) << state.error().message;
+  BatteryEstimator again;
+  ASSERT_TRUE(again.restore(*state));
+  EXPECT_EQ(again.observations(), learned.observations());
+  const BatteryUse plan{.metres = 500, .hours_moving = 0.5, .hours_acting = 1.0 / 3, .hours_idle = 2};
+  EXPECT_EQ(again.predict(plan).mean, learned.predict(plan).mean);
+  EXPECT_EQ(again.predict(plan).standard_error, learned.predict(plan).standard_error);
+  EXPECT_EQ(again.rates().charging_per_hour, learned.rates().charging_per_hour);
+  EXPECT_EQ(again.noise_sd(), learned.noise_sd());
+  // ... and both learn on alike.
+  for (const Interval& iv : simulated(kTruth, 50, 8, 0.001)) {
+    learned.observe(iv.from, iv.to, iv.use);
+    again.observe(iv.from, iv.to, iv.use);
+  }
+  EXPECT_EQ(again.predict(plan).mean, learned.predict(plan).mean);
+}
+
+// A stored value that is not one: an error that says what is wrong, or (numbers that cannot be an
+// estimate) refused by restore(), which leaves the estimator as it was.
+TEST(BatteryEstimator, AStoredStateThatIsNotOneIsRefusedSayingWhy) {
+  BatteryEstimator learned;
+  for (const Interval& iv : simulated(kTruth, 20, 3)) learned.observe(iv.from, iv.to, iv.use);
+  const std::string good = encode_battery_state(learned.state());
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string text = good;
+    const std::size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? text : text.replace(at, from.size(), to);
+  };
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"{not json", "the battery estimate"},
+      {"[1, 2]", "must be an object"},
+      {with("\"version\":1", "\"version\":2"), "version 2 is not one this rondo reads (1)"},
+      {with("\"b\":[", "\"b\":[1,"), "b: must hold 5 numbers, not 6"},
+      {with("\"n\":", "\"count\":"), "count"},
+      {with("\"yy\":", "\"yy\":\"x\",\"zz\":"), "zz"},
+      {"", "the battery estimate"},
+  };
+  for (const auto& [text, says] : cases) {
+    const Result<BatteryEstimator::State> s = decode_battery_state(text);
+    ASSERT_FALSE(s.ok()) << text;
+    EXPECT_NE(s.error().message.find(says), std::string::npos) << text << " -> " << s.error().message;
+  }
+  BatteryEstimator::State bad = learned.state();
+  bad.a[0][0] = -1;
+  BatteryEstimator fresh;
+  const BatteryUse plan{.metres = 100, .hours_moving = 0.1};
+  const double before = fresh.predict(plan).mean;
+  EXPECT_FALSE(fresh.restore(bad));
+  bad = learned.state();
+  bad.a[1][2] += 1e-3;  // not symmetric
+  EXPECT_FALSE(fresh.restore(bad));
+  bad = learned.state();
+  bad.yy = std::nan("");
+  EXPECT_FALSE(fresh.restore(bad));
+  EXPECT_EQ(fresh.predict(plan).mean, before);
+  EXPECT_EQ(fresh.observations(), 0u);
 }
 
 }  // namespace

@@ -11,11 +11,13 @@
 
 #include "rondo/core/routine.h"
 #include "rondo/core/task_codec.h"
+#include "rondo/store/events.h"
 #include "rondo/store/read_back.h"
 #include "rondo/store/robot_state.h"
 #include "rondo/store/task_table.h"
 #include "rondo/store/traversal_log.h"
 #include "scenario.h"
+#include "scripted_executor.h"
 
 namespace rondo::exec::testing {
 namespace {
@@ -356,6 +358,79 @@ TEST(ExecutorRestore, AStoredTaskOnANodeThatIsGoneEndsNoLongerValid) {
   EXPECT_THAT(next.executor().tasks().at("Gone").reason, HasSubstr("'Attic' is not on the map"));
   next.run_until("10:00");
   EXPECT_EQ(next.state("Fine"), "succeeded");
+}
+
+// The battery estimator's learned state over a kill (issue 37 point 6): stored at the end of every
+// task (and of every charge), taken back by restore(). On the scripted robot: three tasks at the
+// Office, every edge costs 0.2 % of the battery and every action 0.5 %.
+struct BatteryLife : ScriptedExecutor {
+  BatteryLife() {
+    for (const char* id : {"A", "B", "C"})
+      EXPECT_TRUE(executor().add_task(task(id, "Office", at("08:00"), at("12:00"), minutes(1)), "test").ok());
+    executor().start();
+    for (int guard = 0; guard < 500; ++guard) {
+      settle();
+      if (state("C") == "succeeded") break;  // killed at the end of the last task
+      if (robot().driving()) {
+        clock_.run_until(clock_.now() + seconds(20));
+        robot().battery_level -= 0.002;
+        robot().finish_edge(EdgeOutcome::kSucceeded, seconds(20));
+      } else if (robot().acting()) {
+        clock_.run_until(clock_.now() + minutes(1));
+        robot().battery_level -= 0.005;
+        robot().finish_action(ActionOutcome::kSucceeded, "");
+      } else {
+        clock_.run_until(clock_.now() + seconds(20));
+      }
+    }
+    EXPECT_EQ(state("C"), "succeeded");
+  }
+  std::vector<store::Event> robot_events(const std::string& event) const {
+    std::vector<store::Event> out;
+    const std::vector<store::Event> all = store::read_events(store_).value();
+    for (const store::Event& e : all)
+      if (e.subject == store::Subject::kRobot && e.event == event) out.push_back(e);
+    return out;
+  }
+};
+
+void expect_same(const BatteryRates& a, const BatteryRates& b) {
+  EXPECT_EQ(a.per_metre, b.per_metre);
+  EXPECT_EQ(a.moving_per_hour, b.moving_per_hour);
+  EXPECT_EQ(a.acting_per_hour, b.acting_per_hour);
+  EXPECT_EQ(a.idle_per_hour, b.idle_per_hour);
+  EXPECT_EQ(a.charging_per_hour, b.charging_per_hour);
+}
+
+TEST(ExecutorRestore, TheBatteryEstimatorGoesOnFromWhatItLearnedBeforeAKill) {
+  BatteryLife s;
+  const BatteryFigures learned = s.executor().battery_figures();
+  ASSERT_GE(learned.intervals_learned, 5u);  // two edges and three actions
+  ASSERT_NO_FATAL_FAILURE(s.kill_and_restart());
+  const BatteryFigures again = s.executor().battery_figures();
+  EXPECT_EQ(again.intervals_learned, learned.intervals_learned);
+  expect_same(again.learned, learned.learned);
+  expect_same(again.standard_errors, learned.standard_errors);
+  EXPECT_TRUE(s.robot_events("battery estimate reset").empty());
+}
+
+TEST(ExecutorRestore, AStoredBatteryEstimateThatCannotBeReadIsAWarningAndAFreshEstimator) {
+  for (const std::string& stored : {std::string(R"({"version": 1, "n": oops)"), std::string(R"({"version": 9})"),
+                                    std::string(R"({"version":1,"n":3,"a":[[-1,0,0,0,0],[0,1,0,0,0],[0,0,1,0,0],)"
+                                                R"([0,0,0,1,0],[0,0,0,0,1]],"b":[0,0,0,0,0],"yy":0,"noise_ss":0,)"
+                                                R"("noise_weight":2})")}) {
+    BatteryLife s;
+    ASSERT_TRUE(store::set_meta(s.store(), "exec.battery.robot", stored).ok());
+    ASSERT_NO_FATAL_FAILURE(s.kill_and_restart());
+    const BatteryFigures fresh = s.executor().battery_figures();
+    EXPECT_EQ(fresh.intervals_learned, 0u) << stored;
+    expect_same(fresh.learned, BatteryEstimator{}.rates());
+    const std::vector<store::Event> reset = s.robot_events("battery estimate reset");
+    ASSERT_EQ(reset.size(), 1u) << stored;
+    EXPECT_EQ(reset[0].code, "battery");
+    EXPECT_THAT(reset[0].reason, HasSubstr("the stored battery estimate (exec.battery.robot) could not be read"));
+    EXPECT_THAT(reset[0].reason, HasSubstr("the estimator starts again from its prior"));
+  }
 }
 
 }  // namespace

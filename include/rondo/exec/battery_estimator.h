@@ -85,6 +85,21 @@ class BatteryEstimator {
   // The features of an interval, in the order of BatteryRates (charging counts negative).
   static Vector features(const BatteryUse& use);
 
+  // What it has learned, whole (the prior is folded in): kept in the store so that a restarted
+  // executor goes on from it (exec::encode_battery_state, src/exec/battery_memory.h).
+  struct State {
+    Matrix a{};                // V0⁻¹ + Σ x xᵀ
+    Vector b{};                // V0⁻¹ θ0 + Σ x y
+    double yy = 0;             // θ0ᵀ V0⁻¹ θ0 + Σ y²
+    double noise_ss = 0;       // ν0 σ0²
+    double noise_weight = 0;   // ν0
+    std::size_t n = 0;         // intervals learned from
+  };
+  State state() const;
+  // Goes on from `state`. False, and nothing changes, when it cannot be one this estimator wrote:
+  // a value not finite, A not symmetric with a positive diagonal, a negative sum of squares.
+  bool restore(const State& state);
+
  private:
   void solve() const;  // theta_ and covariance_ from A and b, when they changed
 

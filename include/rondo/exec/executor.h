@@ -261,6 +261,11 @@ class Executor final : public RobotListener {
   // In next(): true while the robot must charge (it enters or leaves that state here).
   bool must_charge();
   void charge();  // to the dock, and wait there
+  // What the battery estimator has learned, kept in the store's meta (kBatteryMetaKey) at the end
+  // of a task and of a charge, and taken back at restore(); a stored value that cannot be read is
+  // a warning (the book's write_error) and a fresh estimator.
+  void save_battery();
+  void restore_battery();
 
   // running (executor_running.cpp)
   void kick();  // reconsider what to do now
