@@ -2,6 +2,7 @@
 //
 //   rondo schedule day.yaml --solver default --time-limit 2 --json
 //   rondo schedule --tsptw ../shared/data/trptw/dumas/n20w20.001.tsptw --time-limit 1 --json
+//   rondo schedule --vrptw /work/data-vrptw/solomon/R101.txt --time-limit 30 -o r101.sol
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -11,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "cmd_schedule_fleet.h"
 #include "commands.h"
 #include "number_options.h"
 #include "rondo/schedule/checker.h"
@@ -33,6 +35,9 @@ constexpr double kMaxTimeLimitSeconds = 7 * 24 * 3600.0;  // a week
 struct ScheduleOptions {
   std::string file;
   std::string tsptw;
+  std::string vrptw;
+  std::string pdptw;
+  std::string output;
   std::string solver = "default";
   double time_limit = 10;
   bool json = false;
@@ -42,8 +47,9 @@ struct ScheduleOptions {
 void run_schedule(const ScheduleOptions& o, CommandContext& ctx) {
   using namespace rondo::schedule;
   const bool tsptw = !o.tsptw.empty();
-  if (tsptw == !o.file.empty()) {
-    fail(ctx, Error::invalid("schedule: give either a problem FILE or --tsptw FILE"));
+  const int inputs = !o.file.empty() + tsptw + !o.vrptw.empty() + !o.pdptw.empty();
+  if (inputs != 1) {
+    fail(ctx, Error::invalid("schedule: give one of a problem FILE, --tsptw FILE, --vrptw FILE or --pdptw FILE"));
     return;
   }
   // NaN passes CLI11's PositiveNumber (every comparison with it is false), and a solver told to
@@ -51,6 +57,16 @@ void run_schedule(const ScheduleOptions& o, CommandContext& ctx) {
   if (!(std::isfinite(o.time_limit) && o.time_limit > 0 && o.time_limit <= kMaxTimeLimitSeconds)) {
     fail(ctx, Error::invalid(fmt::format("--time-limit: must be a number of seconds above 0 and at most {:g}, not {}",
                                          kMaxTimeLimitSeconds, o.time_limit)));
+    return;
+  }
+  if (!o.vrptw.empty() || !o.pdptw.empty()) {
+    run_fleet_benchmark({.vrptw = o.vrptw, .pdptw = o.pdptw, .output = o.output, .time_limit = o.time_limit,
+                         .seed = o.seed, .json = o.json},
+                        ctx);
+    return;
+  }
+  if (!o.output.empty()) {
+    fail(ctx, Error::invalid("-o: only with --vrptw or --pdptw"));
     return;
   }
   Result<Problem> problem = tsptw ? load_tsptw(o.tsptw) : load_problem(o.file);
@@ -111,6 +127,9 @@ void add_schedule_commands(CLI::App& root, CommandContext& ctx) {
   CLI::App* cmd = root.add_subcommand("schedule", "Schedule the tasks of a problem file (or a TSPTW instance)");
   cmd->add_option("FILE", options->file, "problem file (JSON or YAML, see docs/scheduling.md)");
   cmd->add_option("--tsptw", options->tsptw, "a TSPTW instance in the LKH-3 format instead of FILE");
+  cmd->add_option("--vrptw", options->vrptw, "a VRPTW instance (Solomon / Gehring-Homberger format): the fleet scheduler");
+  cmd->add_option("--pdptw", options->pdptw, "a PDPTW instance (Li & Lim format): the fleet scheduler");
+  cmd->add_option("-o,--output", options->output, "with --vrptw/--pdptw: write the routes here ('Route 1: 5 3 7')");
   cmd->add_option("--solver", options->solver, "default | mip | mip-ia")->capture_default_str();
   cmd->add_option("--time-limit", options->time_limit, "seconds")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--seed", options->seed, "random seed of the default scheduler")
