@@ -25,8 +25,26 @@ std::vector<int> empty_representatives(const FleetModel& m, const FleetSolution&
 
 }  // namespace
 
+// Regret-2 recomputes every request's insertion into the route that changed: quadratic in the
+// tasks. Past kRegretWork (requests x robots), the requests go in one by one instead, tightest
+// latest start first, each to its cheapest place: the first plan of a large fleet in well under
+// a second, for the search to improve.
+constexpr std::size_t kRegretWork = 50000;
+
 void FleetSearch::construct(FleetSolution& s) {
-  regret(s, s.unassigned, true);
+  if (m_.requests().size() * static_cast<std::size_t>(m_.robots()) <= kRegretWork) {
+    regret(s, s.unassigned, true);
+  } else {
+    std::vector<int> order = s.unassigned;
+    const auto& req = m_.requests();
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return m_.latest(req[a].first) < m_.latest(req[b].first); });
+    for (int q : order) {
+      if (stopped()) break;
+      const Insertion ins = sol_.best_insertion(s, q, true);
+      if (ins.found()) sol_.insert(s, ins, q);
+    }
+  }
   s.cost = sol_.cost(s);
   report(s, 0);
 }

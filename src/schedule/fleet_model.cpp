@@ -24,7 +24,8 @@ FleetModel::FleetModel(const FleetProblem& problem)
   compile_tasks();
   compile_requests();
   compile_groups();
-  compile_neighbours();
+  neighbours_.resize(requests_.size());
+  neighbours_known_.assign(requests_.size(), 0);
   compile_kinds();
   simple_ = static_ && !has_looks_ && !has_after_;
   for (int i = 0; i < n_ && simple_; ++i) simple_ = load_[i] >= 0 && request_of_[i] >= 0 && requests_[request_of_[i]].drop < 0;
@@ -38,12 +39,13 @@ void FleetModel::compile_robots() {
     auto [it, fresh] = known.try_emplace({oracle, robot.speed_factor}, static_cast<int>(profiles_.size()));
     if (fresh) {
       Profile profile{.oracle = oracle, .speed = robot.speed_factor};
-      if (!oracle->time_dependent()) {
+      if (robot.speed_factor == 1.0) profile.direct = dynamic_cast<const MatrixTravel*>(oracle);
+      if (profile.direct == nullptr && !oracle->time_dependent()) {
         profile.matrix.resize(locations_ * locations_);
         for (std::size_t a = 0; a < locations_; ++a)
           for (std::size_t b = 0; b < locations_; ++b)
             profile.matrix[a * locations_ + b] = robot_travel(*p_, r, a, b, robot.free_from).count();
-      } else {
+      } else if (profile.direct == nullptr) {
         static_ = false;
       }
       profiles_.push_back(std::move(profile));
@@ -55,9 +57,6 @@ void FleetModel::compile_robots() {
     end_latest_.push_back(robot.end ? ms_since_epoch(robot.end->deadline) - origin_ : kFleetNever);
     capacity_.push_back(robot.capacity > 0 ? robot.capacity : kFleetNever);
   }
-  dist_.resize(locations_ * locations_);
-  for (std::size_t a = 0; a < locations_; ++a)
-    for (std::size_t b = 0; b < locations_; ++b) dist_[a * locations_ + b] = p_->distance_between(a, b);
 }
 
 void FleetModel::compile_tasks() {
@@ -85,6 +84,7 @@ void FleetModel::compile_tasks() {
     load_.push_back(load);
     look_.push_back(look);
     drop_cost_.push_back(p_->costs.drop_seconds * (1 + t.priority));
+    has_due_ = has_due_ || f.due.has_value();
     for (std::size_t a : t.after) {
       preds_[i].push_back(static_cast<int>(a));
       succs_[a].push_back(i);
@@ -135,19 +135,22 @@ void FleetModel::compile_groups() {
   for (int i = 0; i < n_; ++i) group_[i] = find(i);
 }
 
-void FleetModel::compile_neighbours() {
+const std::vector<int>& FleetModel::neighbours(int a) const {
+  if (neighbours_known_[a]) return neighbours_[a];
   const int q = static_cast<int>(requests_.size());
-  neighbours_.resize(q);
   const int keep = std::min(40, q - 1);
   std::vector<std::pair<double, int>> by;
-  for (int a = 0; a < q; ++a) {
-    by.clear();
-    const std::size_t la = start_loc_[requests_[a].first];
-    for (int b = 0; b < q; ++b)
-      if (b != a) by.emplace_back(distance(la, start_loc_[requests_[b].first]), b);
-    if (keep > 0) std::partial_sort(by.begin(), by.begin() + keep, by.end());
-    for (int k = 0; k < keep; ++k) neighbours_[a].push_back(by[k].second);
-  }
+  const std::size_t la = start_loc_[requests_[a].first];
+  for (int b = 0; b < q; ++b)
+    if (b != a) by.emplace_back(distance(la, start_loc_[requests_[b].first]), b);
+  if (keep > 0) std::partial_sort(by.begin(), by.begin() + keep, by.end());
+  for (int k = 0; k < keep; ++k) neighbours_[a].push_back(by[k].second);
+  neighbours_known_[a] = 1;
+  return neighbours_[a];
+}
+
+double FleetModel::lower_bound_seconds(std::size_t from, std::size_t to) const {
+  return to_seconds(p_->travel->lower_bound(from, to));
 }
 
 void FleetModel::compile_kinds() {
@@ -179,9 +182,8 @@ bool FleetModel::same_ends(int a, int b) const {
   return profile_of_[a] == profile_of_[b] && end_loc_robot_[a] == end_loc_robot_[b] && end_latest_[a] == end_latest_[b];
 }
 
-std::int64_t FleetModel::travel(int robot, std::size_t from, std::size_t to, std::int64_t depart) const {
-  const Profile& profile = profiles_[profile_of_[robot]];
-  if (!profile.matrix.empty()) return profile.matrix[from * locations_ + to];
+std::int64_t FleetModel::travel_dynamic(const Profile& profile, std::size_t from, std::size_t to,
+                                        std::int64_t depart) const {
   const Duration d = profile.oracle->travel(from, to, Time{Duration{depart + origin_}});
   if (profile.speed == 1.0) return d.count();
   return static_cast<std::int64_t>(std::ceil(static_cast<double>(d.count()) / profile.speed));

@@ -34,6 +34,7 @@ class FleetModel {
   bool static_travel() const { return static_; }
   bool has_looks() const { return has_looks_; }
   bool has_after() const { return has_after_; }
+  bool has_due() const { return has_due_; }  // some task has a soft due time
 
   std::int64_t release(int i) const { return release_[i]; }
   std::int64_t latest(int i) const { return latest_[i]; }
@@ -52,8 +53,9 @@ class FleetModel {
 
   const std::vector<Request>& requests() const { return requests_; }
   int request_of(int task) const { return request_of_[task]; }
-  // Requests by increasing distance from request r (first tasks' start locations), at most 40.
-  const std::vector<int>& neighbours(int r) const { return neighbours_[r]; }
+  // Requests by increasing distance from request r (first tasks' start locations), at most 40;
+  // computed when first asked for (an insertion into a large plan asks for few).
+  const std::vector<int>& neighbours(int r) const;
 
   std::int64_t free_from(int robot) const { return free_from_[robot]; }
   std::size_t robot_start(int robot) const { return robot_start_[robot]; }
@@ -67,13 +69,24 @@ class FleetModel {
   // Robots alike for tail exchanges: same travel profile, dock and dock deadline.
   bool same_ends(int a, int b) const;
 
-  std::int64_t travel(int robot, std::size_t from, std::size_t to, std::int64_t depart) const;
-  double distance(std::size_t from, std::size_t to) const { return dist_[from * locations_ + to]; }
+  std::int64_t travel(int robot, std::size_t from, std::size_t to, std::int64_t depart) const {
+    const Profile& profile = profiles_[profile_of_[robot]];
+    if (profile.direct != nullptr) return profile.direct->at(from, to).count();
+    if (!profile.matrix.empty()) return profile.matrix[from * locations_ + to];
+    return travel_dynamic(profile, from, to, depart);
+  }
+  double distance(std::size_t from, std::size_t to) const {
+    return p_->distance.empty() ? lower_bound_seconds(from, to) : p_->distance[from * locations_ + to];
+  }
   std::int64_t origin_ms() const { return origin_; }  // free_from of the earliest robot, as ms since the epoch
 
  private:
+  double lower_bound_seconds(std::size_t from, std::size_t to) const;
+  struct Profile;
+  std::int64_t travel_dynamic(const Profile& profile, std::size_t from, std::size_t to, std::int64_t depart) const;
   struct Profile {
     const TravelOracle* oracle = nullptr;
+    const MatrixTravel* direct = nullptr;  // a static matrix read in place (speed factor 1)
     double speed = 1;
     std::vector<std::int64_t> matrix{};  // empty when time-dependent
   };
@@ -81,19 +94,20 @@ class FleetModel {
   void compile_robots();
   void compile_requests();
   void compile_groups();
-  void compile_neighbours();
   void compile_kinds();
 
   const FleetProblem* p_;
   int n_ = 0, m_ = 0;
   std::size_t locations_ = 0;
   std::int64_t origin_ = 0;
-  bool simple_ = true, static_ = true, has_looks_ = false, has_after_ = false;
+  bool simple_ = true, static_ = true, has_looks_ = false, has_after_ = false, has_due_ = false;
   std::vector<std::int64_t> release_, latest_, duration_, load_;
   std::vector<std::size_t> start_loc_, end_loc_;
   std::vector<int> look_, group_, request_of_;
   std::vector<double> drop_cost_;
-  std::vector<std::vector<int>> preds_, succs_, neighbours_;
+  std::vector<std::vector<int>> preds_, succs_;
+  mutable std::vector<std::vector<int>> neighbours_;
+  mutable std::vector<char> neighbours_known_;
   std::vector<unsigned char> allowed_;
   std::vector<Request> requests_;
   std::vector<std::int64_t> free_from_, end_latest_, capacity_;
@@ -101,7 +115,6 @@ class FleetModel {
   std::vector<long> end_loc_robot_;
   std::vector<int> profile_of_, kind_;
   std::vector<Profile> profiles_;
-  std::vector<double> dist_;
 };
 
 }  // namespace rondo::schedule::detail

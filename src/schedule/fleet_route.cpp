@@ -11,6 +11,8 @@ void RouteOps::update(Route& r) const {
   r.load_before.resize(n + 1);
   r.max_load_from.assign(n + 1, -kFleetNever);
   r.latest.resize(n);
+  r.wait_sum.resize(n);
+  r.wait_sum_sum.assign(n + 1, 0);
   std::int64_t t = m_.free_from(r.robot);
   std::size_t loc = m_.robot_start(r.robot);
   std::int64_t load = 0;
@@ -20,8 +22,11 @@ void RouteOps::update(Route& r) const {
   for (std::size_t k = 0; k < n; ++k) {
     const int x = r.seq[k];
     r.load_before[k] = load;
-    const std::int64_t s = std::max(t + m_.travel(r.robot, loc, m_.start_location(x), t), m_.release(x));
+    const std::int64_t arrival = t + m_.travel(r.robot, loc, m_.start_location(x), t);
+    const std::int64_t s = std::max(arrival, m_.release(x));
     if (s > m_.latest(x)) r.feasible = false;
+    r.wait_sum[k] = (k > 0 ? r.wait_sum[k - 1] : 0) + (s - arrival);
+    r.wait_sum_sum[k + 1] = r.wait_sum_sum[k] + r.wait_sum[k];
     r.start[k] = s;
     r.end[k] = s + m_.duration(x);
     r.distance += m_.distance(loc, m_.start_location(x));
@@ -117,12 +122,27 @@ bool RouteOps::finish(const Route& r, int k, std::int64_t extra_load, Walk w, do
         delta = w.delta;
         return true;
       }
+      if (s > r.start[k] && !m_.has_due()) {
+        delta = w.delta + shifted_ends(r, k, s - r.start[k]);
+        return true;
+      }
     }
     if (!step_old(r, k, extra_load, w)) return false;
   }
   if (m_.has_end(r.robot) && w.t + dock_travel(r, w.loc, w.t) > m_.end_latest(r.robot)) return false;
   delta = w.delta;
   return true;
+}
+
+// The change of the sum of ends (seconds) when start k moves later by `delay`: every later start
+// moves by what the waiting before it has not absorbed (static travel).
+double RouteOps::shifted_ends(const Route& r, int k, std::int64_t delay) const {
+  const auto& p = r.wait_sum;
+  // The last position j >= k that the delay still reaches: p[j] - p[k] < delay.
+  const auto last = std::lower_bound(p.begin() + k, p.end(), p[k] + delay) - p.begin() - 1;
+  const std::int64_t count = last - k + 1;
+  const std::int64_t moved = count * (delay + p[k]) - (r.wait_sum_sum[last + 1] - r.wait_sum_sum[k]);
+  return static_cast<double>(moved) / 1000.0;
 }
 
 double RouteOps::single_distance(const Route& r, int pos, int task) const {
@@ -185,6 +205,14 @@ Insertion RouteOps::best_insertion(const Route& r, int index, int q, const std::
   const int n = static_cast<int>(r.seq.size());
   auto [lo, hi] = m_.has_after() ? allowed_range(r, a, route_of, index) : std::pair<int, int>{0, n};
   auto [blo, bhi] = b >= 0 && m_.has_after() ? allowed_range(r, b, route_of, index) : std::pair<int, int>{0, n};
+  // Only positions in the task's window can hold it: after a task that ends past its latest start
+  // nothing fits (ends only grow along a route), and (one task, static travel) before a task whose
+  // latest start comes before this one could even end, nothing fits either (latest starts grow too).
+  hi = std::min(hi, static_cast<int>(std::upper_bound(r.end.begin(), r.end.end(), m_.latest(a)) - r.end.begin()));
+  if (b < 0 && m_.static_travel()) {
+    const std::int64_t earliest_end = m_.release(a) + m_.duration(a);
+    lo = std::max(lo, static_cast<int>(std::lower_bound(r.latest.begin(), r.latest.end(), earliest_end) - r.latest.begin()));
+  }
   const double vehicle = m_.hierarchical() && r.empty() ? open_cost : 0.0;
   std::uniform_real_distribution<double> coin(0.0, 1.0);
   auto skip = [&] { return blink > 0 && rng && coin(*rng) < blink; };

@@ -30,6 +30,10 @@ struct Route {
   std::vector<std::int64_t> latest{};          // latest start keeping the rest feasible (static travel)
   std::vector<std::int64_t> load_before{};     // on board when arriving at a position
   std::vector<std::int64_t> max_load_from{};   // largest load after serving any position >= k
+  // Waiting before each start, summed from the first position (P), and P summed (Q, one longer):
+  // a delay d at position k moves start j >= k by max(0, d - (P[j] - P[k])) with static travel,
+  // so the sum of ends changes by a closed form over the positions it reaches (binary search).
+  std::vector<std::int64_t> wait_sum{}, wait_sum_sum{};
   double distance = 0;
   double cost = 0;  // this route's part of the objective
   bool feasible = true;
@@ -71,6 +75,7 @@ class RouteOps {
   bool step_new(const Route& r, int task, Walk& w) const;
   bool step_old(const Route& r, int k, std::int64_t extra_load, Walk& w) const;
   bool finish(const Route& r, int k, std::int64_t extra_load, Walk w, double& delta) const;
+  double shifted_ends(const Route& r, int k, std::int64_t delay) const;
   Walk walk_at(const Route& r, int pos) const;
   double single_distance(const Route& r, int pos, int task) const;
   double pair_distance(const Route& r, int pos, int drop_pos, int a, int b) const;

@@ -137,6 +137,14 @@ FleetSolution FleetSearch::repair_around(FleetSolution s, int request, std::size
     FleetSolution cand = s;
     ruin_related(cand, std::min(8, removal_count()), request);
     cand.open_budget = s.vehicles() - cand.vehicles();
+    // Reinsert into the routes the ruin touched first (and the new request's), then anywhere.
+    cand.focus.assign(cand.routes.size(), 0);
+    for (std::size_t r = 0; r < cand.routes.size(); ++r)
+      cand.focus[r] = cand.routes[r].seq.size() != s.routes[r].seq.size() ? 1 : 0;
+    const int home = s.route_of[m_.requests()[request].first];
+    if (home >= 0) cand.focus[home] = 1;
+    greedy(cand, cand.unassigned, open_robots, 0.0);
+    cand.focus.clear();
     recreate(cand, open_robots);
     cand.open_budget = 0;
     if (cand.cost < s.cost - 1e-9) s = std::move(cand);

@@ -86,6 +86,7 @@ Insertion SolutionOps::best_insertion(const FleetSolution& s, int q, bool allow_
   if (allow_empty) tried_kind.assign(s.routes.size(), 0);
   for (int r = 0; r < static_cast<int>(s.routes.size()); ++r) {
     const Route& route = s.routes[r];
+    if (!s.focus.empty() && !s.focus[r]) continue;
     if (route.empty()) {
       if (!allow_empty || tried_kind[m_.kind(r)]) continue;
       tried_kind[m_.kind(r)] = 1;

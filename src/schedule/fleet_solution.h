@@ -16,6 +16,8 @@ struct FleetSolution {
   // Robots that may start a route at no price (kVehiclesThenDistance): as many as the ruin
   // emptied, so that work can move to another robot without the count growing.
   int open_budget = 0;
+  // When not empty: the only routes insertions may use (a repair's focus).
+  std::vector<char> focus{};
 
   int vehicles() const {
     int v = 0;

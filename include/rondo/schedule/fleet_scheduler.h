@@ -43,7 +43,7 @@ struct FleetSchedulerOptions {
   std::uint64_t seed = 1;
   std::size_t route_min_iterations = 20000;  // per attempt to empty one more route
   std::size_t cycle_iterations = 50000;       // one cooling cycle of the annealing
-  std::size_t repair_iterations = 20;         // after insert()
+  std::size_t repair_iterations = 10;         // after insert()
   bool improve = true;                        // off: construction only
   bool single_robot_default = true;           // one robot, sum of ends: DefaultScheduler
   // Called after the construction and at every new best plan.
