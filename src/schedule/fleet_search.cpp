@@ -33,22 +33,45 @@ void FleetSearch::report(const FleetSolution& s, std::size_t iteration) const {
 
 FleetSolution FleetSearch::improve(FleetSolution s) {
   descend(s);
-  if (m_.hierarchical())
-    while (!stopped() && minimise_routes(s)) {
-    }
+  if (m_.hierarchical()) minimise_all_routes(s);
   anneal(s);
   return s;
 }
 
+// Empties routes while an attempt succeeds; an attempt that fails tries the next smallest route
+// (at most three routes per round).
+void FleetSearch::minimise_all_routes(FleetSolution& best) {
+  for (int failed = 0; failed < 3 && !stopped();) {
+    if (minimise_routes(best, failed)) failed = 0;
+    else ++failed;
+  }
+}
+
 // Empties the smallest route into a pool and searches, with the routes fixed in number, until the
 // pool is placed (true: `best` has one robot fewer) or the attempt's iterations run out.
-bool FleetSearch::minimise_routes(FleetSolution& best) {
-  if (best.vehicles() <= 1 || !best.unassigned.empty()) return false;
+// Fewer robots than this cannot carry the demands (robots' capacities, largest first).
+int FleetSearch::vehicle_lower_bound() const {
+  std::int64_t demand = 0;
+  for (int i = 0; i < m_.tasks(); ++i) demand += std::max<std::int64_t>(0, m_.problem().tasks[i].demand);
+  std::vector<std::int64_t> capacity;
+  for (int r = 0; r < m_.robots(); ++r) capacity.push_back(m_.capacity(r));
+  std::sort(capacity.rbegin(), capacity.rend());
+  int k = 1;
+  for (std::int64_t carried = capacity.empty() ? 0 : capacity[0]; carried < demand && k < m_.robots(); ++k)
+    carried += capacity[k];
+  return k;
+}
+
+bool FleetSearch::minimise_routes(FleetSolution& best, int rank) {
+  if (best.vehicles() <= vehicle_lower_bound() || !best.unassigned.empty()) return false;
   FleetSolution current = best;
-  int smallest = -1;
+  // The rank-th smallest route (by tasks, then by index).
+  std::vector<int> used;
   for (int r = 0; r < static_cast<int>(current.routes.size()); ++r)
-    if (!current.routes[r].empty() && (smallest < 0 || current.routes[r].seq.size() < current.routes[smallest].seq.size()))
-      smallest = r;
+    if (!current.routes[r].empty()) used.push_back(r);
+  std::stable_sort(used.begin(), used.end(),
+                   [&](int a, int b) { return current.routes[a].seq.size() < current.routes[b].seq.size(); });
+  const int smallest = used[std::min<std::size_t>(static_cast<std::size_t>(rank), used.size() - 1)];
   const std::vector<int> seq = current.routes[smallest].seq;
   for (int x : seq)
     if (current.route_of[x] >= 0) sol_.remove(current, m_.request_of(x));
@@ -75,7 +98,13 @@ bool FleetSearch::minimise_routes(FleetSolution& best) {
     }
     if (stopped()) return false;
     FleetSolution cand = current;
-    ruin(cand);
+    // Half the time, make room around a request of the pool.
+    if (coin(rng_) < 0.5) {
+      const int seed = current.unassigned[std::uniform_int_distribution<std::size_t>(0, current.unassigned.size() - 1)(rng_)];
+      ruin_related(cand, removal_count(), seed);
+    } else {
+      ruin(cand);
+    }
     cand.open_budget = current.vehicles() - cand.vehicles();
     std::vector<int> order = cand.unassigned;
     std::shuffle(order.begin(), order.end(), rng_);
@@ -105,14 +134,26 @@ void FleetSearch::anneal(FleetSolution& best) {
   const double unit = std::max(1e-6, scale(best));
   const bool open_robots = !m_.hierarchical();
   std::uniform_real_distribution<double> coin(1e-12, 1.0);
-  const std::size_t cycle = std::max<std::size_t>(1, options_.cycle_iterations);
+  // Cooling cycles of doubling length (cycle_iterations, twice that, ...), each from the best plan:
+  // a short run still cools once, a long one gets long, slow coolings.
+  std::size_t cycle = std::max<std::size_t>(1, options_.cycle_iterations);
+  std::size_t cycle_start = 0, round = 0;
   for (std::size_t it = 0; !stopped(); ++it) {
-    const std::size_t round = it / cycle;
-    const double progress = static_cast<double>(it % cycle) / static_cast<double>(cycle);
-    const double t_start = 10.0 * unit / static_cast<double>(1 + round);
-    const double t_end = 0.1 * unit / static_cast<double>(1 + round);
+    if (it - cycle_start == cycle) {
+      cycle_start = it;
+      cycle *= 2;
+      ++round;
+      current = best;
+      // Between cooling cycles, one more attempt at emptying a route, from the best.
+      if (m_.hierarchical() && options_.route_min_iterations > 0 && minimise_routes(best, 0)) {
+        minimise_all_routes(best);
+        current = best;
+      }
+    }
+    const double progress = static_cast<double>(it - cycle_start) / static_cast<double>(cycle);
+    const double t_start = 10.0 * unit / std::sqrt(static_cast<double>(1 + round));
+    const double t_end = t_start / 100.0;
     const double temperature = t_start * std::pow(t_end / t_start, progress);
-    if (it % cycle == 0 && it > 0) current = best;
     FleetSolution cand = current;
     ruin(cand);
     cand.open_budget = current.vehicles() - cand.vehicles();
@@ -126,8 +167,6 @@ void FleetSearch::anneal(FleetSolution& best) {
       continue;
     }
     if (cand.cost < current.cost - temperature * std::log(coin(rng_))) current = std::move(cand);
-    if (m_.hierarchical() && options_.route_min_iterations > 0 && it % (4 * cycle) == 4 * cycle - 1)
-      if (minimise_routes(best)) current = best;
   }
 }
 

@@ -37,7 +37,9 @@ class FleetSearch {
   void report(const FleetSolution& s, std::size_t iteration) const;
   void ruin(FleetSolution& s);
   int removal_count();
-  bool minimise_routes(FleetSolution& best);
+  bool minimise_routes(FleetSolution& best, int rank);
+  void minimise_all_routes(FleetSolution& best);
+  int vehicle_lower_bound() const;
   void anneal(FleetSolution& best);
   void descend(FleetSolution& s);  // relocate and 2-opt* to a local optimum
 

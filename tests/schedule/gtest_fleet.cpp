@@ -99,6 +99,32 @@ INSTANTIATE_TEST_SUITE_P(Cases, FleetExact,
                                            SmallCase{3, 6, 2, 2, true, true, false, true},
                                            SmallCase{3, 7, 1, 0, false, true, true, false}));
 
+// Rush hour: travel 50 % slower after 8:30 (FIFO: interpolated over ten minutes), robots with
+// their own speed; the solver times routes by walking them, and the checker agrees.
+TEST(Fleet, TimeDependentTravelPlansPassTheChecker) {
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    FleetProblem p = random_fleet({.robots = 3, .tasks = 14, .seed = seed, .deliveries = 2, .capacity = 2,
+                                   .docks = true, .speeds = true});
+    const auto& base = dynamic_cast<const MatrixTravel&>(*p.travel);
+    const std::size_t n = base.location_count();
+    std::vector<Duration> calm(n * n), rush(n * n);
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = 0; b < n; ++b) {
+        calm[a * n + b] = base.at(a, b);
+        rush[a * n + b] = base.at(a, b) * 3 / 2;
+      }
+    const Time t0 = Time{} + hours(8) + minutes(30);
+    p.travel = std::make_shared<PiecewiseLinearTravel>(
+        PiecewiseLinearTravel::create(n, {{t0, calm}, {t0 + minutes(10), rush}}).value());
+    ASSERT_TRUE(validate_fleet(p).ok());
+    for (auto objective : {FleetObjective::kSumOfEnds, FleetObjective::kVehiclesThenDistance}) {
+      p.objective = objective;
+      const FleetPlan plan = FleetScheduler({.seed = seed}).solve(p, PollBudgetStop(1500));
+      EXPECT_TRUE(check_fleet_plan(p, plan).ok()) << check_fleet_plan(p, plan).summary();
+    }
+  }
+}
+
 TEST(Fleet, TheSameSeedGivesTheSamePlan) {
   for (auto objective : {FleetObjective::kSumOfEnds, FleetObjective::kVehiclesThenDistance}) {
     const FleetProblem p = random_fleet({.robots = 4, .tasks = 40, .seed = 11, .deliveries = 5, .capacity = 2,
