@@ -38,12 +38,9 @@ FleetSolution FleetSearch::improve(FleetSolution s) {
   return s;
 }
 
-// Empties routes while an attempt succeeds; an attempt that fails tries the next smallest route
-// (at most three routes per round).
+// Empties the smallest route while an attempt succeeds.
 void FleetSearch::minimise_all_routes(FleetSolution& best) {
-  for (int failed = 0; failed < 3 && !stopped();) {
-    if (minimise_routes(best, failed)) failed = 0;
-    else ++failed;
+  while (!stopped() && minimise_routes(best, 0)) {
   }
 }
 
@@ -134,26 +131,14 @@ void FleetSearch::anneal(FleetSolution& best) {
   const double unit = std::max(1e-6, scale(best));
   const bool open_robots = !m_.hierarchical();
   std::uniform_real_distribution<double> coin(1e-12, 1.0);
-  // Cooling cycles of doubling length (cycle_iterations, twice that, ...), each from the best plan:
-  // a short run still cools once, a long one gets long, slow coolings.
-  std::size_t cycle = std::max<std::size_t>(1, options_.cycle_iterations);
-  std::size_t cycle_start = 0, round = 0;
+  const std::size_t cycle = std::max<std::size_t>(1, options_.cycle_iterations);
   for (std::size_t it = 0; !stopped(); ++it) {
-    if (it - cycle_start == cycle) {
-      cycle_start = it;
-      cycle *= 2;
-      ++round;
-      current = best;
-      // Between cooling cycles, one more attempt at emptying a route, from the best.
-      if (m_.hierarchical() && options_.route_min_iterations > 0 && minimise_routes(best, 0)) {
-        minimise_all_routes(best);
-        current = best;
-      }
-    }
-    const double progress = static_cast<double>(it - cycle_start) / static_cast<double>(cycle);
-    const double t_start = 10.0 * unit / std::sqrt(static_cast<double>(1 + round));
-    const double t_end = t_start / 100.0;
+    const std::size_t round = it / cycle;
+    const double progress = static_cast<double>(it % cycle) / static_cast<double>(cycle);
+    const double t_start = 10.0 * unit / static_cast<double>(1 + round);
+    const double t_end = 0.1 * unit / static_cast<double>(1 + round);
     const double temperature = t_start * std::pow(t_end / t_start, progress);
+    if (it % cycle == 0 && it > 0) current = best;
     FleetSolution cand = current;
     ruin(cand);
     cand.open_budget = current.vehicles() - cand.vehicles();
@@ -167,6 +152,12 @@ void FleetSearch::anneal(FleetSolution& best) {
       continue;
     }
     if (cand.cost < current.cost - temperature * std::log(coin(rng_))) current = std::move(cand);
+    // Every fourth cycle, one more attempt at emptying a route, from the best.
+    if (m_.hierarchical() && options_.route_min_iterations > 0 && it % (4 * cycle) == 4 * cycle - 1 &&
+        minimise_routes(best, 0)) {
+      minimise_all_routes(best);
+      current = best;
+    }
   }
 }
 
