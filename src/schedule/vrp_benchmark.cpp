@@ -186,8 +186,9 @@ Result<FleetProblem> parse_pdptw(std::string_view text, const std::string& sourc
   auto capacity = reader.whole(lines[0], (*head)[1], "capacity", 1);
   if (!capacity) return capacity.error();
   if (*vehicles > 10000) return reader.error(lines[0].number, "vehicles: at most 10000");
-  const double speed = (*head)[2];
-  if (!(speed > 0)) return reader.error(lines[0].number, "speed: must be above 0");
+  // The third number, the format's speed, is not used: the published best known values take
+  // travel time = distance, and several of the original files hold 0 there.
+  if ((*head)[2] < 0) return reader.error(lines[0].number, "speed: must not be negative");
   std::vector<Site> sites;
   std::map<std::string, std::size_t> index;
   for (std::size_t k = 1; k < lines.size(); ++k) {
@@ -199,7 +200,7 @@ Result<FleetProblem> parse_pdptw(std::string_view text, const std::string& sourc
     sites.push_back(std::move(s).value());
   }
   if (sites.empty()) return reader.error(lines[0].number, "no depot row");
-  auto problem = build(reader, sites, *vehicles, *capacity, speed);
+  auto problem = build(reader, sites, *vehicles, *capacity, 1.0);
   if (!problem) return problem.error();
   // Pair the rows: a pickup names its delivery, the delivery names the pickup back.
   for (std::size_t k = 1; k < sites.size(); ++k) {

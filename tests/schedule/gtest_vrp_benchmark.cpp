@@ -108,7 +108,7 @@ INSTANTIATE_TEST_SUITE_P(
                   "bad.txt:9: customer 1 is listed twice (first on line 8)"},
         Malformed{"pdp empty", true, "", "bad.txt:1: empty file"},
         Malformed{"pdp head", true, "3 10\n", "bad.txt:1: first line (vehicles capacity speed): expected 3 numbers"},
-        Malformed{"pdp speed", true, "3 10 0\n0 0 0 0 0 10 0 0 0\n", "speed: must be above 0"},
+        Malformed{"pdp speed", true, "3 10 -1\n0 0 0 0 0 10 0 0 0\n", "speed: must not be negative"},
         Malformed{"pdp no partner", true, "3 10 1\n0 0 0 0 0 10 0 0 0\n1 1 1 1 0 10 0 0 0\n",
                   "bad.txt:3: task 1: exactly one of pickup and delivery"},
         Malformed{"pdp missing", true, "3 10 1\n0 0 0 0 0 10 0 0 0\n1 1 1 1 0 10 0 0 7\n",
@@ -123,6 +123,15 @@ INSTANTIATE_TEST_SUITE_P(
         if (c == ' ') c = '_';
       return n;
     });
+
+// Several of Li & Lim's files (lc104, lr107, ...) hold 0 as the speed: it is not used.
+TEST(VrpBenchmark, ALiLimSpeedOfZeroIsRead) {
+  std::string text = kLiLim;
+  text.replace(0, 6, "3\t10\t0");
+  auto p = parse_pdptw(text, "tiny.pdp");
+  ASSERT_TRUE(p.ok()) << p.error().message;
+  EXPECT_EQ(p->robots.front().speed_factor, 1.0);
+}
 
 TEST(VrpBenchmark, AMissingFileIsAnError) {
   auto p = load_vrptw("/nonexistent/R101.txt");

@@ -2,7 +2,8 @@
 // format, for `rondo schedule --vrptw` / `--pdptw` and bench/:
 // - VRPTW, the Solomon / Gehring-Homberger text format: a name line, a VEHICLE section (NUMBER,
 //   CAPACITY), a CUSTOMER section of rows "id x y demand ready due service"; row 0 is the depot;
-// - PDPTW, the Li & Lim format: "vehicles capacity speed", then rows
+// - PDPTW, the Li & Lim format: "vehicles capacity speed" (speed unused: travel time = distance,
+//   as in every published result; some files hold 0), then rows
 //   "id x y demand ready due service pickup delivery" (a pickup names its delivery's id, a
 //   delivery its pickup's); row 0 is the depot.
 // Robots are the vehicles, alike, from the depot at its ready time and back by its due time;
