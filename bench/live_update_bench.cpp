@@ -21,18 +21,14 @@
 
 #include "plan/patchable_models.h"
 #include "plan/random_map.h"
+#include "bench_clock.h"
 #include "rondo/exec/map_travel.h"
 #include "rondo/plan/travel_planner.h"
 
 namespace {
 
 using namespace rondo;
-
-double thread_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
+using bench::thread_seconds;
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_clock.h"
 #include "rondo/core/traversal.h"
 #include "rondo/learn/edge_models.h"
 #include "rondo/map/map_loader.h"
@@ -29,12 +30,7 @@
 namespace {
 
 using namespace rondo;
-
-double thread_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
+using bench::thread_seconds;
 
 double median_of(int repetitions, const std::function<void()>& work) {
   std::vector<double> v;

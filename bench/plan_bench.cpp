@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "plan/random_map.h"
+#include "bench_clock.h"
 #include "rondo/core/traversal.h"
 #include "rondo/plan/exact_solver.h"
 #include "rondo/plan/travel_planner.h"
@@ -30,15 +31,10 @@
 namespace {
 
 using namespace rondo;
+using bench::thread_seconds;
 using namespace rondo::plan;
 
-// CPU time of this thread: the machine may be shared, and the targets are "on one core".
-double thread_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
+// CPU time of this thread (the machine may be shared, and the targets are "on one core").
 double seconds_of(const std::function<void()>& work) {
   const double start = thread_seconds();
   work();
