@@ -148,12 +148,11 @@ void for_each_histogram(Time t, const EpisodePriors& priors, const EpisodeStats&
 
 std::shared_ptr<const EpisodeEdgeModel> EpisodeEdgeModel::with_week_shift(WeeklyChoice choice,
                                                                           std::vector<double> shift) const {
+  // The statistics' own term is off (histogram_weekly() is false while a shift is set).
   auto copy = std::make_shared<EpisodeEdgeModel>(priors_, stats_, durations_, choice);
-  copy->weekly_.weekly = false;  // the statistics' own term: the shift replaces it
-  copy->weekly_.evidence = choice.evidence;
   if (choice.weekly && shift.size() == static_cast<std::size_t>(kWeekSlots))
     copy->week_shift_ = std::make_shared<const std::vector<double>>(std::move(shift));
-  copy->weekly_.weekly = choice.weekly && copy->week_shift_ != nullptr;
+  copy->weekly_.weekly = copy->week_shift_ != nullptr;
   return copy;
 }
 
