@@ -97,6 +97,9 @@ class TwoOptStar {
     const std::int64_t t = i < 0 ? m_.free_from(head.robot) : head.end[i];
     const std::int64_t load = head.load_before[i + 1] + (tail.load_before[n] - tail.load_before[j + 1]);
     if (load > m_.capacity(head.robot)) return false;
+    // Each task of the tail must be one head's robot may do (pins, actions).
+    for (int k = j + 1; k < n; ++k)
+      if (!m_.allowed(head.robot, tail.seq[k])) return false;
     if (j + 1 >= n) {
       if (i < 0 || !m_.has_end(head.robot)) return true;
       return t + m_.travel(head.robot, here(head, i), m_.robot_end(head.robot), t) <= m_.end_latest(head.robot);
@@ -122,7 +125,7 @@ void FleetSearch::descend(FleetSolution& s) {
       for (int a = 0; a < static_cast<int>(s.routes.size()); ++a)
         for (int b = a + 1; b < static_cast<int>(s.routes.size()); ++b) {
           if (s.routes[a].empty() || s.routes[b].empty() || !m_.same_ends(s.routes[a].robot, s.routes[b].robot)) continue;
-          while (two_opt.improve(s, a, b)) moved = true;
+          while (!stopped() && two_opt.improve(s, a, b)) moved = true;
         }
     if (!moved) break;
   }
