@@ -122,22 +122,24 @@ std::optional<Json> assumption_summary(const exec::Executor& executor, Time end)
 // queue), drops for now and re-offers, cancels that waited, robot faults; each by outcome code.
 Json event_summary(const exec::Executor& executor) {
   const auto& counts = executor.book().event_counts();
-  const auto by_code = [&](const std::string& event, std::initializer_list<exec::Outcome> only = {}) {
+  const auto by_code = [&](std::string_view event, std::initializer_list<exec::Outcome> only = {}) {
     Json j = Json::object();
-    const auto it = counts.find(event);
+    const auto it = counts.find(std::string(event));
     if (it == counts.end()) return j;
     for (const auto& [code, n] : it->second)
       if (only.size() == 0 || std::find(only.begin(), only.end(), code) != only.end())
         j[std::string(exec::to_string(code))] = n;
     return j;
   };
-  return Json{{"preempted", by_code("queued", {exec::Outcome::kPreemptedOnDemand, exec::Outcome::kOutranked})},
-              {"interrupted", by_code("queued", {exec::Outcome::kInterrupted})},
-              {"dropped_for_now", by_code("dropped for now")},
-              {"re_offered", by_code("re-offered")},
-              {"cancel_pending", by_code("cancel pending")},
-              {"robot_faults", by_code("fault")},
-              {"rejected_requests", by_code("rejected")}};
+  using exec::EventKind;
+  const std::string_view queued = to_string(TaskState::kQueued);
+  return Json{{"preempted", by_code(queued, {exec::Outcome::kPreemptedOnDemand, exec::Outcome::kOutranked})},
+              {"interrupted", by_code(queued, {exec::Outcome::kInterrupted})},
+              {"dropped_for_now", by_code(to_string(EventKind::kDroppedForNow))},
+              {"re_offered", by_code(to_string(EventKind::kReOffered))},
+              {"cancel_pending", by_code(to_string(EventKind::kCancelPending))},
+              {"robot_faults", by_code(to_string(EventKind::kFault))},
+              {"rejected_requests", by_code(to_string(EventKind::kRejected))}};
 }
 
 // The battery (docs/executor.md, "Battery"): the lowest state of charge read, the stays on the
@@ -156,7 +158,9 @@ Json battery_summary(const exec::Executor& executor) {
   Json for_charging = Json::object();
   for (const auto& [event, codes] : executor.book().event_counts()) {
     const auto it = codes.find(exec::Outcome::kCharging);
-    if (it != codes.end() && event != "battery low" && event != "charged") for_charging[event] = it->second;
+    if (it != codes.end() && event != to_string(exec::EventKind::kBatteryLow) &&
+        event != to_string(exec::EventKind::kCharged))
+      for_charging[event] = it->second;
   }
   Json j{{"readings", f.readings},
          {"lowest", round_to(f.lowest, 1e4)},
@@ -220,15 +224,20 @@ Json live_estimates(std::span<const exec::NavigationRecord> navigations) {
 
 namespace {
 
-// The robot events of the executor's own journeys (docs/executor.md, "Journeys").
-constexpr std::array<const char*, 5> kOwnJourney{"departed", "arrived", "waits", "gave up", "stopped"};
+// The robot events of the executor's own journeys (docs/executor.md, "Journeys"), and their keys.
+using exec::EventKind;
+constexpr std::array<std::pair<EventKind, const char*>, 5> kOwnJourney{{{EventKind::kDeparted, "departed"},
+                                                                        {EventKind::kArrived, "arrived"},
+                                                                        {EventKind::kWaits, "waits"},
+                                                                        {EventKind::kGaveUp, "gave_up"},
+                                                                        {EventKind::kStopped, "stopped"}}};
 
 // A week's own journeys: each event's count, 0 when none.
 Json own_journeys(const std::map<std::string, int>& counts) {
   Json j = Json::object();
-  for (const char* event : kOwnJourney) {
-    const auto it = counts.find(event);
-    j[std::string(event) == "gave up" ? "gave_up" : event] = it == counts.end() ? 0 : it->second;
+  for (const auto& [event, key] : kOwnJourney) {
+    const auto it = counts.find(std::string(to_string(event)));
+    j[key] = it == counts.end() ? 0 : it->second;
   }
   return j;
 }
@@ -264,10 +273,11 @@ Json weekly_summary(std::span<const Traversal> log, std::span<const store::Event
     Week* w = week_of(e.time);
     if (w == nullptr) continue;
     if (e.subject == store::Subject::kTask && e.code == exec::to_string(exec::Outcome::kDeparted)) ++w->task_journeys;
-    if (e.subject == store::Subject::kRobot &&
-        std::find(kOwnJourney.begin(), kOwnJourney.end(), e.event) != kOwnJourney.end())
+    const std::optional<EventKind> kind = exec::parse_event_kind(e.event);
+    if (e.subject == store::Subject::kRobot && kind &&
+        std::any_of(kOwnJourney.begin(), kOwnJourney.end(), [&](const auto& own) { return own.first == *kind; }))
       ++w->own_journeys[e.event];
-    if (e.event != "failed") continue;
+    if (e.event != to_string(TaskState::kFailed)) continue;
     const std::optional<exec::Outcome> code = exec::parse_outcome(e.code);
     if (code && std::find(kNavigation.begin(), kNavigation.end(), *code) != kNavigation.end())
       ++w->navigation_failures[e.code];

@@ -69,7 +69,7 @@ void ActStep::on_action_finished(const ActionResult& r) {
   if (r.outcome == ActionOutcome::kCancelled || halting()) return end({.status = StepEnd::Status::kHalted});
   if (r.outcome == ActionOutcome::kRobotFault) {
     // Not the action's fault: it runs again once the robot is ready.
-    ctx_.book.note(task_, "interrupted", Outcome::kRobotFault,
+    ctx_.book.note(task_, EventKind::kInterrupted, Outcome::kRobotFault,
                    fmt::format("action {} stopped by a robot fault{}{}; it runs again when the robot is ready", r.name,
                                r.message.empty() ? "" : ": ", r.message));
     if (!ctx_.in_fault) run_next();

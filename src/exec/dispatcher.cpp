@@ -9,7 +9,7 @@
 namespace rondo::exec {
 
 std::optional<TaskId> Dispatcher::ready_on_demand(Time now) const {
-  for (const TaskId& id : on_demand) {
+  for (const TaskId& id : on_demand_) {
     const TaskRecord& r = book_.at(id);
     if (!r.not_before || *r.not_before <= now) return id;
   }
@@ -20,19 +20,19 @@ Decision Dispatcher::next(map::NodeIndex here, Time now) {
   // On-demand tasks go first, in the order they came, but for one held back for a blocked way
   // until its retry time (the executor looks again then).
   if (const std::optional<TaskId> id = ready_on_demand(now)) {
-    std::erase(on_demand, *id);
+    std::erase(on_demand_, *id);
     return {.kind = Decision::Kind::kRun, .task = *id};
   }
   if (const std::optional<PlannedCharge> c = charge_due(now))
     return {.kind = Decision::Kind::kCharge, .until = c->end, .level = c->target, .length = c->end - c->start};
-  if (planned.empty()) return {.kind = here == options_.dock ? Decision::Kind::kStay : Decision::Kind::kDock};
-  const TaskId id = planned.front();
+  if (planned_.empty()) return {.kind = here == options_.dock ? Decision::Kind::kStay : Decision::Kind::kDock};
+  const TaskId id = planned_.front();
   const TaskRecord& r = book_.at(id);
   const Task& task = r.task;
   const Duration travel = travel_.travel(here, *map_.find_node(task.start_node), now);
   const Time latest_start = task.window->deadline - r.remaining();
   if (travel >= kUnreachable || now + travel > latest_start) {
-    planned.erase(planned.begin());
+    planned_.erase(planned_.begin());
     const std::string& from = map_.node(here).name;
     if (travel >= kUnreachable)
       return {.kind = Decision::Kind::kFail, .task = id, .outcome = Outcome::kNoRoute,
@@ -54,31 +54,56 @@ Decision Dispatcher::next(map::NodeIndex here, Time now) {
     if (here != options_.dock) return {.kind = Decision::Kind::kDock};
     return {.kind = Decision::Kind::kIdleUntil, .until = depart};
   }
-  planned.erase(planned.begin());
+  planned_.erase(planned_.begin());
   if (now < depart) return {.kind = Decision::Kind::kWait, .task = id, .until = depart};
   return {.kind = Decision::Kind::kRun, .task = id};
 }
 
 std::optional<PlannedCharge> Dispatcher::charge_due(Time now) {
-  while (!charges.empty()) {
-    const PlannedCharge c = charges.front();
-    bool due = planned.empty() || (c.before && planned.front() == *c.before);
-    if (!due && !(c.before && std::find(planned.begin(), planned.end(), *c.before) != planned.end())) {
+  while (!charges_.empty()) {
+    const PlannedCharge c = charges_.front();
+    bool due = planned_.empty() || (c.before && planned_.front() == *c.before);
+    if (!due && !(c.before && is_planned(*c.before))) {
       // The task it was planned before has gone: by time.
-      const TaskRecord& r = book_.at(planned.front());
+      const TaskRecord& r = book_.at(planned_.front());
       due = !r.planned_start || *r.planned_start >= c.start;
     }
     if (!due) return std::nullopt;
-    charges.erase(charges.begin());
+    charges_.erase(charges_.begin());
     if (c.end > now) return c;  // else: its time has passed
   }
   return std::nullopt;
 }
 
+bool Dispatcher::is_planned(const TaskId& id) const {
+  return std::find(planned_.begin(), planned_.end(), id) != planned_.end();
+}
+
+bool Dispatcher::is_deferred(const TaskId& id) const {
+  return std::find(deferred_.begin(), deferred_.end(), id) != deferred_.end();
+}
+
+void Dispatcher::follow_schedule(std::vector<TaskId> order) {
+  planned_ = std::move(order);
+}
+
+void Dispatcher::put_first_in_plan(const TaskId& id) {
+  if (!is_planned(id)) planned_.insert(planned_.begin(), id);
+}
+
+void Dispatcher::put_first_on_demand(const TaskId& id) {
+  std::erase(on_demand_, id);
+  on_demand_.push_front(id);
+}
+
+void Dispatcher::defer(const TaskId& id) {
+  if (!is_deferred(id)) deferred_.push_back(id);
+}
+
 void Dispatcher::forget(const TaskId& id) {
-  std::erase(planned, id);
-  std::erase(deferred, id);
-  std::erase(on_demand, id);
+  std::erase(planned_, id);
+  std::erase(deferred_, id);
+  std::erase(on_demand_, id);
 }
 
 }  // namespace rondo::exec

@@ -1,11 +1,13 @@
 // The dispatcher: what the robot does next when it is free. It owns the executor's queues (the
-// planned order of standard tasks, on-demand tasks waiting their turn, tasks dropped for now) and
-// reads the book and the travel estimates; the executor carries out its decisions.
+// planned order of standard tasks, on-demand tasks waiting their turn, tasks dropped for now, the
+// schedule's charges), changed only through methods that say what happens to a task, and reads the
+// book and the travel estimates; the executor carries out its decisions.
 //
 //   Decision d = dispatcher.next(robot.location(), clock.now());
 //   switch (d.kind) { case Decision::Kind::kRun: ... }
 #pragma once
 
+#include <algorithm>
 #include <deque>
 #include <optional>
 #include <string>
@@ -55,10 +57,30 @@ class Dispatcher {
              const TimeZone& zone)
       : map_(map), travel_(travel), book_(book), options_(options), zone_(zone) {}
 
-  std::vector<TaskId> planned;   // standard tasks to run, in the schedule's order
-  std::deque<TaskId> on_demand;  // on-demand tasks waiting for the robot
-  std::vector<TaskId> deferred;  // dropped for now: offered again at every reschedule
-  std::vector<PlannedCharge> charges;  // the schedule's charges, in its order
+  // The queues, read.
+  const std::vector<TaskId>& planned() const { return planned_; }    // standard, in the schedule's order
+  const std::deque<TaskId>& on_demand() const { return on_demand_; }  // on-demand, waiting for the robot
+  const std::vector<TaskId>& deferred() const { return deferred_; }   // dropped for now
+  const std::vector<PlannedCharge>& charges() const { return charges_; }  // the schedule's, in its order
+  bool is_planned(const TaskId& id) const;
+  bool is_deferred(const TaskId& id) const;
+
+  // The queues, changed.
+  // A new schedule: its standard tasks in order, and its charges.
+  void follow_schedule(std::vector<TaskId> order);
+  void follow_charges(std::vector<PlannedCharge> charges) { charges_ = std::move(charges); }
+  // A new on-demand task waits behind the others.
+  void queue_on_demand(const TaskId& id) { on_demand_.push_back(id); }
+  // A task goes back to the head of the planned order, or of the on-demand queue (once).
+  void put_first_in_plan(const TaskId& id);
+  void put_first_on_demand(const TaskId& id);
+  // A task the schedule dropped for now, and one offered again that fits.
+  void defer(const TaskId& id);
+  void undefer(const TaskId& id) { std::erase(deferred_, id); }
+  // Of the deferred tasks, only `still` stay (the others ended).
+  void keep_deferred(std::vector<TaskId> still) { deferred_ = std::move(still); }
+  // Takes a task out of the planned order (it is offered to the scheduler again).
+  void unplan(const TaskId& id) { std::erase(planned_, id); }
 
   // The next thing to do from `here` at `now`. A decision about a task takes it off its queue.
   Decision next(map::NodeIndex here, Time now);
@@ -75,6 +97,10 @@ class Dispatcher {
   const TaskBook& book_;
   const ExecutorOptions& options_;
   const TimeZone& zone_;
+  std::vector<TaskId> planned_;
+  std::deque<TaskId> on_demand_;
+  std::vector<TaskId> deferred_;
+  std::vector<PlannedCharge> charges_;
 };
 
 }  // namespace rondo::exec

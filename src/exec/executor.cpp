@@ -129,7 +129,7 @@ Result<std::vector<TaskId>> Executor::insert_tasks(std::vector<Task> tasks, std:
   for (const TaskId& id : ids) {
     deliveries_->add(book_.at(id).task);
     if (book_.at(id).task.kind == TaskKind::kOnDemand)
-      dispatcher_->on_demand.push_back(id);
+      dispatcher_->queue_on_demand(id);
     else
       standard.push_back(id);
   }
@@ -144,7 +144,7 @@ Status Executor::add_tasks(std::vector<Task> tasks, std::string_view source, con
     // A refused request is part of the record too (a queued one is taken with it).
     std::optional<store::RequestTaken> refused;
     if (taken) refused = store::RequestTaken{taken->id, taken->at, "rejected: " + inserted.error().message};
-    book_.note_request(taken ? fmt::format("request {}", taken->id) : ids, "rejected", Outcome::kInvalidRequest,
+    book_.note_request(taken ? fmt::format("request {}", taken->id) : ids, EventKind::kRejected, Outcome::kInvalidRequest,
                        fmt::format("from {}: {}", source, inserted.error().message), refused ? &*refused : nullptr);
     return inserted.error();
   }
@@ -162,13 +162,13 @@ bool Executor::give_way_to_on_demand() {
     preempt_for_on_demand(*ready);
     return true;
   }
-  book_.note(*ready, "waiting", Outcome::kRunsAfterCurrent,
+  book_.note(*ready, EventKind::kWaitsForRunningTask, Outcome::kRunsAfterCurrent,
              fmt::format("the running task {} cannot be interrupted now; runs right after it", run_->id()));
   return false;
 }
 
 void Executor::reject_request(const store::RequestTaken& taken, const std::string& reason) {
-  book_.note_request(fmt::format("request {}", taken.id), "rejected", Outcome::kInvalidRequest, reason, &taken);
+  book_.note_request(fmt::format("request {}", taken.id), EventKind::kRejected, Outcome::kInvalidRequest, reason, &taken);
 }
 
 Status Executor::cancel_task(const TaskId& id, const std::string& reason) {
@@ -186,7 +186,7 @@ Status Executor::cancel_task(const TaskId& id, const std::string& reason) {
       return Status{};
     } else {
       run_->cancel_when_possible(why);
-      book_.note(id, "cancel pending", Outcome::kCancelPending,
+      book_.note(id, EventKind::kCancelPending, Outcome::kCancelPending,
                  why + "; the task cannot be interrupted now, so it stops at its next interruptible moment");
       return Status{};
     }
@@ -214,14 +214,11 @@ void Executor::start() {
   read_battery();
   create_routine_tasks(zone_.local_date(clock_.now()));
   std::vector<TaskId> pending;
-  const auto queued = [](const std::vector<TaskId>& q, const TaskId& id) {
-    return std::find(q.begin(), q.end(), id) != q.end();
-  };
   for (const TaskId& id : book_.order())
     if (book_.at(id).task.kind == TaskKind::kStandard && book_.at(id).state == TaskState::kQueued &&
         !book_.at(id).dropped_for_now &&  // deferred (restore): reschedule() offers them again
         !blocked(id) &&                   // waits for its door (restore)
-        !queued(dispatcher_->planned, id) && !queued(dispatcher_->deferred, id))
+        !dispatcher_->is_planned(id) && !dispatcher_->is_deferred(id))
       pending.push_back(id);
   if (!pending.empty()) reschedule(std::move(pending), "start");
   schedule_midnight();

@@ -19,7 +19,7 @@ Status Executor::confirm_action(const TaskId& id, const std::string& by) {
   if (confirmed_ == id)
     return Error{ErrorCode::kConflict, fmt::format("task {}: the {} is already confirmed", id, *action)};
   confirmed_ = id;
-  book_.note(id, "confirmed", Outcome::kConfirmed,
+  book_.note(id, EventKind::kConfirmed, Outcome::kConfirmed,
              fmt::format("{} confirmed{}", *action, by.empty() ? std::string() : " by " + by));
   robot_.cancel();
   return Status{};

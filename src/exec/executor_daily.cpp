@@ -29,7 +29,7 @@ void Executor::create_routine_tasks(std::chrono::year_month_day day) {
     for (Task& t : instances_on(r, day, zone_)) {
       if (!t.window || t.window->deadline <= now || book_.known(t.id)) continue;
       if (why) {
-        book_.note_request(t.id, "rejected", Outcome::kInvalidRequest, fmt::format("from routine {}: {}", r.name, *why));
+        book_.note_request(t.id, EventKind::kRejected, Outcome::kInvalidRequest, fmt::format("from routine {}: {}", r.name, *why));
         continue;
       }
       batch.push_back(std::move(t));

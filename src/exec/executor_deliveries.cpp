@@ -33,7 +33,7 @@ std::vector<OnBoard> Executor::on_board_when_free() const {
       std::erase_if(items, [&](const OnBoard& o) { return o.job == d.job; });
   };
   if (run_ && !run_->waiting()) after(run_->task());
-  for (const TaskId& id : dispatcher_->on_demand) after(book_.at(id).task);
+  for (const TaskId& id : dispatcher_->on_demand()) after(book_.at(id).task);
   return items;
 }
 
@@ -88,7 +88,7 @@ std::vector<TaskId> Executor::settle_jobs() {
     const TaskRecord& last = **found;
     const Delivery& what = *last.task.delivery;
     if (job.drops.size() > kMaxReturns) {
-      book_.note(last.task.id, "stays on board", Outcome::kReturnPlanned,
+      book_.note(last.task.id, EventKind::kStaysOnBoard, Outcome::kReturnPlanned,
                  fmt::format("the {} stays on board: {} returns ended without it", what.object, kMaxReturns));
       deliveries_->close(name);
       continue;
@@ -112,7 +112,7 @@ std::vector<TaskId> Executor::settle_jobs() {
       continue;
     }
     deliveries_->add(back);
-    book_.note(last.task.id, "return planned", Outcome::kReturnPlanned,
+    book_.note(last.task.id, EventKind::kReturnPlanned, Outcome::kReturnPlanned,
                fmt::format("the {} is on board after this drop {}: task {} takes it back to {} by {}", what.object,
                            to_string(last.state), back.id, back.start_node,
                            zone_.format_clock(back.window->deadline)));

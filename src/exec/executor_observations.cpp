@@ -87,7 +87,7 @@ void Executor::place_retry(const TaskId& id, const std::string& door, Time lates
   const Time now = clock_.now();
   const std::optional<Time> at = door_models_->next_likely_open(door, now, latest, kLikelyOpen);
   if (!at) return;
-  book_.note(id, "retry planned", Outcome::kOpportunity,
+  book_.note(id, EventKind::kRetryPlanned, Outcome::kOpportunity,
              fmt::format("{} is likely open at {} (p = {:.2f}, learned from {} observations): offered to the "
                          "scheduler again then",
                          door, zone_.format_clock(*at), door_models_->probability(door, *at).value_or(0),
@@ -125,21 +125,21 @@ void Executor::after_schedule(const std::string& why) {
     const TaskRecord& r = book_.at(run_->id());
     stop_of(r, r.planned_end.value_or(now + r.remaining()));
   }
-  for (const TaskId& id : dispatcher_->on_demand) stop_of(book_.at(id), now + book_.at(id).remaining());
+  for (const TaskId& id : dispatcher_->on_demand()) stop_of(book_.at(id), now + book_.at(id).remaining());
   if (run_ && run_->waiting()) stop_of(book_.at(run_->id()), book_.at(run_->id()).planned_end.value_or(now));
-  for (const TaskId& id : dispatcher_->planned) {
+  for (const TaskId& id : dispatcher_->planned()) {
     const TaskRecord& r = book_.at(id);
     if (run_ && run_->waiting() && run_->id() == id) continue;
     stop_of(r, r.planned_end.value_or(r.task.window->deadline));
   }
   assumptions_ = assumption_map_->for_plan(robot_.location(), stops);
   if (!assumptions_.empty())
-    book_.note_schedule("assumptions", Outcome::kNone, fmt::format("{}: {}", why, describe(assumptions_, zone_)));
+    book_.note_schedule(EventKind::kAssumptions, Outcome::kNone, fmt::format("{}: {}", why, describe(assumptions_, zone_)));
   note_look_alikes();
   if (!broken_ || (run_ && run_->stopping())) return;  // a stopping task: the schedule after it says it
-  std::vector<TaskId> now_planned = dispatcher_->planned;
+  std::vector<TaskId> now_planned = dispatcher_->planned();
   ++assumption_stats_.reschedules;
-  book_.note_schedule("rescheduled", Outcome::kAssumptionBroken,
+  book_.note_schedule(EventKind::kRescheduled, Outcome::kAssumptionBroken,
                       fmt::format("{}; the plan was {}; it is now {}", *broken_, joined(plan_before_break_),
                                   joined(now_planned)));
   broken_.reset();
@@ -155,7 +155,7 @@ void Executor::note_look_alikes() {
     if (std::find(j.begin(), j.end(), job) == j.end()) j.push_back(job);
   };
   for (const OnBoard& o : on_board()) add(o.appearance, o.job);
-  for (const TaskId& id : dispatcher_->planned)
+  for (const TaskId& id : dispatcher_->planned())
     if (const auto& d = book_.at(id).task.delivery) add(d->appearance, d->job);
   std::string text;
   for (const auto& [appearance, list] : jobs) {
@@ -168,7 +168,7 @@ void Executor::note_look_alikes() {
   }
   if (text == look_alikes_) return;
   look_alikes_ = text;
-  if (!text.empty()) book_.note_schedule("look-alike", Outcome::kNone, text);
+  if (!text.empty()) book_.note_schedule(EventKind::kLookAlike, Outcome::kNone, text);
 }
 
 // A task that can wait for a door: a standard one, not final, not blocked already, and not running
@@ -195,7 +195,7 @@ void Executor::door_seen_closed(const Observation& seen) {
   if (hit.empty()) return;
   // A job's halves wait together: a drop whose pickup waits, and a pickup whose drop waits (the
   // object is not fetched while it cannot be delivered; one already on board stays on board).
-  std::vector<TaskId> live = dispatcher_->planned;
+  std::vector<TaskId> live = dispatcher_->planned();
   if (run_ && !run_->acting_since()) live.push_back(run_->id());
   const auto hit_has = [&](const TaskId& id) {
     return std::any_of(hit.begin(), hit.end(), [&](const auto& h) { return h.first == id; });
@@ -213,7 +213,7 @@ void Executor::door_seen_closed(const Observation& seen) {
   const std::string& node = map_.node(robot_.location()).name;
   plan_before_break_.clear();
   if (run_ && !run_->waiting()) plan_before_break_.push_back(run_->id());
-  for (const TaskId& id : dispatcher_->planned)
+  for (const TaskId& id : dispatcher_->planned())
     if (std::find(plan_before_break_.begin(), plan_before_break_.end(), id) == plan_before_break_.end())
       plan_before_break_.push_back(id);
   std::vector<TaskId> ids;
@@ -231,7 +231,7 @@ void Executor::door_seen_closed(const Observation& seen) {
                     "as an opportunity until its latest start {}",
                     to_string(a.kind), a.what, zone_.format_clock(a.until), seen.where, node,
                     zone_.format_clock(now), zone_.format_clock(latest));
-    book_.note(id, "blocked", Outcome::kAssumptionBroken, reason);
+    book_.note(id, EventKind::kBlocked, Outcome::kAssumptionBroken, reason);
     wait_for_door(id, {.door = seen.where, .since = now, .seen_at = node});
     if (run_ && run_->id() == id) running_reason = reason;
   }
@@ -272,7 +272,7 @@ bool Executor::opportunity_fits(const TaskId& id, bool interrupt, const std::vec
   }
   PendingTasks pending;
   if (interrupt && running_standard()) pending.ids.push_back(run_->id());
-  const std::vector<TaskId>* lists[] = {&dispatcher_->planned, &with};
+  const std::vector<TaskId>* lists[] = {&dispatcher_->planned(), &with};
   for (const std::vector<TaskId>* list : lists)
     for (const TaskId& p : *list)
       if (p != id && std::find(pending.ids.begin(), pending.ids.end(), p) == pending.ids.end())
@@ -340,7 +340,7 @@ void Executor::door_seen_open(const Observation& seen) {
       taken = id;
     } else {
       ++assumption_stats_.opportunities_declined;
-      book_.note(id, "opportunity declined", Outcome::kOpportunityDeclined,
+      book_.note(id, EventKind::kOpportunityDeclined, Outcome::kOpportunityDeclined,
                  fmt::format("{} seen open from {} at {}, but {}; offered to the scheduler again", seen.where, node,
                              when, why_not));
       back.push_back(id);
@@ -351,11 +351,11 @@ void Executor::door_seen_open(const Observation& seen) {
     return kick();
   }
   ++assumption_stats_.opportunities_taken;
-  dispatcher_->on_demand.push_back(*taken);  // it runs next, before the planned tasks
+  dispatcher_->queue_on_demand(*taken);  // it runs next, before the planned tasks
   const std::string then =
       interrupt ? fmt::format("interrupts {}", run_->id())
                 : (run_ && !run_->waiting() ? fmt::format("runs right after {}", run_->id()) : std::string("runs now"));
-  book_.note(*taken, "opportunity", Outcome::kOpportunityTaken,
+  book_.note(*taken, EventKind::kOpportunity, Outcome::kOpportunityTaken,
              fmt::format("{} seen open from {} at {}: {}; every planned task still fits after it", seen.where, node,
                          when, then));
   if (interrupt) return preempt_for(Outcome::kOpportunityTaken, "interrupted for the opportunity " + *taken, back);

@@ -71,7 +71,7 @@ Status Executor::restore() {
       }
     }
     if (on_demand) {
-      dispatcher_->on_demand.push_back(id);
+      dispatcher_->queue_on_demand(id);
       if (r.not_before && *r.not_before > now) clock_.schedule_at(*r.not_before, [this] { on_demand_due(); });
     } else if (r.door_wait && r.task.window) {
       // Blocked by a door seen closed: it waits for the door again, with its retry and its end.
@@ -79,7 +79,7 @@ Status Executor::restore() {
       wait_for_door(id, wait);
     } else if (r.dropped_for_now && r.task.window) {
       // Offered again at every reschedule, and dropped for good once its window cannot be met.
-      dispatcher_->deferred.push_back(id);
+      dispatcher_->defer(id);
       clock_.schedule_at(r.task.window->deadline - r.remaining() + milliseconds(1),
                          [this] { (void)reoffer_deferred(); });
     }

@@ -48,9 +48,9 @@ void Executor::learn_from(const EdgeAttempt& a) {
   const std::string what = fmt::format("edge {} {} after {}{}{}", edge.id, to_string(a.outcome),
                                        duration_text(a.duration), a.message.empty() ? "" : ": ", a.message);
   if (run_)
-    book_.note(run_->id(), "edge", code, what);
+    book_.note(run_->id(), EventKind::kEdge, code, what);
   else
-    book_.note_robot("edge", code, what);
+    book_.note_robot(EventKind::kEdge, code, what);
 }
 
 void Executor::on_edge_finished(const EdgeAttempt& a) {
@@ -203,7 +203,7 @@ void Executor::on_fault(const RobotFault& fault) {
   in_fault_ = true;
   fault_since_ = clock_.now();
   save_robot_state();
-  book_.note_robot("fault", Outcome::kRobotFault,
+  book_.note_robot(EventKind::kFault, Outcome::kRobotFault,
                    fmt::format("{}: {}; dispatch paused", to_string(fault.kind), fault.message));
   if (run_) {
     if (Step* s = run_->current()) s->suspend();
@@ -223,7 +223,7 @@ void Executor::on_ready() {
   fault_.reset();
   fault_since_.reset();
   in_fault_ = false;
-  book_.note_robot("ready", Outcome::kRobotReady,
+  book_.note_robot(EventKind::kReady, Outcome::kRobotReady,
                    fmt::format("ready again after {}; dispatch resumes", duration_text(down)));
   if (run_) {
     if (Step* s = run_->current()) s->resume();

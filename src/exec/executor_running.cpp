@@ -26,8 +26,7 @@ void Executor::requeue_waiting(Outcome outcome, const std::string& reason) {
   const TaskId id = run_->id();
   end_wait();
   book_.transition(id, TaskState::kQueued, outcome, reason);
-  std::vector<TaskId>& planned = dispatcher_->planned;
-  if (std::find(planned.begin(), planned.end(), id) == planned.end()) planned.insert(planned.begin(), id);
+  dispatcher_->put_first_in_plan(id);
   next();
 }
 
@@ -78,10 +77,10 @@ bool Executor::charge_first(const TaskId& id) {
   if (!short_of || short_of->needed > 1) return false;
   const Time now = clock_.now();
   if (book_.at(id).task.kind == TaskKind::kOnDemand)
-    dispatcher_->on_demand.push_front(id);
+    dispatcher_->put_first_on_demand(id);
   else
-    dispatcher_->planned.insert(dispatcher_->planned.begin(), id);
-  book_.note(id, "waits for the charge", Outcome::kCharging, short_of->why);
+    dispatcher_->put_first_in_plan(id);
+  book_.note(id, EventKind::kWaitsForTheCharge, Outcome::kCharging, short_of->why);
   const double hours = std::max(0.0, charging_->estimator().hours_to_charge(charging_->level(), short_of->needed));
   const Duration on_charger = from_seconds(hours * 3600) + minutes(1);
   charging_->start_planned(now + travel_->travel(robot_.location(), options_.dock, now) + on_charger, on_charger,
@@ -167,7 +166,7 @@ void Executor::trip_ended(StepEnd e) {
   switch (e.status) {
     case StepEnd::Status::kDone: return next();
     case StepEnd::Status::kHalted:
-      book_.note_robot("stopped", Outcome::kScheduleChanged,
+      book_.note_robot(EventKind::kStopped, Outcome::kScheduleChanged,
                        fmt::format("{} stopped at {}: the executor looks again at what to do", journey, here));
       return next();
     case StepEnd::Status::kBlocked:
@@ -186,13 +185,13 @@ void Executor::trip_ended(StepEnd e) {
     }
   }
   if (again) {
-    book_.note_robot("waits", Outcome::kNoRouteNow,
+    book_.note_robot(EventKind::kWaits, Outcome::kNoRouteNow,
                      fmt::format("{} waits at {}: {}; it looks again at {}", journey, here, e.reason,
                                  zone_.format_clock(*again)));
     return look_again_at(*again);
   }
   const Time later = now + (e.status == StepEnd::Status::kBlocked ? hours(24) : options_.slot_width);
-  book_.note_robot("gave up", e.outcome,
+  book_.note_robot(EventKind::kGaveUp, e.outcome,
                    fmt::format("{} gave up at {}: {}; it looks again at {}", journey, here, e.reason,
                                zone_.format_clock(later)));
   look_again_at(later);
@@ -222,7 +221,7 @@ bool Executor::hold_back(const TaskId& id, map::EdgeIndex edge, std::optional<Ti
       passable_again(edge, book_.at(id).latest_start(options_.on_demand_patience));
   if (!open) return false;
   book_.set_not_before(id, open->first);
-  book_.note(id, "retry planned", Outcome::kNoRouteNow,
+  book_.note(id, EventKind::kRetryPlanned, Outcome::kNoRouteNow,
              fmt::format("{} is likely passable again at {} (p = {:.2f}): not scheduled before then",
                          map_.edge(edge).id, zone_.format_clock(open->first), open->second));
   return true;
@@ -239,7 +238,7 @@ void Executor::hold_on_demand(const TaskId& id, Outcome outcome, const std::stri
 
 void Executor::requeue_on_demand(const TaskId& id, Outcome outcome, const std::string& reason) {
   book_.transition(id, TaskState::kQueued, outcome, reason + "; back in the on-demand queue");
-  dispatcher_->on_demand.push_front(id);  // it came before the others waiting
+  dispatcher_->put_first_on_demand(id);  // it came before the others waiting
 }
 
 void Executor::on_demand_due() {

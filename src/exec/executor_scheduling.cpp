@@ -38,7 +38,7 @@ std::pair<map::NodeIndex, Time> Executor::free_at() const {
     t += travel_->travel(here, options_.dock, t) + charging_->time_to_charge();
     here = options_.dock;
   }
-  for (const TaskId& id : dispatcher_->on_demand)  // one held back for a blocked way comes later
+  for (const TaskId& id : dispatcher_->on_demand())  // one held back for a blocked way comes later
     if (!book_.at(id).not_before || *book_.at(id).not_before <= now) run(book_.at(id), std::nullopt);
   return {here, t};
 }
@@ -46,7 +46,7 @@ std::pair<map::NodeIndex, Time> Executor::free_at() const {
 std::vector<TaskId> Executor::reoffer_deferred() {
   std::vector<TaskId> still;
   const Time now = clock_.now();
-  for (const TaskId& id : dispatcher_->deferred) {
+  for (const TaskId& id : dispatcher_->deferred()) {
     TaskRecord& r = book_.at(id);
     if (r.state != TaskState::kQueued || !r.dropped_for_now) continue;
     if (now + r.remaining() <= r.task.window->deadline) {
@@ -56,7 +56,7 @@ std::vector<TaskId> Executor::reoffer_deferred() {
     const auto [outcome, reason] = *r.dropped_for_now;
     book_.transition(id, TaskState::kDropped, outcome, reason);
   }
-  dispatcher_->deferred = still;
+  dispatcher_->keep_deferred(still);
   return still;
 }
 
@@ -77,13 +77,13 @@ std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_
     if (std::find(ids.begin(), ids.end(), id) == ids.end() && !blocked(id)) ids.push_back(id);
   };
   if (run_ && run_->waiting()) add(run_->id());  // waiting = still pending
-  for (const TaskId& id : dispatcher_->planned) add(id);
+  for (const TaskId& id : dispatcher_->planned()) add(id);
   pending.old_count = ids.size();
   for (const TaskId& id : new_ids) add(id);
   pending.first_reoffered = ids.size();
   for (const TaskId& id : offered_again) add(id);
   if (ids.empty()) {
-    dispatcher_->planned.clear();
+    dispatcher_->follow_schedule({});
     after_schedule(why);
     return std::nullopt;
   }
@@ -110,7 +110,7 @@ std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_
   }
   auto problem = pending_problem(in, pending, here, free, running);
   if (!problem) {  // the pending tasks do not make a well-formed problem: keep the plan as it is
-    book_.note_schedule("not rescheduled", Outcome::kNone, fmt::format("{}: {}", why, problem.error().message));
+    book_.note_schedule(EventKind::kNotRescheduled, Outcome::kNone, fmt::format("{}: {}", why, problem.error().message));
     return std::nullopt;
   }
   return ScheduleCall{.pending = std::move(pending), .problem = std::move(*problem)};
@@ -135,11 +135,11 @@ void Executor::finish_schedule(const std::vector<TaskId>& ids, std::vector<TaskI
 // their windows passed (validation seed 106 of examples/witham: a day with no task done). So they
 // are offered again at the next slot start, when the travel estimates may have moved.
 void Executor::offer_again_at_next_slot() {
-  if (!options_.risk_alpha || dispatcher_->deferred.empty() || offer_again_ != 0) return;
+  if (!options_.risk_alpha || dispatcher_->deferred().empty() || offer_again_ != 0) return;
   const Time at = travel_->slot_start(clock_.now()) + options_.slot_width;
   offer_again_ = clock_.schedule_at(at, [this] {
     offer_again_ = 0;
-    if (dispatcher_->deferred.empty()) return;
+    if (dispatcher_->deferred().empty()) return;
     reschedule({}, "tasks dropped for now offered again at the slot start");
     kick();  // an idle robot starts what fits again
   });
@@ -156,46 +156,45 @@ void Executor::apply_charges(const std::vector<TaskId>& ids, const PlannedAnswer
       if (entries[next].task < ids.size()) c.before = ids[entries[next].task];
     charges.push_back(c);
   }
-  std::vector<PlannedCharge>& old = dispatcher_->charges;
+  const std::vector<PlannedCharge>& old = dispatcher_->charges();
   const bool moved = charges.size() != old.size() ||
                      !std::equal(charges.begin(), charges.end(), old.begin(), [](const auto& a, const auto& b) {
                        return a.before == b.before && std::chrono::abs(a.start - b.start) < minutes(15);
                      });
   if (moved)
     for (const PlannedCharge& c : charges)
-      book_.note_schedule("charge planned", Outcome::kCharging,
+      book_.note_schedule(EventKind::kChargePlanned, Outcome::kCharging,
                           fmt::format("a charge at the dock {}–{} to about {:.0f} %{} ({})",
                                       zone_.format_clock(c.start).substr(0, 5), zone_.format_clock(c.end),
                                       c.target * 100, c.before ? ", before task " + *c.before : "", why));
-  old = std::move(charges);
+  dispatcher_->follow_charges(std::move(charges));
   charging_->drift().planned(answer.points);
 }
 
 void Executor::apply_schedule(const std::vector<TaskId>& ids, const PlannedAnswer& answer, const std::string& why) {
   const schedule::Schedule& s = answer.result.schedule;
   apply_charges(ids, answer, why);
-  std::vector<TaskId>& planned = dispatcher_->planned;
-  std::vector<TaskId>& deferred = dispatcher_->deferred;
-  planned.clear();
+  std::vector<TaskId> planned;
   for (const schedule::ScheduledTask& e : s.entries) {
     if (e.task >= ids.size()) continue;  // a charge
     const TaskId& id = ids[e.task];
     TaskRecord& r = book_.at(id);
     // The event log shows every (re)scheduling that moved a task, and why it happened.
     if (r.planned_start != e.start)
-      book_.note(id, "scheduled", Outcome::kScheduled,
+      book_.note(id, EventKind::kScheduled, Outcome::kScheduled,
                  fmt::format("planned start {} ({}: position {} of {})", zone_.format_clock(e.start), why,
                              planned.size() + 1, s.entries.size()));
     r.planned_start = e.start;
     r.planned_end = e.end;
     if (r.dropped_for_now) {
-      book_.note(id, "re-offered", Outcome::kScheduled,
+      book_.note(id, EventKind::kReOffered, Outcome::kScheduled,
                  fmt::format("fits again after its drop: planned start {} ({})", zone_.format_clock(e.start), why));
       r.dropped_for_now.reset();
-      std::erase(deferred, id);
+      dispatcher_->undefer(id);
     }
     planned.push_back(id);  // a task being waited for too: kick() reconsiders it
   }
+  dispatcher_->follow_schedule(std::move(planned));
   for (const schedule::DroppedTask& d : s.dropped) {
     if (d.task >= ids.size()) continue;  // a charge
     const TaskId& id = ids[d.task];
@@ -217,13 +216,13 @@ void Executor::apply_schedule(const std::vector<TaskId>& ids, const PlannedAnswe
                       : d.reason;
     if (r.state != TaskState::kQueued) book_.transition(id, TaskState::kQueued, outcome, reason);
     if (!r.dropped_for_now) {
-      book_.note(id, "dropped for now", outcome, reason);
+      book_.note(id, EventKind::kDroppedForNow, outcome, reason);
       // When its window can no longer be met it is dropped for good, whatever else happens.
       clock_.schedule_at(r.task.window->deadline - r.remaining() + milliseconds(1),
                          [this] { (void)reoffer_deferred(); });
     }
     r.dropped_for_now = std::make_pair(outcome, reason);
-    if (std::find(deferred.begin(), deferred.end(), id) == deferred.end()) deferred.push_back(id);
+    dispatcher_->defer(id);
   }
 }
 

@@ -19,8 +19,8 @@ Executor::Activity Executor::activity() const {
   a.phase = to_string(phase());
   a.current = current_task();
   a.fault = fault_;
-  a.planned = dispatcher_->planned;
-  a.on_demand.assign(dispatcher_->on_demand.begin(), dispatcher_->on_demand.end());
+  a.planned = dispatcher_->planned();
+  a.on_demand.assign(dispatcher_->on_demand().begin(), dispatcher_->on_demand().end());
   return a;
 }
 
@@ -48,14 +48,13 @@ Status Executor::update_task(const TaskId& id, std::optional<TimeWindow> window,
   if (what.empty()) return Status{};
   RONDO_RETURN_IF_ERROR(store::set_task_definition(store_, id, encode(changed)));
   record.task = std::move(changed);
-  book_.note(id, "changed", Outcome::kNone, "changed: " + what);
+  book_.note(id, EventKind::kChanged, Outcome::kNone, "changed: " + what);
   if (record.task.kind == TaskKind::kOnDemand) return Status{};
   // Offered again as a new task, so that a change it no longer fits drops it (for now) with a
   // reason instead of breaking the plan of the others.
-  std::erase(dispatcher_->planned, id);
+  dispatcher_->unplan(id);
   background_book_changed();  // an answer in flight still has the old window or priority
-  const std::vector<TaskId>& later = dispatcher_->deferred;
-  const bool deferred = std::find(later.begin(), later.end(), id) != later.end();
+  const bool deferred = dispatcher_->is_deferred(id);
   if (started_)
     reschedule(deferred ? std::vector<TaskId>{} : std::vector<TaskId>{id}, fmt::format("task {} changed", id));
   if (started_) kick();
@@ -104,12 +103,12 @@ Status Executor::add_routines_now(std::vector<Routine> routines, const store::Re
   }
   if (!valid) {
     const store::RequestTaken refused{taken.id, taken.at, "rejected: " + valid.error().message};
-    book_.note_request(fmt::format("request {}", taken.id), "rejected", Outcome::kInvalidRequest, valid.error().message,
+    book_.note_request(fmt::format("request {}", taken.id), EventKind::kRejected, Outcome::kInvalidRequest, valid.error().message,
                        &refused);
     return valid;
   }
   // Marked taken with what keeps the routines: a kill after this finds them at the restart.
-  RONDO_RETURN_IF_ERROR(book_.take_request(taken, "routines added", Outcome::kNone, why));
+  RONDO_RETURN_IF_ERROR(book_.take_request(taken, EventKind::kRoutinesAdded, Outcome::kNone, why));
   const std::size_t first = routines_.size();
   for (Routine& r : routines) routines_.push_back(std::move(r));
   if (!started_) return Status{};  // start() adds today's instances
@@ -137,7 +136,7 @@ void Executor::set_out_of_service(bool out, bool halt, const std::string& reason
   out_of_service_ = out;
   const std::string why = reason.empty() ? "" : ": " + reason;
   if (!out) {
-    book_.note_robot("back in service", Outcome::kNone, "dispatch resumed" + why);
+    book_.note_robot(EventKind::kBackInService, Outcome::kNone, "dispatch resumed" + why);
     if (started_) {
       reschedule({}, "back in service");
       kick();
@@ -145,20 +144,19 @@ void Executor::set_out_of_service(bool out, bool halt, const std::string& reason
     return;
   }
   book_.note_robot(
-      "out of service", Outcome::kNone,
+      EventKind::kOutOfService, Outcome::kNone,
       fmt::format("dispatch paused{}; {}", why, halt ? "the running task is halted" : "the running task finishes"));
   if (run_ && run_->waiting()) {  // not started yet: back to the head of the queue
     const TaskId id = run_->id();
     end_wait();
     book_.transition(id, TaskState::kQueued, Outcome::kScheduleChanged, "waiting ended: out of service");
-    std::vector<TaskId>& planned = dispatcher_->planned;
-    if (std::find(planned.begin(), planned.end(), id) == planned.end()) planned.insert(planned.begin(), id);
+    dispatcher_->put_first_in_plan(id);
   } else if (run_ && halt) {
     // Keeps its id and progress: requeue_preempted() puts it back in the queue.
     if (interruptible_now())
       preempt_for(Outcome::kInterrupted, "halted: out of service", {});
     else
-      book_.note(run_->id(), "not halted", Outcome::kNone,
+      book_.note(run_->id(), EventKind::kNotHalted, Outcome::kNone,
                  "out of service, but it cannot be interrupted now: it finishes");
   }
   if (started_) kick();

@@ -39,7 +39,7 @@ void NavigateStep::start() {
                                      purpose_ == Purpose::kToEnd ? " (its end place)" : "", from,
                                      duration_text(expected_)));
   } else {
-    ctx_.book.note_robot("departed", Outcome::kDeparted,
+    ctx_.book.note_robot(EventKind::kDeparted, Outcome::kDeparted,
                          fmt::format("to {} ({}) from {}, expected travel {}", to, errand(), from,
                                      duration_text(expected_)));
   }
@@ -136,7 +136,7 @@ void NavigateStep::overran(const std::string& why) {
                                         why, ctx_.map.edge(*edge_).id, duration_text(now - edge_since_)));
     }
     if (!window_watch_)
-      ctx_.book.note(*task_, "overrun", Outcome::kWindowStillOpen,
+      ctx_.book.note(*task_, EventKind::kOverrun, Outcome::kWindowStillOpen,
                      fmt::format("{}; the task can still start in its window, so the journey goes on until {}", why,
                                  ctx_.clock_text(*until)));
     window_watch_ = true;
@@ -242,7 +242,7 @@ void NavigateStep::arrived() {
                                 .offline_expected = offline_expected_, .actual = ctx_.clock.now() - started_,
                                 .arrived = true});
   if (!task_)
-    ctx_.book.note_robot("arrived", Outcome::kArrived,
+    ctx_.book.note_robot(EventKind::kArrived, Outcome::kArrived,
                          fmt::format("at {} ({}) after {}, expected {}", ctx_.map.node(target_).name, errand(),
                                      duration_text(ctx_.clock.now() - started_), duration_text(expected_)));
   end({.status = StepEnd::Status::kDone});

@@ -1,12 +1,11 @@
 #include "rondo/exec/outcome.h"
 
-#include <array>
-#include <utility>
+#include "name_table.h"
 
 namespace rondo::exec {
 namespace {
 
-constexpr std::array<std::pair<Outcome, std::string_view>, 41> kNames{{
+constexpr NameTable<Outcome, 41> kNames{{{
     {Outcome::kNone, ""},
     {Outcome::kAdded, "added"},
     {Outcome::kScheduled, "scheduled"},
@@ -48,28 +47,20 @@ constexpr std::array<std::pair<Outcome, std::string_view>, 41> kNames{{
     {Outcome::kBattery, "battery"},
     {Outcome::kConfirmed, "confirmed"},
     {Outcome::kCharging, "charging"},
-}};
-
-constexpr std::array<Outcome, kNames.size()> kAll = [] {
-  std::array<Outcome, kNames.size()> all{};
-  for (std::size_t i = 0; i < kNames.size(); ++i) all[i] = kNames[i].first;
-  return all;
-}();
+}}};
 
 }  // namespace
 
 std::string_view to_string(Outcome outcome) {
-  for (const auto& [o, name] : kNames)
-    if (o == outcome) return name;
-  return "";
+  return kNames.name(outcome);
 }
 
 std::optional<Outcome> parse_outcome(std::string_view name) {
-  for (const auto& [o, n] : kNames)
-    if (n == name) return o;
-  return std::nullopt;
+  return kNames.parse(name);
 }
 
-std::span<const Outcome> all_outcomes() { return kAll; }
+std::span<const Outcome> all_outcomes() {
+  return kNames.values;
+}
 
 }  // namespace rondo::exec

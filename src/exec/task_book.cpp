@@ -169,45 +169,45 @@ void TaskBook::read_progress(const Json& progress, TaskRecord& r) {
                          b["seen_at"].get<std::string>()};
 }
 
-void TaskBook::note(const TaskId& id, const std::string& event, Outcome outcome, const std::string& reason) {
-  append({.time = clock_.now(), .task_id = id, .event = event, .code = std::string(to_string(outcome)), .reason = reason});
+void TaskBook::note(const TaskId& id, EventKind event, Outcome outcome, const std::string& reason) {
+  append({.time = clock_.now(), .task_id = id, .event = std::string(to_string(event)), .code = std::string(to_string(outcome)), .reason = reason});
 }
 
-void TaskBook::note_robot(const std::string& event, Outcome outcome, const std::string& reason) {
+void TaskBook::note_robot(EventKind event, Outcome outcome, const std::string& reason) {
   append({.time = clock_.now(),
           .subject = store::Subject::kRobot,
           .about = robot_,
-          .event = event,
+          .event = std::string(to_string(event)),
           .code = std::string(to_string(outcome)),
           .reason = reason});
 }
 
-void TaskBook::note_schedule(const std::string& event, Outcome outcome, const std::string& reason) {
+void TaskBook::note_schedule(EventKind event, Outcome outcome, const std::string& reason) {
   append({.time = clock_.now(),
           .subject = store::Subject::kSchedule,
           .about = "schedule",
-          .event = event,
+          .event = std::string(to_string(event)),
           .code = std::string(to_string(outcome)),
           .reason = reason});
 }
 
-void TaskBook::note_request(const std::string& about, const std::string& event, Outcome outcome,
+void TaskBook::note_request(const std::string& about, EventKind event, Outcome outcome,
                             const std::string& reason, const store::RequestTaken* taken) {
   append({.time = clock_.now(),
           .subject = store::Subject::kRequest,
           .about = about,
-          .event = event,
+          .event = std::string(to_string(event)),
           .code = std::string(to_string(outcome)),
           .reason = reason},
          taken);
 }
 
-Status TaskBook::take_request(const store::RequestTaken& taken, const std::string& event, Outcome outcome,
+Status TaskBook::take_request(const store::RequestTaken& taken, EventKind event, Outcome outcome,
                               const std::string& reason) {
   const store::Event e{.time = clock_.now(),
                        .subject = store::Subject::kRequest,
                        .about = fmt::format("request {}", taken.id),
-                       .event = event,
+                       .event = std::string(to_string(event)),
                        .code = std::string(to_string(outcome)),
                        .reason = reason};
   RONDO_RETURN_IF_ERROR(store::take_request(store_, taken, &e));

@@ -111,7 +111,7 @@ void TaskRun::overrun(Outcome outcome, const std::string& reason) {
   if (finished_) return;
   if (!interruptible()) {
     if (!overrun_held_)
-      ctx_.book.note(id_, "overrun", Outcome::kOverrunHeld,
+      ctx_.book.note(id_, EventKind::kOverrun, Outcome::kOverrunHeld,
                      reason + "; the task is not interruptible now, so it goes on");
     overrun_held_ = std::make_pair(outcome, reason);
     return;

@@ -88,7 +88,7 @@ TEST(ExecutorScenario, ANonInterruptibleTaskIsNotPreemptedTheOnDemandTaskRunsRig
   ASSERT_NO_FATAL_FAILURE(on_demand_while_a_acts(s, /*a_interruptible=*/false));
 
   EXPECT_EQ(s.final_state("A"), "succeeded");
-  EXPECT_THAT(s.reason_of("OD", "waiting"), HasSubstr("A cannot be interrupted now"));
+  EXPECT_THAT(s.reason_of("OD", "waits for the running task"), HasSubstr("A cannot be interrupted now"));
   EXPECT_EQ(s.final_state("OD"), "succeeded");
   EXPECT_EQ(s.final_state("B"), "succeeded");
   const auto done = s.order_of("succeeded");

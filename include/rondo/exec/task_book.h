@@ -8,8 +8,8 @@
 //   TaskBook book(store, clock);
 //   Result<std::vector<TaskId>> ids = book.add(tasks, "api");        // stored all or nothing
 //   book.transition("t1", TaskState::kFailed, Outcome::kTooLate, "too late: ...");
-//   book.note("t1", "scheduled", Outcome::kScheduled, "planned start 09:10 (new tasks)");
-//   book.note_robot("fault", Outcome::kRobotFault, "lost connection");
+//   book.note("t1", EventKind::kScheduled, Outcome::kScheduled, "planned start 09:10 (new tasks)");
+//   book.note_robot(EventKind::kFault, Outcome::kRobotFault, "lost connection");
 #pragma once
 
 #include <algorithm>
@@ -25,6 +25,7 @@
 #include "rondo/core/task.h"
 #include "rondo/core/timezone.h"
 #include "rondo/exec/clock.h"
+#include "rondo/exec/event_kind.h"
 #include "rondo/exec/outcome.h"
 #include "rondo/store/events.h"
 #include "rondo/store/read_back.h"
@@ -157,16 +158,16 @@ class TaskBook {
   static Json progress_json(const TaskRecord& r);
   static void read_progress(const Json& progress, TaskRecord& r);
   // An event of a task that is not a change of its state.
-  void note(const TaskId& id, const std::string& event, Outcome outcome, const std::string& reason);
+  void note(const TaskId& id, EventKind event, Outcome outcome, const std::string& reason);
   // Events about the robot, a request (`about`: its id) or the schedule.
-  void note_robot(const std::string& event, Outcome outcome, const std::string& reason);
-  void note_schedule(const std::string& event, Outcome outcome, const std::string& reason);
+  void note_robot(EventKind event, Outcome outcome, const std::string& reason);
+  void note_schedule(EventKind event, Outcome outcome, const std::string& reason);
   // With `taken`, the queued request is marked taken in the event's transaction.
-  void note_request(const std::string& about, const std::string& event, Outcome outcome, const std::string& reason,
+  void note_request(const std::string& about, EventKind event, Outcome outcome, const std::string& reason,
                     const store::RequestTaken* taken = nullptr);
   // The request's event and its mark (with its meta entries) in one transaction; the store's error,
   // with nothing written, when it cannot be taken (kConflict: taken already).
-  Status take_request(const store::RequestTaken& taken, const std::string& event, Outcome outcome,
+  Status take_request(const store::RequestTaken& taken, EventKind event, Outcome outcome,
                       const std::string& reason);
 
   // How many events were written that are not final states, by event name and code (for the
