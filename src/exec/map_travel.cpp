@@ -93,21 +93,21 @@ E& TravelCache::touch(E& entry, WorkingSets& sets) const {
   return entry;
 }
 
-const TravelCache::Route& TravelCache::route(map::NodeIndex from, Time slot_start) const {
+const TravelCache::Arrivals& TravelCache::arrivals(map::NodeIndex from, Time slot_start) const {
   const auto key = std::make_pair(slot_start, from);
-  auto it = routes_.find(key);
-  if (it == routes_.end()) {
-    drop_behind(routes_, slot_start);
-    it = routes_.emplace(key, Route{}).first;
+  auto it = arrivals_.find(key);
+  if (it == arrivals_.end()) {
+    drop_behind(arrivals_, slot_start);
+    it = arrivals_.emplace(key, Arrivals{}).first;
   }
-  Route& r = it->second;
+  Arrivals& r = it->second;
   // Any change may move an arrival (the edges are read in many slots): searched again.
   if (r.arrival_seconds.empty() || r.version != models_->version()) {
     ++route_searches_;
     r.arrival_seconds = planner_->time_dependent_arrivals(from, slot_start);
     r.version = models_->version();
   }
-  return touch(r, recent_route_sets_);
+  return touch(r, recent_arrival_sets_);
 }
 
 TravelCache::Entry& TravelCache::entry(map::NodeIndex to, Time slot_start) const {
@@ -134,7 +134,7 @@ TravelCache::Entry& TravelCache::entry(map::NodeIndex to, Time slot_start) const
 void TravelCache::begin_problem() const {
   ++generation_;
   recent_sets_[generation_ % kRecentGenerations] = 0;
-  recent_route_sets_[generation_ % kRecentGenerations] = 0;
+  recent_arrival_sets_[generation_ % kRecentGenerations] = 0;
   evict_to_bound();
 }
 
@@ -142,14 +142,14 @@ void TravelCache::evict_to_bound() const {
   // A new generation has read nothing yet, and the previous one's entries sort last, within the
   // bound (>= its size).
   evicted_ += evict_least_recent(policies_, count_bound(recent_sets_));
-  evict_least_recent(routes_, count_bound(recent_route_sets_));
+  evict_least_recent(arrivals_, count_bound(recent_arrival_sets_));
 }
 
 Duration TravelCache::at_slot(map::NodeIndex from, map::NodeIndex to, Time slot_start) const {
   if (from == to) return Duration{0};
   const double slot_seconds = policy(to, slot_start).expected_seconds(from);
   if (!route_threshold_) return to_duration(slot_seconds);
-  const double route_seconds = route(from, slot_start).arrival_seconds[to];
+  const double route_seconds = arrivals(from, slot_start).arrival_seconds[to];
   return to_duration(along_the_route(route_seconds, slot_seconds, *route_threshold_) ? route_seconds : slot_seconds);
 }
 

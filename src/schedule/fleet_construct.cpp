@@ -55,7 +55,7 @@ void FleetSearch::regret(FleetSolution& s, std::vector<int> pending, bool allow_
   // kind's representative is filled).
   std::vector<Insertion> cache(pending.size() * routes);
   auto fill_route = [&](int r) {
-    const Route& route = s.routes[r];
+    const Tour& route = s.routes[r];
     for (std::size_t i = 0; i < pending.size(); ++i)
       cache[i * routes + r] = pending[i] < 0 ? Insertion{}
                                              : routes_.best_insertion(route, r, pending[i], s.route_of, allow_empty,

@@ -18,7 +18,7 @@ bool relocate_pass(const FleetModel& m, const RouteOps& routes, const SolutionOp
   for (int q = 0; q < static_cast<int>(m.requests().size()); ++q) {
     const int r = s.route_of[m.requests()[q].first];
     if (r < 0) continue;
-    const Route saved = s.routes[r];
+    const Tour saved = s.routes[r];
     const std::vector<int> saved_unassigned = s.unassigned;
     sol.remove(s, q);
     const Insertion ins = sol.best_insertion(s, q, open_robots);
@@ -43,8 +43,8 @@ class TwoOptStar {
 
   // The first improving tail exchange between routes a and b, applied; true when one was.
   bool improve(FleetSolution& s, int a, int b) const {
-    Route& ra = s.routes[a];
-    Route& rb = s.routes[b];
+    Tour& ra = s.routes[a];
+    Tour& rb = s.routes[b];
     const int na = static_cast<int>(ra.seq.size()), nb = static_cast<int>(rb.seq.size());
     for (int i = -1; i < na; ++i)
       for (int j = -1; j < nb; ++j) {
@@ -69,17 +69,17 @@ class TwoOptStar {
   }
 
  private:
-  std::size_t here(const Route& r, int i) const {
+  std::size_t here(const Tour& r, int i) const {
     return i < 0 ? m_.robot_start(r.robot) : m_.end_location(r.seq[i]);
   }
   // Distance from position i to what follows it (the next task, the dock, or nothing).
-  double arc(const Route& r, int i) const {
+  double arc(const Tour& r, int i) const {
     const int n = static_cast<int>(r.seq.size());
     if (i + 1 < n) return m_.distance(here(r, i), m_.start_location(r.seq[i + 1]));
     return m_.has_end(r.robot) ? m_.distance(here(r, i), m_.robot_end(r.robot)) : 0.0;
   }
   // Distance from position i of `head` to the tail of `tail` after j.
-  double cross(const Route& head, int i, const Route& tail, int j) const {
+  double cross(const Tour& head, int i, const Tour& tail, int j) const {
     const int n = static_cast<int>(tail.seq.size());
     if (j + 1 < n) return m_.distance(here(head, i), m_.start_location(tail.seq[j + 1]));
     if (i < 0) return 0.0;  // the head's robot ends up unused
@@ -92,7 +92,7 @@ class TwoOptStar {
     return gain;
   }
   // Can head's robot run head[0..i] then tail[j+1..]?
-  bool fits(const Route& head, int i, const Route& tail, int j) const {
+  bool fits(const Tour& head, int i, const Tour& tail, int j) const {
     const int n = static_cast<int>(tail.seq.size());
     const std::int64_t t = i < 0 ? m_.free_from(head.robot) : head.end[i];
     const std::int64_t load = head.load_before[i + 1] + (tail.load_before[n] - tail.load_before[j + 1]);

@@ -4,7 +4,7 @@
 
 namespace rondo::schedule::detail {
 
-void RouteOps::update(Route& r) const {
+void RouteOps::update(Tour& r) const {
   const std::size_t n = r.seq.size();
   r.start.resize(n);
   r.end.resize(n);
@@ -59,15 +59,15 @@ void RouteOps::update(Route& r) const {
   r.cost = m_.hierarchical() ? r.distance + (n > 0 ? kVehicleCost : 0.0) : sum;
 }
 
-std::int64_t RouteOps::dock_travel(const Route& r, std::size_t from, std::int64_t depart) const {
+std::int64_t RouteOps::dock_travel(const Tour& r, std::size_t from, std::int64_t depart) const {
   return m_.travel(r.robot, from, m_.robot_end(r.robot), depart);
 }
 
-std::size_t RouteOps::prev_location(const Route& r, int pos) const {
+std::size_t RouteOps::prev_location(const Tour& r, int pos) const {
   return pos == 0 ? m_.robot_start(r.robot) : m_.end_location(r.seq[pos - 1]);
 }
 
-RouteOps::Walk RouteOps::walk_at(const Route& r, int pos) const {
+RouteOps::Walk RouteOps::walk_at(const Tour& r, int pos) const {
   Walk w;
   w.t = pos == 0 ? m_.free_from(r.robot) : r.end[pos - 1];
   w.loc = prev_location(r, pos);
@@ -75,7 +75,7 @@ RouteOps::Walk RouteOps::walk_at(const Route& r, int pos) const {
   return w;
 }
 
-bool RouteOps::step_new(const Route& r, int task, Walk& w) const {
+bool RouteOps::step_new(const Tour& r, int task, Walk& w) const {
   const std::int64_t s = std::max(w.t + m_.travel(r.robot, w.loc, m_.start_location(task), w.t), m_.release(task));
   if (s > m_.latest(task)) return false;
   const std::int64_t e = s + m_.duration(task);
@@ -89,7 +89,7 @@ bool RouteOps::step_new(const Route& r, int task, Walk& w) const {
   return true;
 }
 
-bool RouteOps::step_old(const Route& r, int k, std::int64_t extra_load, Walk& w) const {
+bool RouteOps::step_old(const Tour& r, int k, std::int64_t extra_load, Walk& w) const {
   const int x = r.seq[k];
   const std::int64_t s = std::max(w.t + m_.travel(r.robot, w.loc, m_.start_location(x), w.t), m_.release(x));
   if (s > m_.latest(x)) return false;
@@ -105,7 +105,7 @@ bool RouteOps::step_old(const Route& r, int k, std::int64_t extra_load, Walk& w)
 }
 
 // From position k on (after the inserted tasks): feasible, and the change of the sum of ends.
-bool RouteOps::finish(const Route& r, int k, std::int64_t extra_load, Walk w, double& delta) const {
+bool RouteOps::finish(const Tour& r, int k, std::int64_t extra_load, Walk w, double& delta) const {
   const int n = static_cast<int>(r.seq.size());
   const bool load_ok_rest = [&] { return extra_load <= 0; }();
   for (; k < n; ++k) {
@@ -136,7 +136,7 @@ bool RouteOps::finish(const Route& r, int k, std::int64_t extra_load, Walk w, do
 
 // The change of the sum of ends (seconds) when start k moves later by `delay`: every later start
 // moves by what the waiting before it has not absorbed (static travel).
-double RouteOps::shifted_ends(const Route& r, int k, std::int64_t delay) const {
+double RouteOps::shifted_ends(const Tour& r, int k, std::int64_t delay) const {
   const auto& p = r.wait_sum;
   // The last position j >= k that the delay still reaches: p[j] - p[k] < delay.
   const auto last = std::lower_bound(p.begin() + k, p.end(), p[k] + delay) - p.begin() - 1;
@@ -145,7 +145,7 @@ double RouteOps::shifted_ends(const Route& r, int k, std::int64_t delay) const {
   return static_cast<double>(moved) / 1000.0;
 }
 
-double RouteOps::single_distance(const Route& r, int pos, int task) const {
+double RouteOps::single_distance(const Tour& r, int pos, int task) const {
   const int n = static_cast<int>(r.seq.size());
   const std::size_t prev = prev_location(r, pos);
   double d = m_.distance(prev, m_.start_location(task));
@@ -156,7 +156,7 @@ double RouteOps::single_distance(const Route& r, int pos, int task) const {
   return d;
 }
 
-double RouteOps::pair_distance(const Route& r, int pos, int drop_pos, int a, int b) const {
+double RouteOps::pair_distance(const Tour& r, int pos, int drop_pos, int a, int b) const {
   if (drop_pos > pos) return single_distance(r, pos, a) + single_distance(r, drop_pos, b);
   const int n = static_cast<int>(r.seq.size());
   const std::size_t prev = prev_location(r, pos);
@@ -169,7 +169,7 @@ double RouteOps::pair_distance(const Route& r, int pos, int drop_pos, int a, int
 }
 
 // No item of this look on board when arriving at `pos`.
-bool RouteOps::looks_clear(const Route& r, int pos, int, int look) const {
+bool RouteOps::looks_clear(const Tour& r, int pos, int, int look) const {
   int on_board = 0;
   for (int k = 0; k < pos; ++k)
     if (m_.look(r.seq[k]) == look) on_board += m_.load(r.seq[k]) > 0 ? 1 : -1;
@@ -177,7 +177,7 @@ bool RouteOps::looks_clear(const Route& r, int pos, int, int look) const {
 }
 
 // Positions [lo, hi] where `task` may go given its `after` links; lo > hi when none.
-std::pair<int, int> RouteOps::allowed_range(const Route& r, int task, const std::vector<int>& route_of, int index) const {
+std::pair<int, int> RouteOps::allowed_range(const Tour& r, int task, const std::vector<int>& route_of, int index) const {
   int lo = 0, hi = static_cast<int>(r.seq.size());
   auto position = [&](int x) {
     return static_cast<int>(std::find(r.seq.begin(), r.seq.end(), x) - r.seq.begin());
@@ -195,7 +195,7 @@ std::pair<int, int> RouteOps::allowed_range(const Route& r, int task, const std:
   return {lo, hi};
 }
 
-Insertion RouteOps::best_insertion(const Route& r, int index, int q, const std::vector<int>& route_of, bool allow_empty,
+Insertion RouteOps::best_insertion(const Tour& r, int index, int q, const std::vector<int>& route_of, bool allow_empty,
                                    double open_cost, double blink, std::mt19937_64* rng) const {
   Insertion best;
   if (!allow_empty && r.empty()) return best;
@@ -253,14 +253,14 @@ Insertion RouteOps::best_insertion(const Route& r, int index, int q, const std::
   return best;
 }
 
-void RouteOps::insert(Route& r, const Insertion& ins, int q) const {
+void RouteOps::insert(Tour& r, const Insertion& ins, int q) const {
   const Request& req = m_.requests()[q];
   if (req.drop >= 0) r.seq.insert(r.seq.begin() + ins.drop_pos, req.drop);
   r.seq.insert(r.seq.begin() + ins.pos, req.first);
   update(r);
 }
 
-void RouteOps::remove(Route& r, int q) const {
+void RouteOps::remove(Tour& r, int q) const {
   const Request& req = m_.requests()[q];
   std::erase_if(r.seq, [&](int x) { return x == req.first || x == req.drop; });
   update(r);

@@ -23,7 +23,7 @@ inline constexpr double kNoInsertion = std::numeric_limits<double>::infinity();
 // saving, below a drop (FleetCosts::drop_seconds).
 inline constexpr double kVehicleCost = 1e6;
 
-struct Route {
+struct Tour {
   int robot = 0;
   std::vector<int> seq{};
   std::vector<std::int64_t> start{}, end{};
@@ -53,16 +53,16 @@ class RouteOps {
   explicit RouteOps(const FleetModel& model) : m_(model) {}
 
   // Recomputes times, latest starts, loads, distance and cost from `seq`.
-  void update(Route& r) const;
+  void update(Tour& r) const;
   // The cheapest insertion of request `q` into route r (index `index`); positions are limited to
   // those the `after` links allow, given `route_of` (task -> route index, -1 unplanned). With
   // `blink` > 0, each position is skipped with that probability (SISR's blinks).
   // `open_cost`: what starting an empty route adds (the objective's own vehicle price, or 0).
-  Insertion best_insertion(const Route& r, int index, int q, const std::vector<int>& route_of, bool allow_empty,
+  Insertion best_insertion(const Tour& r, int index, int q, const std::vector<int>& route_of, bool allow_empty,
                            double open_cost, double blink = 0, std::mt19937_64* rng = nullptr) const;
-  void insert(Route& r, const Insertion& ins, int q) const;
+  void insert(Tour& r, const Insertion& ins, int q) const;
   // Removes the tasks of request q (they must be in r).
-  void remove(Route& r, int q) const;
+  void remove(Tour& r, int q) const;
 
  private:
   struct Walk {
@@ -72,17 +72,17 @@ class RouteOps {
     double delta = 0;        // change of the sum of ends and lateness so far (kSumOfEnds)
     std::int64_t start = 0;  // start of the last task timed
   };
-  bool step_new(const Route& r, int task, Walk& w) const;
-  bool step_old(const Route& r, int k, std::int64_t extra_load, Walk& w) const;
-  bool finish(const Route& r, int k, std::int64_t extra_load, Walk w, double& delta) const;
-  double shifted_ends(const Route& r, int k, std::int64_t delay) const;
-  Walk walk_at(const Route& r, int pos) const;
-  double single_distance(const Route& r, int pos, int task) const;
-  double pair_distance(const Route& r, int pos, int drop_pos, int a, int b) const;
-  bool looks_clear(const Route& r, int pos, int drop_pos, int look) const;
-  std::pair<int, int> allowed_range(const Route& r, int task, const std::vector<int>& route_of, int index) const;
-  std::size_t prev_location(const Route& r, int pos) const;
-  std::int64_t dock_travel(const Route& r, std::size_t from, std::int64_t depart) const;
+  bool step_new(const Tour& r, int task, Walk& w) const;
+  bool step_old(const Tour& r, int k, std::int64_t extra_load, Walk& w) const;
+  bool finish(const Tour& r, int k, std::int64_t extra_load, Walk w, double& delta) const;
+  double shifted_ends(const Tour& r, int k, std::int64_t delay) const;
+  Walk walk_at(const Tour& r, int pos) const;
+  double single_distance(const Tour& r, int pos, int task) const;
+  double pair_distance(const Tour& r, int pos, int drop_pos, int a, int b) const;
+  bool looks_clear(const Tour& r, int pos, int drop_pos, int look) const;
+  std::pair<int, int> allowed_range(const Tour& r, int task, const std::vector<int>& route_of, int index) const;
+  std::size_t prev_location(const Tour& r, int pos) const;
+  std::int64_t dock_travel(const Tour& r, std::size_t from, std::int64_t depart) const;
 
   const FleetModel& m_;
 };

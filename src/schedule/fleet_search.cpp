@@ -27,7 +27,7 @@ void FleetSearch::report(const FleetSolution& s, std::size_t iteration) const {
   if (!options_.on_progress) return;
   FleetProgress p{.vehicles = static_cast<std::size_t>(s.vehicles()), .objective = s.cost,
                   .unplanned = s.unassigned.size(), .iteration = iteration};
-  for (const Route& r : s.routes) p.distance += r.distance;
+  for (const Tour& r : s.routes) p.distance += r.distance;
   options_.on_progress(p);
 }
 
@@ -75,7 +75,7 @@ bool FleetSearch::minimise_routes(FleetSolution& best, int rank) {
   std::vector<double> weight(m_.requests().size(), 1.0);
   auto pool_cost = [&](const FleetSolution& s) {
     double c = 0;
-    for (const Route& r : s.routes) c += r.cost;
+    for (const Tour& r : s.routes) c += r.cost;
     for (int q : s.unassigned) c += kPoolWeight * weight[q];
     return c;
   };
@@ -121,7 +121,7 @@ void FleetSearch::anneal(FleetSolution& best) {
   auto scale = [&](const FleetSolution& s) {
     double total = 0;
     int planned = 0;
-    for (const Route& r : s.routes) {
+    for (const Tour& r : s.routes) {
       if (r.empty()) continue;
       planned += static_cast<int>(r.seq.size());
       total += m_.hierarchical() ? r.distance : static_cast<double>(r.end.back() - m_.free_from(r.robot)) / 1000.0;

@@ -16,7 +16,7 @@ class FleetSearch {
 
   // Regret-2 insertion of every unassigned request (empty robots allowed).
   void construct(FleetSolution& s);
-  // Route minimisation (hierarchical objective), then annealing until `stop`; returns the best.
+  // Tour minimisation (hierarchical objective), then annealing until `stop`; returns the best.
   FleetSolution improve(FleetSolution s);
   // A few ruin-and-recreate rounds around one request (insert()'s repair); returns the best.
   FleetSolution repair_around(FleetSolution s, int request, std::size_t iterations);

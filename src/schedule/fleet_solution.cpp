@@ -40,7 +40,7 @@ double SolutionOps::drop_cost(int q) const {
 
 double SolutionOps::cost(const FleetSolution& s) const {
   double c = 0;
-  for (const Route& r : s.routes) c += r.cost;
+  for (const Tour& r : s.routes) c += r.cost;
   for (int q : s.unassigned) c += drop_cost(q);
   if (m_.has_after())
     for (int i = 0; i < m_.tasks(); ++i) {
@@ -55,7 +55,7 @@ double SolutionOps::cost(const FleetSolution& s) const {
 }
 
 void SolutionOps::insert(FleetSolution& s, const Insertion& ins, int q) const {
-  Route& r = s.routes[ins.route];
+  Tour& r = s.routes[ins.route];
   if (r.empty() && s.open_budget > 0) --s.open_budget;
   ops_.insert(r, ins, q);
   const Request& req = m_.requests()[q];
@@ -85,7 +85,7 @@ Insertion SolutionOps::best_insertion(const FleetSolution& s, int q, bool allow_
   std::vector<char> tried_kind;  // empty robots of one kind give the same answer: try one
   if (allow_empty) tried_kind.assign(s.routes.size(), 0);
   for (int r = 0; r < static_cast<int>(s.routes.size()); ++r) {
-    const Route& route = s.routes[r];
+    const Tour& route = s.routes[r];
     if (!s.focus.empty() && !s.focus[r]) continue;
     if (route.empty()) {
       if (!allow_empty || tried_kind[m_.kind(r)]) continue;

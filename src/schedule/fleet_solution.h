@@ -9,7 +9,7 @@
 namespace rondo::schedule::detail {
 
 struct FleetSolution {
-  std::vector<Route> routes{};
+  std::vector<Tour> routes{};
   std::vector<int> route_of{};    // task -> route index, -1 when unplanned
   std::vector<int> unassigned{};  // requests
   double cost = 0;
@@ -21,7 +21,7 @@ struct FleetSolution {
 
   int vehicles() const {
     int v = 0;
-    for (const Route& r : routes) v += r.empty() ? 0 : 1;
+    for (const Tour& r : routes) v += r.empty() ? 0 : 1;
     return v;
   }
 };

@@ -45,14 +45,14 @@ class RequestMetrics {
   std::string prometheus() const;
 
  private:
-  struct Route {
+  struct PathMetrics {
     std::map<int, long> by_status;
     double seconds = 0;
     long count = 0;
     std::vector<long> buckets;  // cumulative counts at kBounds
   };
   mutable std::mutex mutex_;
-  std::map<std::string, Route> routes_;
+  std::map<std::string, PathMetrics> routes_;
 };
 
 // Wakes the event streams when something may have been committed: the clock's thread tells after
@@ -117,7 +117,7 @@ struct Api {
 };
 
 using Handler = std::function<Reply(Api&, const httplib::Request&)>;
-struct Route {
+struct Endpoint {
   std::string method;  // GET, POST, PATCH, DELETE
   std::string path;    // OpenAPI form: /api/v1/tasks/{id}
   bool write = false;  // needs the token when there is one
@@ -125,11 +125,11 @@ struct Route {
   bool stream = false;  // the event stream: answered by event_stream() itself
 };
 
-void add_task_routes(std::vector<Route>& routes);
-void add_command_routes(std::vector<Route>& routes);  // commands in words (rondo::lang)
-void add_robot_routes(std::vector<Route>& routes);
-void add_meta_routes(std::vector<Route>& routes);  // health, metrics, OpenAPI
-void add_dashboard_routes(std::vector<Route>& routes);
+void add_task_endpoints(std::vector<Endpoint>& routes);
+void add_command_endpoints(std::vector<Endpoint>& routes);  // commands in words (rondo::lang)
+void add_robot_endpoints(std::vector<Endpoint>& routes);
+void add_meta_endpoints(std::vector<Endpoint>& routes);  // health, metrics, OpenAPI
+void add_dashboard_endpoints(std::vector<Endpoint>& routes);
 
 // On the clock's thread: adds the routines to the running executor and stores each before the
 // answer (201 with the routines, or the first error; robot_routes.cpp). POST /api/v1/routines

@@ -94,7 +94,7 @@ Reply command(Api& api, const httplib::Request& req) {
 
 }  // namespace
 
-void add_command_routes(std::vector<Route>& routes) {
+void add_command_endpoints(std::vector<Endpoint>& routes) {
   routes.push_back({"POST", "/api/v1/commands", true, command});
 }
 

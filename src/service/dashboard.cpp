@@ -24,7 +24,7 @@ Handler file_handler(const std::string& name) {
 
 }  // namespace
 
-void add_dashboard_routes(std::vector<Route>& routes) {
+void add_dashboard_endpoints(std::vector<Endpoint>& routes) {
   routes.push_back({"GET", "/", false, file_handler("index.html")});
   routes.push_back({"GET", "/dashboard.js", false, file_handler("dashboard.js")});
   routes.push_back({"GET", "/dashboard.css", false, file_handler("dashboard.css")});

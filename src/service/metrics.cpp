@@ -28,7 +28,7 @@ std::string label(const std::string& text) {
 
 void RequestMetrics::record(const std::string& route, int status, double seconds) {
   std::lock_guard lock(mutex_);
-  Route& r = routes_[route];
+  PathMetrics& r = routes_[route];
   if (r.buckets.empty()) r.buckets.assign(kBounds.size(), 0);
   ++r.by_status[status];
   ++r.count;

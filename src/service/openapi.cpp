@@ -180,7 +180,7 @@ std::string openapi_document() {
   return document().dump(2) + "\n";
 }
 
-void add_meta_routes(std::vector<Route>& routes) {
+void add_meta_endpoints(std::vector<Endpoint>& routes) {
   routes.push_back({"GET", "/healthz", false, health});
   routes.push_back({"GET", "/metrics", false, [](Api& api, const httplib::Request&) { return metrics_reply(api); }});
   routes.push_back({"GET", "/api/v1/openapi.json", false, openapi});

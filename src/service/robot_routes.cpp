@@ -277,7 +277,7 @@ Reply set_service(Api& api, const httplib::Request& req, bool out) {
 
 }  // namespace
 
-void add_robot_routes(std::vector<Route>& routes) {
+void add_robot_endpoints(std::vector<Endpoint>& routes) {
   routes.push_back({"GET", "/api/v1/robot", false, robot});
   routes.push_back({"GET", "/api/v1/map", false, map_view});
   routes.push_back({"GET", "/api/v1/schedule", false, schedule});

@@ -131,7 +131,7 @@ struct Server::Impl {
   Impl(ServiceContext c, ServerOptions o) : api{std::move(c), std::move(o), {}, {false}, {0}, {0}} {}
   Api api;
   httplib::Server http;
-  std::vector<Route> routes;
+  std::vector<Endpoint> endpoints;
   int port = 0;
   std::vector<std::string> hosts;  // accepted Host header values
 
@@ -142,10 +142,10 @@ struct Server::Impl {
       if (host == h) return true;
     return false;
   }
-  void add(const Route& route);
+  void add(const Endpoint& route);
 };
 
-void Server::Impl::add(const Route& route) {
+void Server::Impl::add(const Endpoint& route) {
   const std::string name = route.method + " " + route.path;
   httplib::Server::Handler handler;
   if (route.stream) {
@@ -177,12 +177,12 @@ void Server::Impl::add(const Route& route) {
 
 Server::Server(ServiceContext context, ServerOptions options)
     : impl_(std::make_unique<Impl>(std::move(context), std::move(options))) {
-  add_meta_routes(impl_->routes);
-  add_task_routes(impl_->routes);
-  add_command_routes(impl_->routes);
-  add_robot_routes(impl_->routes);
-  add_dashboard_routes(impl_->routes);
-  for (const Route& r : impl_->routes) impl_->add(r);
+  add_meta_endpoints(impl_->endpoints);
+  add_task_endpoints(impl_->endpoints);
+  add_command_endpoints(impl_->endpoints);
+  add_robot_endpoints(impl_->endpoints);
+  add_dashboard_endpoints(impl_->endpoints);
+  for (const Endpoint& r : impl_->endpoints) impl_->add(r);
   Impl& im = *impl_;
   const ServerOptions& o = im.api.options;
   // Threads started as connections need them and ended when idle, up to o.threads (http_pool.h).
@@ -279,9 +279,9 @@ void Server::stop() {
   impl_->http.stop();
 }
 
-std::vector<RouteInfo> Server::routes() const {
-  std::vector<RouteInfo> out;
-  for (const Route& r : impl_->routes) out.push_back({r.method, r.path});
+std::vector<EndpointInfo> Server::endpoints() const {
+  std::vector<EndpointInfo> out;
+  for (const Endpoint& r : impl_->endpoints) out.push_back({r.method, r.path});
   return out;
 }
 

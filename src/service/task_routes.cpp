@@ -253,7 +253,7 @@ Reply change(Api& api, const httplib::Request& req) {
 
 }  // namespace
 
-void add_task_routes(std::vector<Route>& routes) {
+void add_task_endpoints(std::vector<Endpoint>& routes) {
   routes.push_back({"POST", "/api/v1/tasks", true, submit});
   routes.push_back({"GET", "/api/v1/tasks", false, list});
   routes.push_back({"GET", "/api/v1/tasks/{id}", false, one});

@@ -5,20 +5,6 @@
 
 namespace rondo::vda5050 {
 
-const char* to_string(EdgeOutcome o) {
-  switch (o) {
-    case EdgeOutcome::kSucceeded:
-      return "succeeded";
-    case EdgeOutcome::kFailed:
-      return "failed";
-    case EdgeOutcome::kCancelled:
-      return "cancelled";
-    case EdgeOutcome::kRobotFault:
-      return "robot fault";
-  }
-  return "?";
-}
-
 void ProgressTracker::order_sent(const Order& order, Time t) {
   if (order.nodes.empty()) return;
   const std::int64_t first = order.nodes.front().sequence_id;

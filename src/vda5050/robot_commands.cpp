@@ -13,20 +13,6 @@
 namespace rondo::vda5050 {
 namespace {
 
-exec::EdgeOutcome to_exec(EdgeOutcome o) {
-  switch (o) {
-    case EdgeOutcome::kSucceeded:
-      return exec::EdgeOutcome::kSucceeded;
-    case EdgeOutcome::kFailed:
-      return exec::EdgeOutcome::kFailed;
-    case EdgeOutcome::kCancelled:
-      return exec::EdgeOutcome::kCancelled;
-    case EdgeOutcome::kRobotFault:
-      return exec::EdgeOutcome::kRobotFault;
-  }
-  return exec::EdgeOutcome::kRobotFault;
-}
-
 // Beyond this distance from its first node, a new order widens the node's deviation range to
 // take the vehicle where it stands (e.g. stopped in the middle of an edge by a cancel).
 constexpr double kOnNode = 0.25;  // metres
@@ -182,7 +168,7 @@ void Vda5050Robot::Impl::handle(const ProgressEvent& event) {
     auto* d = std::get_if<DriveJob>(&job);
     if (d == nullptr || d->committed[d->next] != *e) return;  // the vehicle went on while rondo was not there
     exec::EdgeAttempt x{
-        .edge = *e, .start = a.start, .duration = a.duration, .outcome = to_exec(a.outcome), .message = ""};
+        .edge = *e, .start = a.start, .duration = a.duration, .outcome = a.outcome, .message = ""};
     if (a.outcome == EdgeOutcome::kSucceeded && !a.timed) {
       // Passed with others between two states: where it lies in time is unknown, not learning data.
       x.outcome = exec::EdgeOutcome::kRobotFault;

@@ -67,7 +67,7 @@ TEST(TravelAlongTheRoute, TheDepartureSlotOrTheRouteByTheThreshold) {
     EXPECT_EQ(cache.at_slot(kA, kC, kDepart), c.expected) << c.name;
     EXPECT_EQ(cache.travel(kA, kC, kDepart), c.expected) << c.name;
     EXPECT_LE(cache.lower_bound(kA, kC), cache.travel(kA, kC, kDepart)) << c.name;
-    EXPECT_EQ(cache.route_count() > 0, c.threshold.has_value()) << c.name;
+    EXPECT_EQ(cache.arrivals_count() > 0, c.threshold.has_value()) << c.name;
   }
 }
 
@@ -84,7 +84,7 @@ TEST(TravelAlongTheRoute, IsSearchedAgainWhenTheModelsMoveOnAndKeptForADayBehind
   EXPECT_EQ(cache.route_searches(), 2U);
   // Three days of departures from one place: what lies more than a day behind is dropped.
   for (Time t = kDepart; t < kDepart + hours(72); t += minutes(15)) (void)cache.at_slot(kA, kC, t);
-  EXPECT_LE(cache.route_count(), 24U * 4U + 1U);
+  EXPECT_LE(cache.arrivals_count(), 24U * 4U + 1U);
 }
 
 RC_GTEST_PROP(TravelAlongTheRoute, IsFifoAndAboveTheLowerBound, ()) {

@@ -130,7 +130,7 @@ TEST(ApiViews, TheOpenApiDocumentListsExactlyTheRoutes) {
       documented.insert({m, path});
       EXPECT_TRUE(op.contains("summary") && op.contains("responses")) << method << " " << path;
     }
-  for (const service::RouteInfo& route : s.server().routes()) served.insert({route.method, route.path});
+  for (const service::EndpointInfo& route : s.server().endpoints()) served.insert({route.method, route.path});
   EXPECT_EQ(documented, served);
   for (const auto& [method, path] : documented) {
     if (path == "/api/v1/events") continue;  // a stream; its own test reads it

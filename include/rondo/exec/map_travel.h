@@ -112,13 +112,13 @@ class TravelCache {
   std::size_t evicted_count() const { return evicted_; }
   std::optional<Duration> route_threshold() const { return route_threshold_; }
   // Kept (slot start, source) time-dependent arrivals, and how many searches filled them.
-  std::size_t route_count() const { return routes_.size(); }
+  std::size_t arrivals_count() const { return arrivals_.size(); }
   std::size_t route_searches() const { return route_searches_; }
 
  private:
   static constexpr std::size_t kRecentGenerations = 8;
   using WorkingSets = std::array<std::size_t, kRecentGenerations>;  // entries read, by generation
-  struct Route {
+  struct Arrivals {
     std::vector<double> arrival_seconds;  // time-dependent, from the source to every node
     std::uint64_t version = 0;
     std::uint64_t used = 0;
@@ -137,7 +137,7 @@ class TravelCache {
   Entry& entry(map::NodeIndex to, Time slot_start) const;
   const plan::Policy& policy(map::NodeIndex to, Time slot_start) const { return entry(to, slot_start).policy; }
   // The time-dependent arrivals from `from` at `slot_start`, valid at the current version.
-  const Route& route(map::NodeIndex from, Time slot_start) const;
+  const Arrivals& arrivals(map::NodeIndex from, Time slot_start) const;
   template <class E>
   E& touch(E& entry, WorkingSets& sets) const;
   // FIFO-repaired linear interpolation between the values at the slot starts around `depart`.
@@ -154,11 +154,11 @@ class TravelCache {
   Duration slot_width_;
   std::optional<Duration> route_threshold_;
   mutable std::map<std::pair<Time, map::NodeIndex>, Entry> policies_;  // by (slot start, target)
-  mutable std::map<std::pair<Time, map::NodeIndex>, Route> routes_;    // by (slot start, source)
+  mutable std::map<std::pair<Time, map::NodeIndex>, Arrivals> arrivals_;    // by (slot start, source)
   mutable std::size_t resolved_ = 0, kept_ = 0, evicted_ = 0, solved_ = 0, route_searches_ = 0;
   mutable std::uint64_t generation_ = 1;
   mutable WorkingSets recent_sets_{};        // of policies_
-  mutable WorkingSets recent_route_sets_{};  // of routes_
+  mutable WorkingSets recent_arrival_sets_{};  // of arrivals_
   mutable std::uint64_t lower_version_ = 0;                            // of edge_min_seconds_
   mutable std::vector<double> edge_min_seconds_;                       // empty until first needed
   mutable std::map<map::NodeIndex, std::vector<double>> lower_from_;  // per source: seconds to all

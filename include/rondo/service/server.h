@@ -65,8 +65,8 @@ struct ServerOptions {
   Duration thread_idle_exit = seconds(30);
 };
 
-// One route of the API: its method and OpenAPI path ("/api/v1/tasks/{id}").
-struct RouteInfo {
+// One endpoint of the API: its method and OpenAPI path ("/api/v1/tasks/{id}").
+struct EndpointInfo {
   std::string method;
   std::string path;
 };
@@ -86,8 +86,8 @@ class Server {
   // Thread-safe: stops taking requests, ends the event streams, and makes run() return once the
   // requests in progress are answered.
   void stop();
-  // Every route the server answers (the OpenAPI document must list exactly these).
-  std::vector<RouteInfo> routes() const;
+  // Every endpoint the server answers (the OpenAPI document must list exactly these).
+  std::vector<EndpointInfo> endpoints() const;
 
   struct Impl;
 

@@ -25,12 +25,13 @@
 #include <vector>
 
 #include "rondo/core/time.h"
+#include "rondo/exec/robot.h"
 #include "rondo/vda5050/messages.h"
 
 namespace rondo::vda5050 {
 
-enum class EdgeOutcome { kSucceeded, kFailed, kCancelled, kRobotFault };
-const char* to_string(EdgeOutcome o);
+// How an edge attempt ended: the executor's own outcome (exec/robot.h), one name for one thing.
+using exec::EdgeOutcome;
 
 struct EdgeAttempt {
   std::string edge_id;
