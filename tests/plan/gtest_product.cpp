@@ -81,6 +81,24 @@ TEST(Product, VisitsTwoPlacesInTheBetterOrderAndFollowsTheAutomaton) {
   }
 }
 
+TEST(Product, TheTravelTimeDistributionFollowsTheRoute) {
+  // "F B & F C" from A: A>B (p 0.5, 10 s) then B>C (p 1, 10 s): 30 s expected; at least 20 s.
+  const map::TopoMap m = small_map({"A", "B", "C"}, {"A>B", "B>C"});
+  const Mdp mdp = outcomes_mdp(m, {{0.5, 10}, {1, 10}});
+  const ProductMdp product = ProductMdp::build(mdp, automaton_of("F B & F C")).value();
+  const ProductSolution s = ProductExactSolver{}.solve(product);
+  const auto q = s.policy.start_state(0);
+  const TravelTimeDistribution d = s.policy.travel_time_distribution(0, q);
+  EXPECT_NEAR(d.expected_seconds(), 30.0, 1e-9);
+  EXPECT_LE(d.probability_within(19.0).upper, 1e-12);        // two crossings take 20 s at least
+  EXPECT_NEAR(d.probability_within(20.5).lower, 0.5, 1e-9);  // B on the first attempt
+  EXPECT_NEAR(d.probability_within(30.5).lower, 0.75, 1e-9);
+  // From B, "F A & X A" needs A next, and no edge leads back to A.
+  const ProductMdp never = ProductMdp::build(mdp, automaton_of("F A & X A")).value();
+  const auto stuck = never.start_state(1);
+  EXPECT_FALSE(ProductExactSolver{}.solve(never).policy.travel_time_distribution(1, stuck).reachable());
+}
+
 TEST(Product, AFormulaSatisfiedAtTheStartNeedsNoMove) {
   const map::TopoMap m = small_map({"A", "B"}, {"A>B"});
   const Mdp mdp = outcomes_mdp(m, {{1, 10}});
