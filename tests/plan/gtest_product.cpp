@@ -167,6 +167,14 @@ TEST(Product, OtherReasonsAFormulaCannotBeSatisfied) {
     EXPECT_EQ(why->cause, c.cause);
     EXPECT_EQ(why->reason, c.reason);
   }
+  // Broken earlier on the way, not by the node the robot is at now.
+  const ProductMdp avoid = ProductMdp::build(mdp, automaton_of("!D U B")).value();
+  const auto broken = avoid.after_reaching(avoid.start_state(0), 2);
+  const std::optional<Unsatisfiable> earlier = why_unsatisfiable(avoid, 0, broken);
+  ASSERT_TRUE(earlier.has_value());
+  EXPECT_EQ(earlier->cause, Cause::kAlreadyBroken);
+  EXPECT_TRUE(earlier->blocking_nodes.empty());
+  EXPECT_EQ(earlier->reason, "the nodes reached so far already break the formula");
   const ProductMdp fine = ProductMdp::build(mdp, automaton_of("F B")).value();
   EXPECT_FALSE(why_unsatisfiable(fine, 0, fine.start_state(0)).has_value());
 }
