@@ -40,7 +40,7 @@ double median(std::vector<double> v) {
 class Opaque final : public plan::EdgeModelView {
  public:
   explicit Opaque(std::shared_ptr<const plan::EdgeModelView> inner) : inner_(std::move(inner)) {}
-  plan::EdgeOutcome outcome(map::EdgeIndex e, Time t) const override { return inner_->outcome(e, t); }
+  plan::EdgeCrossing outcome(map::EdgeIndex e, Time t) const override { return inner_->outcome(e, t); }
   std::uint64_t version() const override { return inner_->version(); }
 
  private:

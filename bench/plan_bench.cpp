@@ -86,7 +86,7 @@ FunctionEdgeModels witham_rate_models(const map::TopoMap& m, const std::vector<d
   std::vector<double> p;
   for (std::size_t e = 0; e < m.edge_count(); ++e) p.push_back(rates[pick(rng)]);
   return FunctionEdgeModels([daily, p](map::EdgeIndex e, Time t) {
-    EdgeOutcome o = daily.outcome(e, t);
+    EdgeCrossing o = daily.outcome(e, t);
     o.success_probability = p[e];
     return o;
   });

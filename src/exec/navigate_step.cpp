@@ -163,7 +163,7 @@ void NavigateStep::watch_until(Time until) {
 // validation runs ran past it.
 std::optional<Time> NavigateStep::hangs_at() const {
   if (!edge_) return std::nullopt;
-  const plan::EdgeOutcome o = ctx_.models.outcome(*edge_, edge_since_);
+  const plan::EdgeCrossing o = ctx_.models.outcome(*edge_, edge_since_);
   plan::RouteLeg leg{.success_probability = std::clamp(o.success_probability, 0.0, 1.0),
                      .attempt_seconds = o.expected_seconds};
   ctx_.models.attempt_laws(*edge_, edge_since_, leg);
@@ -177,7 +177,7 @@ std::optional<Time> NavigateStep::hangs_at() const {
 
 std::optional<double> NavigateStep::success_chance(Time now) const {
   if (!edge_) return std::nullopt;
-  const plan::EdgeOutcome o = ctx_.models.outcome(*edge_, edge_since_);
+  const plan::EdgeCrossing o = ctx_.models.outcome(*edge_, edge_since_);
   plan::RouteLeg leg{.success_probability = std::clamp(o.success_probability, 0.0, 1.0),
                      .attempt_seconds = o.expected_seconds};
   ctx_.models.attempt_laws(*edge_, edge_since_, leg);

@@ -10,7 +10,7 @@ DistancePrior::DistancePrior(const map::TopoMap& map, const DistancePriorOptions
   }
 }
 
-EdgeOutcome DistancePrior::outcome(map::EdgeIndex edge, Time) const {
+EdgeCrossing DistancePrior::outcome(map::EdgeIndex edge, Time) const {
   return outcomes_.at(edge);
 }
 

@@ -174,7 +174,7 @@ Result<Solution> ExactSolver::solve(const Mdp& mdp, NodeIndex target) const {
   for (NodeIndex u = 0; u < n; ++u) {
     const EdgeIndex e = edge_[u];
     if (e == Policy::kNoEdge || u == target) continue;
-    const EdgeOutcome& o = mdp.outcome(e);
+    const EdgeCrossing& o = mdp.outcome(e);
     steps[u] = {.from = u,
                 .edge = e,
                 .to = mdp.topology().to_index(e),

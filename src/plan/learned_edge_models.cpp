@@ -139,7 +139,7 @@ void LearnedEdgeModels::attempt_laws(map::EdgeIndex edge, Time at, RouteLeg& leg
   if (edge < attempt_laws_->stopped.size()) with_stopped(attempt_laws_->stopped[edge], leg);
 }
 
-EdgeOutcome LearnedEdgeModels::outcome(map::EdgeIndex edge, Time at) const {
+EdgeCrossing LearnedEdgeModels::outcome(map::EdgeIndex edge, Time at) const {
   const std::size_t i = index_.at(edge);
   if (i == kUnknown) return prior_.outcome(edge, at);
   if (live_)

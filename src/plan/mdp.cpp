@@ -10,7 +10,7 @@
 
 namespace rondo::plan {
 
-EdgeOutcome sanitize(EdgeOutcome raw) {
+EdgeCrossing sanitize(EdgeCrossing raw) {
   double p = raw.success_probability;
   p = std::isnan(p) ? 0.0 : std::clamp(p, 0.0, 1.0);
   double tau = raw.expected_seconds;
@@ -22,20 +22,20 @@ EdgeOutcome sanitize(EdgeOutcome raw) {
   return {.success_probability = p, .expected_seconds = tau};
 }
 
-double expected_crossing_seconds(const EdgeOutcome& sanitized) {
+double expected_crossing_seconds(const EdgeCrossing& sanitized) {
   if (!(sanitized.success_probability > 0.0)) return kInfinity;
   const double c = sanitized.expected_seconds / sanitized.success_probability;
   return std::isfinite(c) ? c : kInfinity;
 }
 
-Mdp::Mdp(const map::TopoMap& map, std::vector<EdgeOutcome> outcomes, Time at, std::shared_ptr<const DeadEnds> dead_ends)
+Mdp::Mdp(const map::TopoMap& map, std::vector<EdgeCrossing> outcomes, Time at, std::shared_ptr<const DeadEnds> dead_ends)
     : map_(&map), at_(at), outcomes_(std::move(outcomes)), dead_ends_(std::move(dead_ends)) {
   if (!dead_ends_) dead_ends_ = std::make_shared<const DeadEnds>(DeadEnds::find(map));
   if (dead_ends_->node_count() != map.node_count()) {
     throw std::invalid_argument("Mdp: the dead ends are of another map (node counts differ)");
   }
   crossing_.reserve(outcomes_.size());
-  for (EdgeOutcome& o : outcomes_) {
+  for (EdgeCrossing& o : outcomes_) {
     o = sanitize(o);
     crossing_.push_back(plan::expected_crossing_seconds(o));
   }
@@ -100,13 +100,13 @@ void Mdp::build_dead_ends() {
 
 Mdp Mdp::build(const map::TopoMap& map, const EdgeModelView& models, Time at,
                std::shared_ptr<const DeadEnds> dead_ends) {
-  std::vector<EdgeOutcome> outcomes;
+  std::vector<EdgeCrossing> outcomes;
   outcomes.reserve(map.edge_count());
   for (EdgeIndex e = 0; e < map.edge_count(); ++e) outcomes.push_back(models.outcome(e, at));
   return Mdp(map, std::move(outcomes), at, std::move(dead_ends));
 }
 
-Result<Mdp> Mdp::from_outcomes(const map::TopoMap& map, std::vector<EdgeOutcome> outcomes, Time at,
+Result<Mdp> Mdp::from_outcomes(const map::TopoMap& map, std::vector<EdgeCrossing> outcomes, Time at,
                                std::shared_ptr<const DeadEnds> dead_ends) {
   if (outcomes.size() != map.edge_count()) {
     return Error::invalid(fmt::format("{} edge outcomes for a map with {} edges", outcomes.size(), map.edge_count()));

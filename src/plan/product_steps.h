@@ -9,7 +9,7 @@ namespace rondo::plan {
 inline ProductStep product_step(const ProductMdp& product, NodeIndex from, ProductMdp::AutomatonState q,
                                 EdgeIndex edge) {
   const NodeIndex to = product.mdp().topology().to_index(edge);
-  const EdgeOutcome& o = product.mdp().outcome(edge);
+  const EdgeCrossing& o = product.mdp().outcome(edge);
   return {.from = from,
           .state = q,
           .edge = edge,

@@ -69,9 +69,9 @@ void select_journeys(Context& c, TravelEvaluation& out) {
 }
 
 // Every map edge's outcome at t under `models` (the prior for edges it does not know).
-std::vector<EdgeOutcome> outcomes_at(const Context& c, const learn::FamilyEdgeModels& models,
+std::vector<EdgeCrossing> outcomes_at(const Context& c, const learn::FamilyEdgeModels& models,
                                      const std::vector<std::optional<std::size_t>>& index, Time t) {
-  std::vector<EdgeOutcome> out;
+  std::vector<EdgeCrossing> out;
   out.reserve(index.size());
   for (EdgeIndex e = 0; e < index.size(); ++e) {
     if (!index[e]) {

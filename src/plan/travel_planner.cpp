@@ -49,13 +49,13 @@ bool TravelPlanner::refresh(CachedMdp& entry) {
   const std::optional<std::vector<EdgeIndex>> changed = models_->changed_since(entry.version);
   if (!changed) return false;
   const Mdp& old = *entry.mdp;
-  std::vector<std::pair<EdgeIndex, EdgeOutcome>> patches;
+  std::vector<std::pair<EdgeIndex, EdgeCrossing>> patches;
   for (EdgeIndex e : *changed) {
-    const EdgeOutcome o = sanitize(models_->outcome(e, old.time()));
+    const EdgeCrossing o = sanitize(models_->outcome(e, old.time()));
     if (!(o == old.outcome(e))) patches.emplace_back(e, o);
   }
   if (!patches.empty()) {
-    std::vector<EdgeOutcome> outcomes;
+    std::vector<EdgeCrossing> outcomes;
     outcomes.reserve(old.edge_count());
     for (EdgeIndex e = 0; e < old.edge_count(); ++e) outcomes.push_back(old.outcome(e));
     for (const auto& [e, o] : patches) outcomes[e] = o;

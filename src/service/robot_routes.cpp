@@ -140,7 +140,7 @@ Reply edge_model(Api& api, const httplib::Request& req) {
     const Time to = api.ctx.zone.at(next_day(*day), Duration{0});
     Json points = Json::array();
     for (Time t = from; t < to; t += minutes(step_min)) {
-      const plan::EdgeOutcome o = models.outcome(e, t);
+      const plan::EdgeCrossing o = models.outcome(e, t);
       Json p{{"time", format_time(t)}, {"p", o.success_probability}, {"expected_s", o.expected_seconds}};
       if (learned)
         p["quantiles_s"] = Json{{"q10", fitted->quantile_seconds(index, t, 0.1)},
@@ -171,7 +171,7 @@ Reply edges_now(Api& api, const httplib::Request& req) {
     const plan::LearnedEdgeModels& models = api.ctx.executor.models();
     Json list = Json::array();
     for (map::EdgeIndex e = 0; e < api.ctx.map.edge_count(); ++e) {
-      const plan::EdgeOutcome o = models.outcome(e, t);
+      const plan::EdgeCrossing o = models.outcome(e, t);
       const map::Edge& edge = api.ctx.map.edges()[e];
       list.push_back(Json{{"id", edge.id},
                           {"from", edge.from},

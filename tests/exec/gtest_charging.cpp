@@ -33,7 +33,7 @@ struct Bench {
         store(store::Store::open(db, {.sync_commits = false}).value()),
         book(store, clock),
         models(std::make_shared<plan::FunctionEdgeModels>(
-            [](map::EdgeIndex, Time) { return plan::EdgeOutcome{.success_probability = 1, .expected_seconds = 20}; })),
+            [](map::EdgeIndex, Time) { return plan::EdgeCrossing{.success_probability = 1, .expected_seconds = 20}; })),
         planner(map, models, {.slot_width = minutes(15)}),
         travel(map, models, planner, minutes(15)) {
     options.dock = *map.find_node("Dock");
@@ -75,7 +75,7 @@ struct Bench {
 
 std::shared_ptr<const plan::EdgeModelView> always_passable() {
   return std::make_shared<plan::FunctionEdgeModels>(
-      [](map::EdgeIndex, Time) { return plan::EdgeOutcome{.success_probability = 1, .expected_seconds = 20}; });
+      [](map::EdgeIndex, Time) { return plan::EdgeCrossing{.success_probability = 1, .expected_seconds = 20}; });
 }
 
 TEST(Charging, AClosedWayHomeIsTriedAgainTwiceAsLateEachTimeAndOpenOnceCrossed) {
@@ -104,7 +104,7 @@ TEST(Charging, AClosedWayHomeIsTriedAgainTwiceAsLateEachTimeAndOpenOnceCrossed) 
 TEST(Charging, AClosedWayHomeWaitsForTheSlotTheSnapshotHoldsItPassable) {
   // The snapshot holds Hall_Dock blocked (p = 0.1) until 13:00, passable after.
   const auto snapshot = std::make_shared<plan::FunctionEdgeModels>([](map::EdgeIndex, Time t) {
-    return plan::EdgeOutcome{.success_probability = t < kT0 + hours(5) ? 0.1 : 0.9, .expected_seconds = 20};
+    return plan::EdgeCrossing{.success_probability = t < kT0 + hours(5) ? 0.1 : 0.9, .expected_seconds = 20};
   });
   Bench b(snapshot);
   EXPECT_EQ(b.charging->retry_way_home(b.edge("Hall_Dock")), kT0 + hours(5));

@@ -23,7 +23,7 @@ std::shared_ptr<plan::FunctionEdgeModels> rhythmic_models(std::vector<double> ph
   return std::make_shared<plan::FunctionEdgeModels>([=](map::EdgeIndex e, Time t) {
     const double hour = std::fmod(to_seconds(t.time_since_epoch()) / 3600.0, 24.0);
     const double wave = 1.0 + amplitude * (1.0 + std::sin((hour + phase[e % phase.size()]) * M_PI / 12.0));
-    return plan::EdgeOutcome{p, 20.0 * wave};
+    return plan::EdgeCrossing{p, 20.0 * wave};
   });
 }
 
@@ -70,7 +70,7 @@ RC_GTEST_PROP(SchedulerQuantileTravel, IsFifoAndGrowsWithTheLevel, ()) {
 TEST(SchedulerQuantileTravel, IsTheRoutesDistributionQuantileAtSlotStarts) {
   const map::TopoMap map = scenario_map();
   auto models = std::make_shared<plan::FunctionEdgeModels>(
-      [](map::EdgeIndex, Time) { return plan::EdgeOutcome{0.5, 10.0}; });
+      [](map::EdgeIndex, Time) { return plan::EdgeCrossing{0.5, 10.0}; });
   plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
   TravelCache cache(map, models, planner, minutes(15));
   const map::NodeIndex dock = *map.find_node("Dock"), office = *map.find_node("Office");
@@ -102,13 +102,13 @@ TEST(SchedulerTravel, EqualsThePlannerAtSlotStartsAndInterpolatesBetween) {
 TEST(SchedulerTravel, NewModelsEmptyTheCache) {
   const map::TopoMap map = scenario_map();
   auto models = std::make_shared<plan::FunctionEdgeModels>(
-      [](map::EdgeIndex, Time) { return plan::EdgeOutcome{1.0, 10.0}; });
+      [](map::EdgeIndex, Time) { return plan::EdgeCrossing{1.0, 10.0}; });
   plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
   TravelCache cache(map, models, planner, minutes(15));
   SchedulerTravel travel(cache, {*map.find_node("Dock"), *map.find_node("Office")});
   EXPECT_EQ(travel.travel(0, 1, kMonday), seconds(20));
   EXPECT_EQ(travel.lower_bound(0, 1), seconds(20));
-  models->set([](map::EdgeIndex, Time) { return plan::EdgeOutcome{0.5, 10.0}; });
+  models->set([](map::EdgeIndex, Time) { return plan::EdgeCrossing{0.5, 10.0}; });
   EXPECT_EQ(travel.travel(0, 1, kMonday), seconds(40));
   EXPECT_EQ(travel.lower_bound(0, 1), seconds(40));
 }
@@ -146,7 +146,7 @@ RC_GTEST_PROP(SchedulerTravel, CachedAnswersEqualAFreshCacheAfterOneEdgeUpdates,
 TEST(SchedulerTravel, AnUpdateOfAnEdgeOffTheWayKeepsTheEntry) {
   const map::TopoMap map = scenario_map();
   auto models = std::make_shared<plan::testing::PatchableEdgeModels>(map.edge_count(), [](map::EdgeIndex, Time) {
-    return plan::EdgeOutcome{1.0, 10.0};
+    return plan::EdgeCrossing{1.0, 10.0};
   });
   plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
   TravelCache cache(map, models, planner, minutes(15));
@@ -162,7 +162,7 @@ TEST(SchedulerTravel, AnUpdateOfAnEdgeOffTheWayKeepsTheEntry) {
 TEST(SchedulerTravel, AnUnreachableNodeIsKUnreachable) {
   const map::TopoMap map = scenario_map();
   auto models = std::make_shared<plan::FunctionEdgeModels>([&](map::EdgeIndex e, Time) {
-    return plan::EdgeOutcome{map.edge(e).to == "Lab" ? 0.0 : 1.0, 10.0};
+    return plan::EdgeCrossing{map.edge(e).to == "Lab" ? 0.0 : 1.0, 10.0};
   });
   plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
   TravelCache cache(map, models, planner, minutes(15));

@@ -29,24 +29,24 @@ constexpr map::NodeIndex kA = 0, kC = 2;
 
 // A>B takes 20 minutes, so a robot leaving A at a slot start reaches B>C in the next slot;
 // `later` is B>C's outcome for the hour from that next slot on, and 60 s with p = 1 otherwise.
-std::shared_ptr<plan::FunctionEdgeModels> next_slot_models(plan::EdgeOutcome now, plan::EdgeOutcome later) {
+std::shared_ptr<plan::FunctionEdgeModels> next_slot_models(plan::EdgeCrossing now, plan::EdgeCrossing later) {
   return std::make_shared<plan::FunctionEdgeModels>([=](map::EdgeIndex e, Time t) {
-    if (e == 0) return plan::EdgeOutcome{1.0, 1200.0};
+    if (e == 0) return plan::EdgeCrossing{1.0, 1200.0};
     if (t >= kDepart + minutes(15) && t < kDepart + minutes(75)) return later;
     if (t >= kDepart && t < kDepart + minutes(15)) return now;
-    return plan::EdgeOutcome{1.0, 60.0};
+    return plan::EdgeCrossing{1.0, 60.0};
   });
 }
 
 struct Case {
   const char* name;
-  plan::EdgeOutcome now, later;  // B>C's in the departure slot and in the next hour
+  plan::EdgeCrossing now, later;  // B>C's in the departure slot and in the next hour
   std::optional<Duration> threshold;
   Duration expected;
 };
 
 TEST(TravelAlongTheRoute, TheDepartureSlotOrTheRouteByTheThreshold) {
-  const plan::EdgeOutcome open{1.0, 60.0}, slow{1.0, 600.0}, closed{0.0, 60.0};
+  const plan::EdgeCrossing open{1.0, 60.0}, slow{1.0, 600.0}, closed{0.0, 60.0};
   const Case cases[] = {
       // Slower when reached: 1200 + 600 s along the route, 1200 + 60 s by the departure slot.
       {"slower, no threshold", open, slow, std::nullopt, seconds(1260)},
@@ -79,7 +79,7 @@ TEST(TravelAlongTheRoute, IsSearchedAgainWhenTheModelsMoveOnAndKeptForADayBehind
   EXPECT_EQ(cache.at_slot(kA, kC, kDepart), seconds(1800));
   EXPECT_EQ(cache.at_slot(kA, map::NodeIndex{1}, kDepart), seconds(1200));  // the same search
   EXPECT_EQ(cache.route_searches(), 1U);
-  models->set([](map::EdgeIndex, Time) { return plan::EdgeOutcome{1.0, 100.0}; });
+  models->set([](map::EdgeIndex, Time) { return plan::EdgeCrossing{1.0, 100.0}; });
   EXPECT_EQ(cache.at_slot(kA, kC, kDepart), seconds(200));
   EXPECT_EQ(cache.route_searches(), 2U);
   // Three days of departures from one place: what lies more than a day behind is dropped.

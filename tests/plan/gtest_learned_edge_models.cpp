@@ -66,7 +66,7 @@ TEST(LearnedEdgeModels, KnownEdgesAnswerFromTheModelsOthersFromThePrior) {
   for (map::EdgeIndex e = 0; e < 2; ++e) {
     const std::size_t i = view.model_index(e);
     EXPECT_EQ(view.outcome(e, t),
-              (EdgeOutcome{models->success_probability(i, t), models->expected_seconds(i, t)}));
+              (EdgeCrossing{models->success_probability(i, t), models->expected_seconds(i, t)}));
   }
   EXPECT_EQ(view.outcome(2, t), prior.outcome(2, t));
   // The fitted edge learned its slowness and its failures: far from the prior's 2 s and p = 1.
@@ -157,7 +157,7 @@ TEST(LearnedEdgeModels, OfflineIgnoresObservations) {
   const Time t = kStart + hours(24 * 28 + 15);
   EXPECT_FALSE(offline.observe(0, {t, t + seconds(20), 20.0, false}));
   EXPECT_EQ(offline.version(), v);
-  EXPECT_EQ(offline.outcome(0, t + seconds(30)), (EdgeOutcome{fitted->success_probability(0, t + seconds(30)),
+  EXPECT_EQ(offline.outcome(0, t + seconds(30)), (EdgeCrossing{fitted->success_probability(0, t + seconds(30)),
                                                               fitted->expected_seconds(0, t + seconds(30))}));
 }
 

@@ -19,7 +19,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 TEST(Sanitize, TableOfModelOutputs) {
   struct Case {
-    EdgeOutcome raw;
+    EdgeCrossing raw;
     double p;
     double tau;
     double crossing;
@@ -38,7 +38,7 @@ TEST(Sanitize, TableOfModelOutputs) {
       {{1e-320, 10.0}, 1e-320, 10.0, kInfinity},  // τ/p overflows
   };
   for (const Case& c : cases) {
-    const EdgeOutcome s = sanitize(c.raw);
+    const EdgeCrossing s = sanitize(c.raw);
     EXPECT_EQ(s.success_probability, c.p) << c.raw.success_probability << " " << c.raw.expected_seconds;
     EXPECT_EQ(s.expected_seconds, c.tau) << c.raw.success_probability << " " << c.raw.expected_seconds;
     EXPECT_EQ(expected_crossing_seconds(s), c.crossing) << c.raw.success_probability << " " << c.raw.expected_seconds;
@@ -60,7 +60,7 @@ TEST(Mdp, BuildReadsTheModelsAtTheGivenTime) {
   Time seen{};
   FunctionEdgeModels models([&seen](map::EdgeIndex, Time t) {
     seen = t;
-    return EdgeOutcome{0.25, 3.0};
+    return EdgeCrossing{0.25, 3.0};
   });
   const Time at = Time{} + hours(9);
   const Mdp mdp = Mdp::build(m, models, at);
@@ -70,9 +70,9 @@ TEST(Mdp, BuildReadsTheModelsAtTheGivenTime) {
 }
 
 TEST(FunctionEdgeModels, SetMovesTheVersionOn) {
-  FunctionEdgeModels models([](map::EdgeIndex, Time) { return EdgeOutcome{}; });
+  FunctionEdgeModels models([](map::EdgeIndex, Time) { return EdgeCrossing{}; });
   const auto v = models.version();
-  models.set([](map::EdgeIndex, Time) { return EdgeOutcome{0.5, 1.0}; });
+  models.set([](map::EdgeIndex, Time) { return EdgeCrossing{0.5, 1.0}; });
   EXPECT_NE(models.version(), v);
   EXPECT_EQ(models.outcome(0, Time{}).success_probability, 0.5);
 }

@@ -63,7 +63,7 @@ TEST(PartialInvalidation, AnUpdateKeepsThePoliciesItDoesNotTouch) {
   // A -> B -> C, and A <-> D off the way to C.
   const map::TopoMap m = testing::small_map({"A", "B", "C", "D"}, {"A>B", "B>C", "A>D", "D>A"});
   auto models = std::make_shared<PatchableEdgeModels>(m.edge_count(), [](map::EdgeIndex, Time) {
-    return EdgeOutcome{1.0, 10.0};
+    return EdgeCrossing{1.0, 10.0};
   });
   TravelPlanner oracle(m, models);
   EXPECT_DOUBLE_EQ(oracle.expected_seconds(0, 2, kMorning), 20.0);  // policy to C
@@ -89,7 +89,7 @@ RC_GTEST_PROP(SurvivesEdgeChange, AgreesWithAFreshSolve, ()) {
   const auto seed = *rc::gen::arbitrary<std::uint32_t>();
   const map::TopoMap m = testing::random_map({.nodes = *rc::gen::inRange<std::size_t>(2, 25), .seed = seed});
   RC_PRE(m.edge_count() > 0);
-  std::vector<EdgeOutcome> outcomes = testing::random_outcomes(m, {.seed = seed});
+  std::vector<EdgeCrossing> outcomes = testing::random_outcomes(m, {.seed = seed});
   const NodeIndex target = *rc::gen::inRange<std::size_t>(0, m.node_count());
   const Policy before = ExactSolver{}.solve(Mdp::from_outcomes(m, outcomes, kMorning).value(), target).value().policy;
   const map::EdgeIndex e = *rc::gen::inRange<std::size_t>(0, m.edge_count());

@@ -192,8 +192,8 @@ TEST(SpecPlanner, PlansAtTheDepartureTimeAndGoesToTheOtherGoalWhenOneIsClosed) {
   // "B or C": B is nearer, but its edge is closed from t = 1000 s on.
   const map::TopoMap m = small_map({"A", "B", "C"}, {"A>B", "A>C"});
   auto models = std::make_shared<const FunctionEdgeModels>([](map::EdgeIndex e, Time t) {
-    if (e == 0) return EdgeOutcome{to_unix_seconds(t) < 1000 ? 1.0 : 0.0, 10.0};
-    return EdgeOutcome{1.0, 30.0};
+    if (e == 0) return EdgeCrossing{to_unix_seconds(t) < 1000 ? 1.0 : 0.0, 10.0};
+    return EdgeCrossing{1.0, 30.0};
   });
   const SpecPlanner planner = SpecPlanner::create(m, models, automaton_of("F B | F C")).value();
   const auto q = planner.start_state(0);

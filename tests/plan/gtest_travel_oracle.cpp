@@ -50,10 +50,10 @@ TEST(TravelPlanner, CachesPerSlotAndTarget) {
 
 TEST(TravelPlanner, ModelChangesInvalidateTheCache) {
   const map::TopoMap m = small_map({"A", "B"}, {"A>B"});
-  auto models = std::make_shared<FunctionEdgeModels>([](map::EdgeIndex, Time) { return EdgeOutcome{1.0, 10.0}; });
+  auto models = std::make_shared<FunctionEdgeModels>([](map::EdgeIndex, Time) { return EdgeCrossing{1.0, 10.0}; });
   TravelPlanner oracle(m, models);
   EXPECT_DOUBLE_EQ(oracle.expected_seconds(0, 1, kMorning), 10.0);
-  models->set([](map::EdgeIndex, Time) { return EdgeOutcome{0.5, 10.0}; });
+  models->set([](map::EdgeIndex, Time) { return EdgeCrossing{0.5, 10.0}; });
   EXPECT_DOUBLE_EQ(oracle.expected_seconds(0, 1, kMorning), 20.0);
   EXPECT_EQ(oracle.cached_policy_count(), 1u);
 }
@@ -86,8 +86,8 @@ TEST(TimeDependent, EqualsTheStaticAnswerWhenModelsIgnoreTime) {
 TEST(TimeDependent, ReadsEachEdgeWhenTheRobotReachesIt) {
   const map::TopoMap m = small_map({"A", "B", "C"}, {"A>B", "B>C"});
   auto models = std::make_shared<FunctionEdgeModels>([](map::EdgeIndex e, Time t) {
-    if (e == 0) return EdgeOutcome{1.0, 600.0};
-    return EdgeOutcome{1.0, t < kMorning + minutes(10) ? 60.0 : 300.0};
+    if (e == 0) return EdgeCrossing{1.0, 600.0};
+    return EdgeCrossing{1.0, t < kMorning + minutes(10) ? 60.0 : 300.0};
   });
   TravelPlanner oracle(m, models, {.slot_width = minutes(5)});
   EXPECT_DOUBLE_EQ(oracle.expected_seconds(0, 2, kMorning), 660.0);
@@ -101,8 +101,8 @@ TEST(TimeDependent, WaitsForAClosedDoorWhenThatIsFastest) {
   // A>B is closed until 08:15; the detour A>C>B takes an hour.
   const map::TopoMap m = small_map({"A", "B", "C"}, {"A>B", "A>C", "C>B"});
   auto models = std::make_shared<FunctionEdgeModels>([](map::EdgeIndex e, Time t) {
-    if (e == 0) return EdgeOutcome{t < kMorning + minutes(15) ? 0.0 : 1.0, 20.0};
-    return EdgeOutcome{1.0, 1800.0};
+    if (e == 0) return EdgeCrossing{t < kMorning + minutes(15) ? 0.0 : 1.0, 20.0};
+    return EdgeCrossing{1.0, 1800.0};
   });
   TravelPlanner oracle(m, models, {.slot_width = minutes(15)});
   EXPECT_DOUBLE_EQ(oracle.expected_seconds(0, 1, kMorning), 3600.0);  // static: the detour

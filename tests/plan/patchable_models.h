@@ -21,8 +21,8 @@ class PatchableEdgeModels final : public EdgeModelView {
   PatchableEdgeModels(std::size_t edges, FunctionEdgeModels::Function base)
       : base_(std::move(base)), factors_(edges, {1.0, 1.0}), edge_version_(edges, 0) {}
 
-  EdgeOutcome outcome(map::EdgeIndex edge, Time at) const override {
-    EdgeOutcome o = base_(edge, at);
+  EdgeCrossing outcome(map::EdgeIndex edge, Time at) const override {
+    EdgeCrossing o = base_(edge, at);
     o.success_probability *= factors_[edge].first;
     o.expected_seconds *= factors_[edge].second;
     return o;

@@ -3,7 +3,7 @@
 //   map::TopoMap m = random_map({.nodes = 200, .seed = 7});        // random digraph, dead ends
 //   map::TopoMap b = building_map({.rows = 25, .columns = 40});     // a floor of places, doors
 //   map::TopoMap c = corridor_building_map({});                     // floors, corridors, rooms
-//   std::vector<EdgeOutcome> o = random_outcomes(m, {.seed = 7});   // some p = 0 edges
+//   std::vector<EdgeCrossing> o = random_outcomes(m, {.seed = 7});   // some p = 0 edges
 //   FunctionEdgeModels models = daily_models(b);                    // p, τ varying with the time of day
 #pragma once
 
@@ -200,10 +200,10 @@ struct RandomOutcomeOptions {
   double max_seconds = 60.0;
 };
 
-inline std::vector<EdgeOutcome> random_outcomes(const map::TopoMap& m, const RandomOutcomeOptions& o) {
+inline std::vector<EdgeCrossing> random_outcomes(const map::TopoMap& m, const RandomOutcomeOptions& o) {
   std::mt19937_64 rng(o.seed ^ 0x9e3779b97f4a7c15ULL);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::vector<EdgeOutcome> out;
+  std::vector<EdgeCrossing> out;
   for (std::size_t e = 0; e < m.edge_count(); ++e) {
     const bool closed = unit(rng) < o.closed_fraction;
     const double p = closed ? 0.0 : o.min_probability + (1.0 - o.min_probability) * unit(rng);
@@ -230,7 +230,7 @@ inline FunctionEdgeModels daily_models(const map::TopoMap& m, double seconds_per
     const double phase = static_cast<double>(e % 7) / 7.0;
     const double wave = 0.5 * (1.0 + std::sin(2.0 * M_PI * (day_fraction + phase)));  // in [0, 1]
     const double p = door[e] ? 0.55 + 0.4 * (1.0 - wave) : 0.9 + 0.1 * (1.0 - wave);
-    return EdgeOutcome{.success_probability = p, .expected_seconds = base[e] * (1.0 + 0.5 * wave)};
+    return EdgeCrossing{.success_probability = p, .expected_seconds = base[e] * (1.0 + 0.5 * wave)};
   });
 }
 

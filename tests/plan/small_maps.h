@@ -26,7 +26,7 @@ inline map::TopoMap small_map(const std::vector<std::string>& names, const std::
   return map::TopoMap::build("small", std::move(nodes), std::move(edges)).value();
 }
 
-inline Mdp outcomes_mdp(const map::TopoMap& m, std::vector<EdgeOutcome> outcomes) {
+inline Mdp outcomes_mdp(const map::TopoMap& m, std::vector<EdgeCrossing> outcomes) {
   return Mdp::from_outcomes(m, std::move(outcomes), Time{}).value();
 }
 

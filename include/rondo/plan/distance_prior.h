@@ -26,11 +26,11 @@ class DistancePrior final : public EdgeModelView {
   explicit DistancePrior(const map::TopoMap& map, const DistancePriorOptions& options = {});
 
   // Precondition: edge < the map's edge_count().
-  EdgeOutcome outcome(map::EdgeIndex edge, Time at) const override;
+  EdgeCrossing outcome(map::EdgeIndex edge, Time at) const override;
   std::uint64_t version() const override { return 0; }
 
  private:
-  std::vector<EdgeOutcome> outcomes_;
+  std::vector<EdgeCrossing> outcomes_;
 };
 
 }  // namespace rondo::plan

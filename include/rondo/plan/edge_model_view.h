@@ -3,11 +3,11 @@
 // distance prior both answer through this one interface, so the MDP does not care which it gets.
 //
 //   DistancePrior prior(map);                                  // distance_prior.h
-//   EdgeOutcome o = prior.outcome(edge, depart_at);
+//   EdgeCrossing o = prior.outcome(edge, depart_at);
 //   double expected_crossing = o.expected_seconds / o.success_probability;   // retries included
 //
-//   FunctionEdgeModels models([](map::EdgeIndex e, Time t) { return EdgeOutcome{0.9, 12.0}; });
-//   models.set([](map::EdgeIndex, Time) { return EdgeOutcome{0.5, 12.0}; });  // version() moves on
+//   FunctionEdgeModels models([](map::EdgeIndex e, Time t) { return EdgeCrossing{0.9, 12.0}; });
+//   models.set([](map::EdgeIndex, Time) { return EdgeCrossing{0.5, 12.0}; });  // version() moves on
 #pragma once
 
 #include <cstdint>
@@ -26,10 +26,10 @@ namespace rondo::plan {
 // `success_probability`, otherwise it leaves the robot where it started; either way it costs
 // `expected_seconds`. The planner treats the attempt duration as that fixed value (the models
 // give no more), so all the spread of a journey's time comes from the number of attempts.
-struct EdgeOutcome {
+struct EdgeCrossing {
   double success_probability = 1.0;  // in [0, 1]; out-of-range values are clamped, NaN means 0
   double expected_seconds = 0.0;     // >= 0; NaN or +inf makes the edge unusable
-  bool operator==(const EdgeOutcome&) const = default;
+  bool operator==(const EdgeCrossing&) const = default;
 };
 
 // A read-only view of per-edge models at any time t.
@@ -47,7 +47,7 @@ struct EdgeOutcome {
 class EdgeModelView {
  public:
   virtual ~EdgeModelView() = default;
-  virtual EdgeOutcome outcome(map::EdgeIndex edge, Time at) const = 0;
+  virtual EdgeCrossing outcome(map::EdgeIndex edge, Time at) const = 0;
   virtual std::uint64_t version() const = 0;
   // For bounds over every later departure (exec::TravelCache::lower_bound): an edge's answers at
   // t >= conditioned_until(edge) + memory() depend only on t's place in the (local) week; before
@@ -71,10 +71,10 @@ class EdgeModelView {
 // An EdgeModelView made of a function: for tests, benchmarks and adapters.
 class FunctionEdgeModels final : public EdgeModelView {
  public:
-  using Function = std::function<EdgeOutcome(map::EdgeIndex, Time)>;
+  using Function = std::function<EdgeCrossing(map::EdgeIndex, Time)>;
   explicit FunctionEdgeModels(Function f) : f_(std::move(f)) {}
 
-  EdgeOutcome outcome(map::EdgeIndex edge, Time at) const override { return f_(edge, at); }
+  EdgeCrossing outcome(map::EdgeIndex edge, Time at) const override { return f_(edge, at); }
   std::uint64_t version() const override { return version_; }
 
   // Replaces the function and moves the version on.

@@ -55,7 +55,7 @@ class LearnedEdgeModels final : public EdgeModelView {
                     const DistancePriorOptions& prior = {}, Reading reading = Reading::kOffline);
 
   // Precondition: edge < the map's edge_count().
-  EdgeOutcome outcome(map::EdgeIndex edge, Time at) const override;
+  EdgeCrossing outcome(map::EdgeIndex edge, Time at) const override;
   std::uint64_t version() const override { return version_; }
 
   // Online: the end of the edge's last attempt (observed or in the snapshot's log), and the gap

@@ -41,7 +41,7 @@ class Mdp {
                    std::shared_ptr<const DeadEnds> dead_ends = nullptr);
   // The same from outcomes given directly, one per edge; an error if the count is wrong or
   // `dead_ends` is not of a map with this many nodes.
-  static Result<Mdp> from_outcomes(const map::TopoMap& map, std::vector<EdgeOutcome> outcomes, Time at,
+  static Result<Mdp> from_outcomes(const map::TopoMap& map, std::vector<EdgeCrossing> outcomes, Time at,
                                    std::shared_ptr<const DeadEnds> dead_ends = nullptr);
 
   const map::TopoMap& topology() const { return *map_; }
@@ -51,7 +51,7 @@ class Mdp {
 
   // The sanitised outcome of an attempt on `edge`: p in [0, 1]; τ >= kMinAttemptSeconds, or +inf
   // for an edge whose model gave NaN or +inf. Precondition: edge < edge_count().
-  const EdgeOutcome& outcome(EdgeIndex edge) const { return outcomes_[edge]; }
+  const EdgeCrossing& outcome(EdgeIndex edge) const { return outcomes_[edge]; }
   // τ/p: the expected time to cross `edge` by trying until it succeeds; +inf when p = 0, τ is
   // +inf, or the quotient overflows. Such edges are unusable: no policy takes them.
   double expected_crossing_seconds(EdgeIndex edge) const { return crossing_[edge]; }
@@ -98,13 +98,13 @@ class Mdp {
   std::span<const Exit> exits() const { return exits_; }
 
  private:
-  Mdp(const map::TopoMap& map, std::vector<EdgeOutcome> outcomes, Time at, std::shared_ptr<const DeadEnds> dead_ends);
+  Mdp(const map::TopoMap& map, std::vector<EdgeCrossing> outcomes, Time at, std::shared_ptr<const DeadEnds> dead_ends);
   void build_rows();
   void build_dead_ends();
 
   const map::TopoMap* map_;
   Time at_;
-  std::vector<EdgeOutcome> outcomes_;
+  std::vector<EdgeCrossing> outcomes_;
   std::vector<double> crossing_;
   double min_crossing_ = kInfinity, max_crossing_ = 0.0;
   std::vector<std::size_t> in_start_, out_start_;  // node_count() + 1 each
@@ -117,7 +117,7 @@ class Mdp {
 };
 
 // The sanitising rule of Mdp, exposed for tests and for callers that build costs themselves.
-EdgeOutcome sanitize(EdgeOutcome raw);
-double expected_crossing_seconds(const EdgeOutcome& sanitized);
+EdgeCrossing sanitize(EdgeCrossing raw);
+double expected_crossing_seconds(const EdgeCrossing& sanitized);
 
 }  // namespace rondo::plan
