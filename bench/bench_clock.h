@@ -3,10 +3,13 @@
 // timing so a reader can judge it.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <fstream>
+#include <functional>
 #include <string>
+#include <vector>
 
 namespace rondo::bench {
 
@@ -20,6 +23,20 @@ inline double thread_seconds() {
   timespec ts{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// The calling thread's CPU time spent in `work`.
+inline double seconds_of(const std::function<void()>& work) {
+  const double start = thread_seconds();
+  work();
+  return thread_seconds() - start;
+}
+
+// The median of `v` (the mean of the middle two for an even count). Precondition: v is not empty.
+inline double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 inline std::string load_average() {

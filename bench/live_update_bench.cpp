@@ -28,13 +28,8 @@
 namespace {
 
 using namespace rondo;
+using bench::median;
 using bench::thread_seconds;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // The same models, but unable to say which edges changed: caches must assume everything did.
 class Opaque final : public plan::EdgeModelView {

@@ -31,21 +31,9 @@
 namespace {
 
 using namespace rondo;
-using bench::thread_seconds;
+using bench::median;
+using bench::seconds_of;
 using namespace rondo::plan;
-
-// CPU time of this thread (the machine may be shared, and the targets are "on one core").
-double seconds_of(const std::function<void()>& work) {
-  const double start = thread_seconds();
-  work();
-  return thread_seconds() - start;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // Keeps results alive so the optimiser cannot drop the work.
 volatile double g_sink = 0;
