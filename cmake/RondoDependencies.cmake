@@ -5,6 +5,7 @@ find_package(yaml-cpp REQUIRED)
 find_package(date REQUIRED)           # Howard Hinnant's date/tz (libhowardhinnant-date-dev)
 find_package(SQLiteCpp REQUIRED)      # libsqlitecpp-dev, over the system SQLite3
 find_package(SQLite3 REQUIRED)
+find_package(PostgreSQL REQUIRED)    # libpq-dev: the PostgreSQL store (rondo::store)
 find_package(CLI11 REQUIRED)
 find_package(fmt REQUIRED)
 find_package(spdlog REQUIRED)

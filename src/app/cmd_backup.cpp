@@ -21,16 +21,15 @@ struct BackupArgs {
 void run_backup(const BackupArgs& args, CommandContext& ctx) {
   if (args.data.empty() == args.db.empty())
     return (void)fail(ctx, Error::invalid("backup: give the data folder (--data DIR) or the store (--db FILE), one of them"));
-  const std::filesystem::path source =
-      args.db.empty() ? std::filesystem::path(args.data) / "rondo.sqlite" : std::filesystem::path(args.db);
+  const std::string source = args.db.empty() ? (std::filesystem::path(args.data) / "rondo.sqlite").string() : args.db;
   // kMustExist: a mistyped folder is an error, not an empty store; an older schema is migrated
   // first, as `rondo serve` would on its next start.
-  auto db = store::Store::open(source, {.mode = store::OpenMode::kMustExist});
+  auto db = store::Store::open_named(source, {.mode = store::OpenMode::kMustExist});
   if (!db) return (void)fail(ctx, db.error());
   auto report = store::backup_store(*db, args.file);
   if (!report) return (void)fail(ctx, report.error());
-  ctx.out << fmt::format("{}: backed up to {} ({} pages, {} bytes, integrity ok)\n", source.string(),
-                         report->file.string(), report->pages, report->bytes);
+  ctx.out << fmt::format("{}: backed up to {} ({} pages, {} bytes, integrity ok)\n", source, report->file.string(),
+                         report->pages, report->bytes);
 }
 
 }  // namespace

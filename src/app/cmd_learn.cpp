@@ -67,7 +67,7 @@ void run_learn(const LearnArgs& args, CommandContext& ctx) {
   if (!zone) return (void)fail(ctx, zone.error().with_context("--zone"));
   auto from_map = map_edges(args);
   if (!from_map) return (void)fail(ctx, from_map.error());
-  auto db = store::Store::open(args.db, {.mode = store::OpenMode::kReadOnly});
+  auto db = store::Store::open_named(args.db, {.mode = store::OpenMode::kReadOnly});
   if (!db) return (void)fail(ctx, db.error());
   auto log = store::find_traversals(*db);
   if (!log) return (void)fail(ctx, log.error());
@@ -88,7 +88,7 @@ void run_learn(const LearnArgs& args, CommandContext& ctx) {
 void add_learn_commands(CLI::App& root, CommandContext& ctx) {
   auto args = std::make_shared<LearnArgs>();
   auto* learn = root.add_subcommand("learn", "Fit the edge success and travel-time models from the traversal log");
-  learn->add_option("--db", args->db, "The SQLite database file")->required();
+  learn->add_option("--db", args->db, "The store: an SQLite file or a postgresql:// URL")->required();
   learn->add_option("--map", args->map,
                     "The map whose edges to model (with distance priors); default: the edges the log names");
   learn->add_option("--zone", args->zone, "IANA time zone of the deployment (time-of-day bins)")->capture_default_str();

@@ -57,7 +57,7 @@ Result<Duration> parse_age(const std::string& text) {
 void run_archive(const ArchiveArgs& args, CommandContext& ctx) {
   auto age = parse_age(args.older_than);
   if (!age) return (void)fail(ctx, age.error());
-  auto db = store::Store::open(args.db, {.mode = store::OpenMode::kMustExist});
+  auto db = store::Store::open_named(args.db, {.mode = store::OpenMode::kMustExist});
   if (!db) return (void)fail(ctx, db.error());
   // The executor's learning window: the nightly refit reads the traversals of its last 14 days.
   const Duration window = exec::ExecutorOptions{}.refit_window.value_or(Duration{0});
@@ -73,7 +73,7 @@ void run_archive(const ArchiveArgs& args, CommandContext& ctx) {
 }
 
 void run_import(const ImportArgs& args, CommandContext& ctx) {
-  auto db = store::Store::open(args.db, {.mode = store::OpenMode::kCreateIfMissing});
+  auto db = store::Store::open_named(args.db, {.mode = store::OpenMode::kCreateIfMissing});
   if (!db) {
     fail(ctx, db.error());
     return;
@@ -146,7 +146,7 @@ void print_stats_table(std::ostream& out, const store::TraversalSummary& summary
 void run_stats(const StatsArgs& args, CommandContext& ctx) {
   // A read command never writes: a mistyped path is an error, not an empty store, and an older
   // schema is refused rather than migrated.
-  auto db = store::Store::open(args.db, {.mode = store::OpenMode::kReadOnly});
+  auto db = store::Store::open_named(args.db, {.mode = store::OpenMode::kReadOnly});
   if (!db) {
     fail(ctx, db.error());
     return;
@@ -166,10 +166,10 @@ void run_stats(const StatsArgs& args, CommandContext& ctx) {
 }
 
 void run_migrate(const MigrateArgs& args, CommandContext& ctx) {
-  auto before = store::Store::open(args.db, {.mode = store::OpenMode::kReadOnly});
+  auto before = store::Store::open_named(args.db, {.mode = store::OpenMode::kReadOnly});
   const bool current = before.ok();
   before = Error::internal("closed");  // close the read-only connection before writing
-  auto db = store::Store::open(args.db, {.mode = store::OpenMode::kMustExist});
+  auto db = store::Store::open_named(args.db, {.mode = store::OpenMode::kMustExist});
   if (!db) {
     fail(ctx, db.error());
     return;
@@ -189,20 +189,20 @@ void add_log_commands(CLI::App& root, CommandContext& ctx) {
       "import", "Import robot logs into the database (atomic; running it again adds only what is missing)");
   import_cmd->add_option("--witham", import_args->witham_dir, "Folder of Witham Wharf <From>_<To>.data edge logs")
       ->required();
-  import_cmd->add_option("--db", import_args->db, "The SQLite database file (created if missing)")->required();
+  import_cmd->add_option("--db", import_args->db, "The store: an SQLite file (created if missing) or a postgresql:// URL")->required();
   import_cmd->add_flag("--json", import_args->json, "Print the import report as JSON");
   import_cmd->callback([import_args, &ctx] { run_import(*import_args, ctx); });
 
   auto stats_args = std::make_shared<StatsArgs>();
   CLI::App* stats = log->add_subcommand("stats", "Per-edge counts of the traversal log");
-  stats->add_option("--db", stats_args->db, "The SQLite database file (must exist)")->required();
+  stats->add_option("--db", stats_args->db, "The store: an SQLite file (must exist) or a postgresql:// URL")->required();
   stats->add_flag("--json", stats_args->json, "Print JSON: totals 'attempts', 'successes', 'edges' and 'per_edge'");
   stats->callback([stats_args, &ctx] { run_stats(*stats_args, ctx); });
 
   auto migrate_args = std::make_shared<MigrateArgs>();
   CLI::App* migrate = log->add_subcommand(
       "migrate", "Bring a database to this rondo's schema (the read-only commands refuse an older one)");
-  migrate->add_option("--db", migrate_args->db, "The SQLite database file (must exist)")->required();
+  migrate->add_option("--db", migrate_args->db, "The store: an SQLite file (must exist) or a postgresql:// URL")->required();
   migrate->callback([migrate_args, &ctx] { run_migrate(*migrate_args, ctx); });
 
   auto archive_args = std::make_shared<ArchiveArgs>();

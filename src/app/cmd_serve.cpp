@@ -17,6 +17,7 @@ struct ServeArgs {
   std::string deployment;
   std::string listen = "127.0.0.1:8080";
   std::string data = "rondo-data";
+  std::string store;
   std::string token_file;
   double speed = 1.0;
   int streams = 64;
@@ -44,11 +45,18 @@ void run_serve(const ServeArgs& args, CommandContext& ctx) {
       args.deployment.empty() ? default_deployment() : std::filesystem::path(args.deployment);
   auto deployment = load_deployment(file);
   if (!deployment) return (void)fail(ctx, deployment.error());
+  std::optional<store::StoreLocation> store;
+  if (!args.store.empty()) {
+    auto where = store::StoreLocation::parse(args.store);
+    if (!where) return (void)fail(ctx, where.error().with_context("--store"));
+    store = std::move(*where);
+  }
   ServeRequest request{
       .deployment = std::move(*deployment),
       .host = listen->first,
       .port = listen->second,
       .data = args.data,
+      .store = std::move(store),
       .token_file = args.token_file.empty() ? std::nullopt : std::optional<std::filesystem::path>(args.token_file),
       .speed = args.speed,
       .max_streams = args.streams};
@@ -63,6 +71,9 @@ void add_serve_commands(CLI::App& root, CommandContext& ctx) {
   serve->add_option("deployment", args->deployment, "The deployment file (examples/g4s/deployment.yaml)");
   serve->add_option("--listen", args->listen, "HOST:PORT to listen on (default 127.0.0.1:8080; port 0: any free one)");
   serve->add_option("--data", args->data, "The data folder holding rondo.sqlite (default ./rondo-data)");
+  serve->add_option("--store", args->store,
+                    "The store: a postgresql:// URL (no password in it: password_file, PGPASSWORD or ~/.pgpass) or "
+                    "an SQLite file; default: the deployment's store, else DATA/rondo.sqlite");
   serve->add_option("--token-file", args->token_file,
                     "A file (mode 600) holding the token every write must present as 'Authorization: Bearer'");
   serve->add_option("--speed", args->speed, "Run the clock X times faster than real time (default 1)");

@@ -31,6 +31,7 @@ struct AddOptions {
   std::string at;         // "now" for the sentence; default: the system clock
   std::string time_zone;  // default: the places file's time_zone
   std::string data;       // a deployment's folder (rondo run --out, rondo serve --data): queue it there
+  std::string store;      // or a store by name: a postgresql:// URL (rondo serve --store)
   bool dry_run = false;
   bool json = false;
 };
@@ -139,17 +140,23 @@ void add(const AddOptions& o, CommandContext& ctx) {
     fail(ctx, command.error());
     return;
   }
-  if (!o.data.empty() && !o.dry_run) {
-    auto q = queue_command(o.data, sentence_of(o.words), *command, zone);
+  if ((!o.data.empty() || !o.store.empty()) && !o.dry_run) {
+    Result<QueuedAt> q = Error::internal("not queued");
+    if (!o.store.empty()) {
+      auto where = store::StoreLocation::parse(o.store);
+      q = where ? queue_command(*where, sentence_of(o.words), *command, zone) : where.error().with_context("--store");
+    } else {
+      q = queue_command(o.data, sentence_of(o.words), *command, zone);
+    }
     if (!q) {
       fail(ctx, q.error());
       return;
     }
     if (!q->already_queued.empty()) {
       ctx.err << fmt::format("rondo task add: already queued: {} (in {}); nothing queued\n",
-                             fmt::join(q->already_queued, ", "), q->file.string());
+                             fmt::join(q->already_queued, ", "), q->store);
     } else {
-      ctx.err << fmt::format("rondo task add: queued as request {} in {}: {}\n", q->id, q->file.string(), q->what);
+      ctx.err << fmt::format("rondo task add: queued as request {} in {}: {}\n", q->id, q->store, q->what);
     }
   }
   if (o.json) {
@@ -205,7 +212,10 @@ void add_task_commands(CLI::App& root, CommandContext& ctx) {
   add_cmd->add_option("--time-zone", add_options->time_zone, "IANA zone of local times (default: the places file's)");
   add_cmd->add_option("--data", add_options->data,
                       "queue it in this deployment's store (a rondo run --out or rondo serve --data folder)");
-  add_cmd->add_flag("--dry-run", add_options->dry_run, "only print, even with --data");
+  add_cmd->add_option("--store", add_options->store,
+                      "queue it in this store: a rondo serve --store URL (postgresql://...; no password in it)")
+      ->excludes(add_cmd->get_option("--data"));
+  add_cmd->add_flag("--dry-run", add_options->dry_run, "only print, even with --data or --store");
   add_cmd->add_flag("--json", add_options->json, "print a task file in JSON (or the cancellation)");
   add_cmd->callback([add_options, &ctx] { add(*add_options, ctx); });
 }

@@ -169,6 +169,30 @@ Status decode_robot(const Field& f, Deployment& d) {
   return Status{};
 }
 
+// store: {kind: sqlite, file: PATH} or {kind: postgresql, url: URL, password_file: PATH}; paths
+// are relative to the deployment file. A password in the URL is refused (StoreLocation::postgres).
+Status decode_store(const Field& f, const std::filesystem::path& base, Deployment& d) {
+  RONDO_ASSIGN_OR_RETURN(const Field kind, f.required("kind"));
+  RONDO_ASSIGN_OR_RETURN(const std::string k, kind.as_string());
+  if (k == "sqlite") {
+    RONDO_RETURN_IF_ERROR(f.expect_keys({"kind", "file"}));
+    RONDO_ASSIGN_OR_RETURN(const Field file, f.required("file"));
+    RONDO_ASSIGN_OR_RETURN(const std::filesystem::path path, path_field(file, base));
+    d.store = store::StoreLocation::sqlite(path);
+    return Status{};
+  }
+  if (k != "postgresql") return kind.error(fmt::format("'{}' is not a store kind (sqlite or postgresql)", k));
+  RONDO_RETURN_IF_ERROR(f.expect_keys({"kind", "url", "password_file"}));
+  RONDO_ASSIGN_OR_RETURN(const Field url, f.required("url"));
+  RONDO_ASSIGN_OR_RETURN(const std::string text, url.as_string());
+  std::optional<std::filesystem::path> password_file;
+  if (auto p = f.optional("password_file")) { RONDO_ASSIGN_OR_RETURN(password_file, path_field(*p, base)); }
+  auto location = store::StoreLocation::postgres(text, password_file);
+  if (!location) return url.error(location.error().message);
+  d.store = std::move(*location);
+  return Status{};
+}
+
 // world and battery describe the simulated building and robot: the simulated robot needs its world,
 // and a VDA 5050 vehicle, which drives in the real building and reports its own battery, is refused
 // either rather than have it read and never used (docs/deployment.md, "The robot").
@@ -194,7 +218,7 @@ Result<Deployment> decode(const Field& root, const std::filesystem::path& file) 
   const std::filesystem::path base = file.parent_path();
   RONDO_RETURN_IF_ERROR(root.expect_keys({"rondo_deployment", "name", "map", "time_zone", "dock", "start", "days",
                                           "seed", "routines", "world", "requests", "places", "executor", "robot",
-                                          "battery"}));
+                                          "battery", "store"}));
   Deployment d;
   d.file = file;
   RONDO_ASSIGN_OR_RETURN(const Field version, root.required("rondo_deployment"));
@@ -229,6 +253,7 @@ Result<Deployment> decode(const Field& root, const std::filesystem::path& file) 
   if (auto f = root.optional("places")) { RONDO_ASSIGN_OR_RETURN(d.places, path_field(*f, base)); }
   if (auto f = root.optional("executor")) RONDO_RETURN_IF_ERROR(decode_executor(*f, d.executor));
   if (auto f = root.optional("robot")) RONDO_RETURN_IF_ERROR(decode_robot(*f, d));
+  if (auto f = root.optional("store")) RONDO_RETURN_IF_ERROR(decode_store(*f, base, d));
   RONDO_RETURN_IF_ERROR(decode_simulated_building(root, base, d));
   return d;
 }

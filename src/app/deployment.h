@@ -18,6 +18,8 @@
 //              slot_width: 15m, scheduler_polls: 20000}
 //   robot: {kind: vda5050, broker: "mqtt://127.0.0.1:1883", interface_name: uagv,   # optional;
 //           manufacturer: acme, serial_number: agv-7, map_id: g4s}                  # kind: sim
+//   store: {kind: postgresql, url: "postgresql://rondo@db/fleet", password_file: pw}  # optional;
+//                                   # rondo serve's store (default: rondo.sqlite in its data folder)
 #pragma once
 
 #include <chrono>
@@ -30,6 +32,7 @@
 #include "rondo/core/timezone.h"
 #include "rondo/exec/executor.h"
 #include "rondo/sim/battery_model.h"
+#include "rondo/store/store.h"
 #include "rondo/vda5050/config.h"
 
 namespace rondo::app {
@@ -56,6 +59,9 @@ struct Deployment {
   std::optional<sim::BatteryModel> battery;
   // The robot: nothing for the simulated one (kind: sim, the default), or a VDA 5050 vehicle.
   std::optional<vda5050::Vda5050Config> vda5050;
+  // `store:`: where `rondo serve` keeps its store; none: rondo.sqlite in its data folder
+  // (docs/deployment.md, "The store").
+  std::optional<store::StoreLocation> store;
 };
 
 // Reads and checks a deployment file; paths come back resolved against its folder. Errors name

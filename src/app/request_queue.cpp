@@ -27,11 +27,15 @@ Result<QueuedAt> queue_command(const std::filesystem::path& data, const std::str
     return Error::invalid(fmt::format(
         "--data {}: no rondo store there ({} is missing): give a rondo run --out or rondo serve --data folder",
         data.string(), file.string()));
-  RONDO_ASSIGN_OR_RETURN(store::Store db, store::Store::open(file, {.mode = store::OpenMode::kMustExist}));
+  return queue_command(store::StoreLocation::sqlite(file), sentence, command, zone);
+}
+
+Result<QueuedAt> queue_command(const store::StoreLocation& where, const std::string& sentence, lang::Command& command,
+                               const TimeZone& zone) {
+  RONDO_ASSIGN_OR_RETURN(store::Store db, store::Store::open(where, {.mode = store::OpenMode::kMustExist}));
   RONDO_ASSIGN_OR_RETURN(const auto meta, store::read_meta(db));
   if (meta.contains("run.finished"))
-    return Error::invalid(
-        fmt::format("--data {}: the run there is finished; nothing would take the request", data.string()));
+    return Error::invalid(fmt::format("{}: the run there is finished; nothing would take the request", db.name()));
   // The tasks the store holds under the command's ids: the same ones still to do are a repeat.
   std::optional<Error> unreadable;
   const auto task_held = [&](const Task& said) {
@@ -47,13 +51,13 @@ Result<QueuedAt> queue_command(const std::filesystem::path& data, const std::str
   RONDO_ASSIGN_OR_RETURN(const auto repeated,
                          lang::settle_ids(command, task_held, [](const Routine&) { return lang::Held::kFree; }));
   if (unreadable) return *unreadable;
-  if (!repeated.empty()) return QueuedAt{0, file, queued_what(command), repeated};
+  if (!repeated.empty()) return QueuedAt{0, db.name(), queued_what(command), repeated};
   const Time now = std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now());
   RONDO_ASSIGN_OR_RETURN(
       const std::int64_t id,
       store::queue_request(
           db, {.queued = now, .source = "words", .sentence = sentence, .body = request_body(command, zone)}));
-  return QueuedAt{id, file, queued_what(command), {}};
+  return QueuedAt{id, db.name(), queued_what(command), {}};
 }
 
 std::string queued_what(const lang::Command& command) {

@@ -98,10 +98,17 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   const sigset_t signals = stop_signals();
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
   RONDO_ASSIGN_OR_RETURN(DeploymentParts parts, load_parts(d));
-  std::error_code ec;
-  std::filesystem::create_directories(request.data, ec);
-  if (ec) return Error::io(fmt::format("{}: cannot create the data folder: {}", request.data.string(), ec.message()));
-  RONDO_ASSIGN_OR_RETURN(store::Store db, store::Store::open(request.data / "rondo.sqlite", {.sync_commits = true}));
+  const store::StoreLocation where = request.store     ? *request.store
+                                     : d.store         ? *d.store
+                                                       : store::StoreLocation::sqlite(request.data / "rondo.sqlite");
+  if (where.kind == store::StoreLocation::Kind::kSqlite) {
+    std::error_code ec;
+    std::filesystem::create_directories(where.file.parent_path().empty() ? "." : where.file.parent_path(), ec);
+    if (ec)
+      return Error::io(fmt::format("{}: cannot create the store's folder: {}", where.file.parent_path().string(),
+                                   ec.message()));
+  }
+  RONDO_ASSIGN_OR_RETURN(store::Store db, store::Store::open(where, {.sync_commits = true}));
   RONDO_ASSIGN_OR_RETURN(std::vector<store::TaskRow> stored, store::list_tasks(db));
   RONDO_RETURN_IF_ERROR(store::set_meta(db, "serve.deployment", d.name));
   RONDO_RETURN_IF_ERROR(
@@ -164,8 +171,8 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
                          {.host = request.host, .port = request.port, .token = token,
                           .threads = 2 * request.max_streams});
   RONDO_ASSIGN_OR_RETURN(const int port, server.bind());
-  log << fmt::format("rondo serve: {} on http://{}:{}/ (speed {}, data {}, {})\n", d.name, request.host, port,
-                     request.speed, request.data.string(), token ? "writes need the token" : "writes open on loopback")
+  log << fmt::format("rondo serve: {} on http://{}:{}/ (speed {}, store {}, {})\n", d.name, request.host, port,
+                     request.speed, db.name(), token ? "writes need the token" : "writes open on loopback")
       << std::flush;
 
   // The HTTP thread and the signal thread are joined whichever way this function is left: a

@@ -18,6 +18,7 @@
 #include "rondo/exec/executor.h"
 #include "rondo/sim/request_generator.h"
 #include "rondo/sim/rng.h"
+#include "rondo/store/store.h"
 
 namespace rondo::app {
 
@@ -26,6 +27,8 @@ struct ServeRequest {
   std::string host = "127.0.0.1";
   int port = 8080;
   std::filesystem::path data = "rondo-data";
+  // The store: --store, else the deployment's `store:`, else data/rondo.sqlite.
+  std::optional<store::StoreLocation> store;
   std::optional<std::filesystem::path> token_file;
   double speed = 1.0;
   int max_streams = 64;  // event streams open at once; each holds an HTTP thread, as many again answer

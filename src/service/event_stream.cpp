@@ -60,7 +60,7 @@ void event_stream(Api& api, const httplib::Request& req, httplib::Response& res)
     res.set_content(r.body.dump() + "\n", "application/json");
     return;
   }
-  auto db = store::Store::open(api.ctx.store.file(), {.mode = store::OpenMode::kReadOnly});
+  auto db = store::Store::open(api.ctx.store.location(), {.mode = store::OpenMode::kReadOnly});
   if (!db) {
     const Reply r = error_reply(500, "internal", db.error().message);
     res.status = r.status;

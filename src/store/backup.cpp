@@ -7,7 +7,7 @@
 #include <thread>
 
 #include "rondo/store/backup.h"
-#include "sqlite_error.h"
+#include "store_access.h"
 
 namespace rondo::store {
 namespace {
@@ -22,7 +22,7 @@ Status check_copy(const std::filesystem::path& file) {
   auto copy = Store::open(file, {.mode = OpenMode::kReadOnly});
   if (!copy) return Error::storage(fmt::format("{}: the copy cannot be opened: {}", file.string(), copy.error().message));
   return guarded(*copy, "checking the copy", [&]() -> Status {
-    const std::string verdict = connection(*copy).execAndGet("PRAGMA integrity_check").getString();
+    const std::string verdict = db::query_text(connection(*copy), "PRAGMA integrity_check").value_or("");
     if (verdict != "ok") return Error::storage(fmt::format("{}: the copy fails its integrity check: {}", file.string(), verdict));
     return Status{};
   });
@@ -34,6 +34,11 @@ Result<BackupReport> backup_store(const Store& store, const std::filesystem::pat
   std::error_code ec;
   if (std::filesystem::exists(file, ec))
     return Error::invalid(fmt::format("{}: exists already (a backup never overwrites; name another file)", file.string()));
+  SQLite::Database* source = sqlite_database(store);
+  if (source == nullptr)
+    return Error::unsupported(fmt::format("{}: backup_store copies SQLite stores; back a PostgreSQL store up with "
+                                          "pg_dump (docs/operations.md)",
+                                          store.name()));
   std::filesystem::path part = file;
   part += ".part";
   std::filesystem::remove(part, ec);  // left by an interrupted backup
@@ -43,9 +48,9 @@ Result<BackupReport> backup_store(const Store& store, const std::filesystem::pat
     Destination dest;
     if (sqlite3_open_v2(part.c_str(), &dest.db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK)
       return Error::io(fmt::format("{}: cannot create the backup: {}", part.string(), sqlite3_errmsg(dest.db)));
-    sqlite3_backup* b = sqlite3_backup_init(dest.db, "main", connection(store).getHandle(), "main");
+    sqlite3_backup* b = sqlite3_backup_init(dest.db, "main", source->getHandle(), "main");
     if (b == nullptr)
-      return Error::storage(fmt::format("{}: cannot start the backup: {}", store.file().string(), sqlite3_errmsg(dest.db)));
+      return Error::storage(fmt::format("{}: cannot start the backup: {}", store.name(), sqlite3_errmsg(dest.db)));
     // A few hundred pages per step: the writer of a live store is never held up for long. Busy or
     // locked steps are tried again (a writer in WAL mode does not block the reader, so this is rare).
     int rc = SQLITE_OK;
@@ -58,7 +63,7 @@ Result<BackupReport> backup_store(const Store& store, const std::filesystem::pat
     if (rc != SQLITE_DONE) {
       const std::string why = sqlite3_errstr(rc);
       std::filesystem::remove(part, ec);
-      return Error::storage(fmt::format("{}: the backup to {} failed: {}", store.file().string(), part.string(), why));
+      return Error::storage(fmt::format("{}: the backup to {} failed: {}", store.name(), part.string(), why));
     }
     // A backup is one self-contained file: out of WAL mode (the store switches back on open).
     if (sqlite3_exec(dest.db, "PRAGMA journal_mode = DELETE", nullptr, nullptr, nullptr) != SQLITE_OK)

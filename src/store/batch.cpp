@@ -1,6 +1,6 @@
 #include "rondo/store/batch.h"
 
-#include "sqlite_error.h"
+#include "store_access.h"
 #include "write_tx.h"
 
 namespace rondo::store {

@@ -2,7 +2,7 @@
 // changes) and the event log API, always called inside the caller's open transaction.
 #pragma once
 
-#include <SQLiteCpp/Database.h>
+#include "db/connection.h"
 
 #include <cstdint>
 #include <string_view>
@@ -11,10 +11,10 @@
 
 namespace rondo::store {
 
-// Appends one event row and returns its seq. Throws SQLite::Exception (caller's guarded() maps it).
-std::int64_t insert_event_row(SQLite::Database& db, const Event& event);
+// Appends one event row and returns its seq. Throws db::Failure (caller's guarded() maps it).
+std::int64_t insert_event_row(db::Connection& db, const Event& event);
 
-// Whether task `id` is stored. Throws SQLite::Exception.
-bool task_exists(SQLite::Database& db, std::string_view id);
+// Whether task `id` is stored. Throws db::Failure.
+bool task_exists(db::Connection& db, std::string_view id);
 
 }  // namespace rondo::store

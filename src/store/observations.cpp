@@ -1,60 +1,51 @@
 #include "rondo/store/observations.h"
 
-#include <SQLiteCpp/Statement.h>
-
 #include <fmt/format.h>
 
 #include <cmath>
 
-#include "sqlite_error.h"
+#include "store_access.h"
 
 namespace rondo::store {
 
 Result<std::int64_t> add_observation(Store& store, const Observation& observation) {
   if (!std::isfinite(observation.value)) {
     return Error::invalid(fmt::format("{}: observation '{}' at '{}': value must be a finite number",
-                                      store.file().string(), observation.what, observation.where));
+                                      store.name(), observation.what, observation.where));
   }
   return guarded(store, "adding an observation", [&]() -> Result<std::int64_t> {
-    SQLite::Database& db = connection(store);
-    SQLite::Statement insert(db, "INSERT INTO observations (what, place, time_ms, value, note, robot) VALUES (?, ?, ?, ?, ?, ?)");
-    insert.bind(1, observation.what);
-    insert.bind(2, observation.where);
-    insert.bind(3, to_db(observation.when));
-    insert.bind(4, observation.value);
-    if (observation.text) {
-      insert.bind(5, *observation.text);
-    } else {
-      insert.bind(5);
-    }
-    insert.bind(6, observation.robot);
-    insert.exec();
-    return db.getLastInsertRowid();
+    const auto id = db::query_int64(connection(store),
+                                    "INSERT INTO observations (what, place, time_ms, value, note, robot) "
+                                    "VALUES ($1, $2, $3, $4, $5, $6) RETURNING id",
+                                    {observation.what, observation.where, to_db(observation.when), observation.value,
+                                     observation.text, observation.robot});
+    return id.value_or(0);
   });
 }
 
 Result<std::vector<Observation>> find_observations(const Store& store, const ObservationQuery& query) {
   return guarded(store, "reading observations", [&]() -> Result<std::vector<Observation>> {
-    std::string sql = "SELECT what, place, time_ms, value, note, robot FROM observations WHERE 1";
-    if (query.what) sql += " AND what = :what";
-    if (query.where) sql += " AND place = :place";
-    if (query.from) sql += " AND time_ms >= :from";
-    if (query.until) sql += " AND time_ms < :until";
+    std::string sql = "SELECT what, place, time_ms, value, note, robot FROM observations WHERE TRUE";
+    db::Params params;
+    const auto where = [&](std::string_view condition, db::Param value) {
+      params.push_back(std::move(value));
+      sql += fmt::format(" AND {} ${}", condition, params.size());
+    };
+    if (query.what) where("what =", *query.what);
+    if (query.where) where("place =", *query.where);
+    if (query.from) where("time_ms >=", to_db(*query.from));
+    if (query.until) where("time_ms <", to_db(*query.until));
     sql += " ORDER BY time_ms, id";
-    SQLite::Statement select(connection(store), sql);
-    if (query.what) select.bind(":what", *query.what);
-    if (query.where) select.bind(":place", *query.where);
-    if (query.from) select.bind(":from", to_db(*query.from));
-    if (query.until) select.bind(":until", to_db(*query.until));
+    auto select = connection(store).query(sql, params);
     std::vector<Observation> out;
-    while (select.executeStep()) {
+    while (select->next()) {
       Observation o;
-      o.what = select.getColumn(0).getString();
-      o.where = select.getColumn(1).getString();
-      o.when = time_from_db(select.getColumn(2).getInt64());
-      o.value = select.getColumn(3).getDouble();
-      if (!select.isColumnNull(4)) o.text = select.getColumn(4).getString();
-      o.robot = select.getColumn(5).getString();
+      o.what = select->text(0);
+      o.where = select->text(1);
+      o.when = time_from_db(select->int64(2));
+      o.value = select->real(3);
+      if (!select->is_null(4)) o.text = select->text(4);
+      o.robot = select->text(5);
       out.push_back(std::move(o));
     }
     return out;

@@ -1,12 +1,10 @@
 #include "rondo/store/read_back.h"
 
-#include <SQLiteCpp/Statement.h>
-
 #include <fmt/format.h>
 
 #include <algorithm>
 
-#include "sqlite_error.h"
+#include "store_access.h"
 
 namespace rondo::store {
 namespace {
@@ -16,9 +14,10 @@ Result<std::vector<TaskRow>> tasks_in_insertion_order(const Store& store) {
   RONDO_ASSIGN_OR_RETURN(std::vector<TaskRow> all, list_tasks(store));
   RONDO_ASSIGN_OR_RETURN(std::vector<std::string> order,
                          guarded(store, "reading the task order", [&]() -> Result<std::vector<std::string>> {
-                           SQLite::Statement q(connection(store), "SELECT id FROM tasks ORDER BY rowid");
+                           // rowid: SQLite's implicit one; a column of that name on PostgreSQL.
+                           auto q = connection(store).query("SELECT id FROM tasks ORDER BY rowid");
                            std::vector<std::string> ids;
-                           while (q.executeStep()) ids.push_back(q.getColumn(0).getString());
+                           while (q->next()) ids.push_back(q->text(0));
                            return ids;
                          }));
   std::map<std::string, TaskRow> by_id;
@@ -77,9 +76,10 @@ Result<StoredRun> read_back(const Store& store, std::string_view robot) {
   RONDO_ASSIGN_OR_RETURN(run.meta, read_meta(store));
   RONDO_ASSIGN_OR_RETURN(run.traversals_end,
                          guarded(store, "reading the end of the traversal log", [&]() -> Result<std::optional<Time>> {
-                           SQLite::Statement q(connection(store), "SELECT MAX(start_ms + duration_ms) FROM traversals");
-                           if (!q.executeStep() || q.getColumn(0).isNull()) return std::optional<Time>{};
-                           return std::optional<Time>(time_from_db(q.getColumn(0).getInt64()));
+                           const auto end = db::query_int64(connection(store),
+                                                            "SELECT MAX(start_ms + duration_ms) FROM traversals");
+                           if (!end) return std::optional<Time>{};
+                           return std::optional<Time>(time_from_db(*end));
                          }));
 
   std::map<std::string, std::size_t> index;

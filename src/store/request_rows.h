@@ -2,16 +2,16 @@
 // (the one that stores the request's tasks, or its rejection's event).
 #pragma once
 
-#include <SQLiteCpp/Database.h>
+#include "db/connection.h"
 
-#include <filesystem>
+#include <string_view>
 
 #include "rondo/core/result.h"
 #include "rondo/store/requests.h"
 
 namespace rondo::store {
 
-// kNotFound (no such request), kConflict (already taken). Throws SQLite::Exception.
-Status mark_request_taken(SQLite::Database& db, const std::filesystem::path& file, const RequestTaken& taken);
+// kNotFound (no such request), kConflict (already taken). Throws db::Failure.
+Status mark_request_taken(db::Connection& db, std::string_view store_name, const RequestTaken& taken);
 
 }  // namespace rondo::store

@@ -1,13 +1,11 @@
 #include "rondo/store/requests.h"
 
-#include <SQLiteCpp/Statement.h>
-#include <SQLiteCpp/Transaction.h>
-
 #include <fmt/format.h>
 
 #include "event_rows.h"
 #include "request_rows.h"
-#include "sqlite_error.h"
+#include "store_access.h"
+#include "write_tx.h"
 
 namespace rondo::store {
 namespace {
@@ -16,20 +14,20 @@ constexpr const char* kSelect = "SELECT id, queued_ms, source, sentence, body_js
 
 Result<std::vector<RequestRow>> read_rows(const Store& store, const std::string& sql) {
   return guarded(store, "reading the request queue", [&]() -> Result<std::vector<RequestRow>> {
-    SQLite::Statement query(connection(store), sql);
+    auto query = connection(store).query(sql);
     std::vector<RequestRow> out;
-    while (query.executeStep()) {
+    while (query->next()) {
       RequestRow r;
-      r.id = query.getColumn(0).getInt64();
-      r.queued = time_from_db(query.getColumn(1).getInt64());
-      r.source = query.getColumn(2).getString();
-      r.sentence = query.getColumn(3).getString();
-      r.body = Json::parse(query.getColumn(4).getString(), nullptr, /*allow_exceptions=*/false);
+      r.id = query->int64(0);
+      r.queued = time_from_db(query->int64(1));
+      r.source = query->text(2);
+      r.sentence = query->text(3);
+      r.body = Json::parse(query->text(4), nullptr, /*allow_exceptions=*/false);
       if (r.body.is_discarded())
         return Error::storage(
-            fmt::format("{}: request {}: the stored JSON does not parse", store.file().string(), r.id));
-      if (!query.getColumn(5).isNull()) r.taken = time_from_db(query.getColumn(5).getInt64());
-      r.outcome = query.getColumn(6).getString();
+            fmt::format("{}: request {}: the stored JSON does not parse", store.name(), r.id));
+      if (!query->is_null(5)) r.taken = time_from_db(query->int64(5));
+      r.outcome = query->text(6);
       out.push_back(std::move(r));
     }
     return out;
@@ -38,42 +36,32 @@ Result<std::vector<RequestRow>> read_rows(const Store& store, const std::string&
 
 }  // namespace
 
-Status mark_request_taken(SQLite::Database& db, const std::filesystem::path& file, const RequestTaken& taken) {
-  SQLite::Statement update(db, "UPDATE requests SET taken_ms = ?, outcome = ? WHERE id = ? AND taken_ms IS NULL");
-  update.bind(1, to_db(taken.at));
-  update.bind(2, taken.outcome.empty() ? std::string("taken") : taken.outcome);
-  update.bind(3, taken.id);
-  if (update.exec() == 1) {
-    for (const auto& [key, value] : taken.meta) {
-      SQLite::Statement set(
-          db, "INSERT INTO meta (key, value) VALUES (?, ?) ON CONFLICT (key) DO UPDATE SET value = excluded.value");
-      set.bind(1, key);
-      set.bind(2, value);
-      set.exec();
-    }
+Status mark_request_taken(db::Connection& db, std::string_view store_name, const RequestTaken& taken) {
+  const std::int64_t marked =
+      db.exec("UPDATE requests SET taken_ms = $1, outcome = $2 WHERE id = $3 AND taken_ms IS NULL",
+              {to_db(taken.at), taken.outcome.empty() ? std::string("taken") : taken.outcome, taken.id});
+  if (marked == 1) {
+    for (const auto& [key, value] : taken.meta)
+      db.exec("INSERT INTO meta (key, value) VALUES ($1, $2) ON CONFLICT (key) DO UPDATE SET value = excluded.value",
+              {key, value});
     return {};
   }
-  SQLite::Statement exists(db, "SELECT 1 FROM requests WHERE id = ?");
-  exists.bind(1, taken.id);
-  if (!exists.executeStep()) return Error::not_found(fmt::format("{}: no request {}", file.string(), taken.id));
-  return Error{ErrorCode::kConflict, fmt::format("{}: request {} is already taken", file.string(), taken.id)};
+  if (!db::query_int64(db, "SELECT 1 FROM requests WHERE id = $1", {taken.id}))
+    return Error::not_found(fmt::format("{}: no request {}", store_name, taken.id));
+  return Error{ErrorCode::kConflict, fmt::format("{}: request {} is already taken", store_name, taken.id)};
 }
 
 Result<std::int64_t> queue_request(Store& store, const RequestRow& request) {
   if (!request.body.is_object())
-    return Error::invalid(fmt::format("{}: a request's body must be a JSON object", store.file().string()));
+    return Error::invalid(fmt::format("{}: a request's body must be a JSON object", store.name()));
   return guarded(store, "queueing a request", [&]() -> Result<std::int64_t> {
-    SQLite::Database& db = connection(store);
-    SQLite::Transaction tx(db, SQLite::TransactionBehavior::IMMEDIATE);
-    SQLite::Statement insert(db, "INSERT INTO requests (queued_ms, source, sentence, body_json) VALUES (?, ?, ?, ?)");
-    insert.bind(1, to_db(request.queued));
-    insert.bind(2, request.source);
-    insert.bind(3, request.sentence);
-    insert.bind(4, request.body.dump());
-    insert.exec();
-    const std::int64_t id = db.getLastInsertRowid();
+    db::Connection& db = connection(store);
+    WriteTx tx(db);
+    const auto id = db::query_int64(
+        db, "INSERT INTO requests (queued_ms, source, sentence, body_json) VALUES ($1, $2, $3, $4) RETURNING id",
+        {to_db(request.queued), request.source, request.sentence, request.body.dump()});
     tx.commit();
-    return id;
+    return id.value_or(0);
   });
 }
 
@@ -87,9 +75,9 @@ Result<std::vector<RequestRow>> list_requests(const Store& store) {
 
 Status take_request(Store& store, const RequestTaken& taken, const Event* event) {
   return guarded(store, fmt::format("taking request {}", taken.id), [&]() -> Status {
-    SQLite::Database& db = connection(store);
-    SQLite::Transaction tx(db, SQLite::TransactionBehavior::IMMEDIATE);
-    RONDO_RETURN_IF_ERROR(mark_request_taken(db, store.file(), taken));
+    db::Connection& db = connection(store);
+    WriteTx tx(db);
+    RONDO_RETURN_IF_ERROR(mark_request_taken(db, store.name(), taken));
     if (event) insert_event_row(db, *event);
     tx.commit();
     return {};

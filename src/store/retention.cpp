@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "rondo/store/backup.h"
-#include "sqlite_error.h"
+#include "store_access.h"
 
 namespace rondo::store {
 namespace {
@@ -66,8 +66,11 @@ Result<ArchiveReport> archive_old_records(Store& store, Duration age, Duration l
                                       "would lose the traversals it reads",
                                       std::chrono::duration_cast<hours>(age).count(),
                                       std::chrono::duration_cast<hours>(learning_window).count()));
+  SQLite::Database* sqlite = sqlite_database(store);
+  if (sqlite == nullptr)
+    return Error::unsupported(fmt::format("{}: archiving old records is built for SQLite stores only", store.name()));
   return guarded(store, "archiving old records", [&]() -> Result<ArchiveReport> {
-    SQLite::Database& db = connection(store);
+    SQLite::Database& db = *sqlite;
     ArchiveReport report;
     {  // every statement is finished before the DETACH below, which a pending one would block
       SQLite::Statement latest(db,

@@ -1,158 +1,72 @@
 #include "rondo/store/store.h"
 
-#include <SQLiteCpp/Database.h>
 #include <sqlite3.h>
 
 #include <fmt/format.h>
 
-#include <fstream>
-#include <limits>
-#include <string>
-#include <string_view>
-#include <system_error>
-
+#include "db/dialect.h"
 #include "migrations.h"
-#include "sqlite_error.h"
+#include "open_backend.h"
+#include "store_access.h"
 
 namespace rondo::store {
-namespace {
 
-// Every SQLite 3 file starts with these 16 bytes.
-constexpr std::string_view kSqliteMagic{"SQLite format 3\0", 16};
-
-// Whether a non-empty file starts like an SQLite database. SQLite itself treats a 1-byte file as
-// empty and would overwrite it; we never write over a file that is not already a database.
-// A file we cannot read passes: SQLite then reports why it cannot open it.
-bool has_sqlite_header(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return true;
-  std::string head(kSqliteMagic.size(), '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  return in.gcount() == static_cast<std::streamsize>(head.size()) && head == kSqliteMagic;
+int Store::latest_schema_version() {
+  return sqlite_migrations().back().version;
 }
 
-Status check_path(const std::filesystem::path& file, OpenMode mode) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(file, ec);
-  if (std::filesystem::is_directory(status)) {
-    return Error::invalid(file.string() + ": is a folder, not a database file");
-  }
-  if (!std::filesystem::exists(status)) {
-    if (mode != OpenMode::kCreateIfMissing) return Error::not_found(file.string() + ": no such database file");
-    return {};
-  }
-  // An empty file is a new database to SQLite, and to us.
-  if (std::filesystem::is_regular_file(status) && std::filesystem::file_size(file, ec) > 0 && !ec &&
-      !has_sqlite_header(file)) {
-    return Error::invalid(file.string() + ": not an SQLite database (it does not start with the SQLite header)");
-  }
-  return {};
-}
+std::int64_t Store::sqlite_memory_bytes() { return sqlite3_memory_used(); }
 
-int busy_timeout_ms(Duration timeout) {
-  const auto ms = timeout.count();
-  if (ms <= 0) return 0;
-  return ms > std::numeric_limits<int>::max() ? std::numeric_limits<int>::max() : static_cast<int>(ms);
-}
-
-// Connection settings; see docs/storage.md for why each is what it is.
-Status configure(SQLite::Database& db, const std::filesystem::path& file, bool sync_commits) {
-  return guarded(file, "setting the connection up", [&]() -> Status {
-    const std::string journal = db.execAndGet("PRAGMA journal_mode = WAL").getString();
-    if (journal != "wal") {
-      return Error::storage(
-          fmt::format("{}: cannot switch to WAL journal mode (SQLite kept '{}')", file.string(), journal));
-    }
-    db.exec(sync_commits ? "PRAGMA synchronous = FULL" : "PRAGMA synchronous = OFF");
-    db.exec("PRAGMA foreign_keys = ON");
-    if (db.execAndGet("PRAGMA foreign_keys").getInt() != 1) {
-      return Error::storage(file.string() + ": this SQLite build cannot enforce foreign keys");
-    }
-    return {};
-  });
-}
-
-// SQLite's page cache, per connection: 512 KiB, not SQLite's default of 2000 KiB. The executor's
-// reads are small (a task by id, a page of events, the refit's two weeks of traversals once a
-// night) and the operating system caches the file anyway; a default-sized cache fills as the
-// store grows, which a long-lived service holds as memory for nothing (docs/operations.md, "Memory
-// over time": 1 to 2 MiB in the soak). Not stored in the file: set at every open.
-constexpr int kPageCacheKiB = 512;
-
-Status limit_page_cache(SQLite::Database& db, const std::filesystem::path& file) {
-  return guarded(file, "setting the page cache", [&]() -> Status {
-    db.exec(fmt::format("PRAGMA cache_size = -{}", kPageCacheKiB));  // negative: KiB, not pages
-    return {};
-  });
-}
-
-// A read-only open takes the schema as it is: the current one, or a refusal that says how to get
-// it. Nothing is written, so an older file stays as it was.
-Status check_readable_schema(SQLite::Database& db, const std::filesystem::path& file) {
-  return guarded(file, "reading the schema version", [&]() -> Status {
-    const int found = db.execAndGet("PRAGMA user_version").getInt();
+Status check_readable_schema(db::Connection& db, std::string_view name) {
+  return guarded(name, "reading the schema version", [&]() -> Status {
+    const int found = db::read_schema_version(db);
     const int latest = Store::latest_schema_version();
     if (found == 0) {
       return Error::invalid(
           fmt::format("{}: an empty database, not yet a rondo store (nothing to read; 'rondo log import' makes one)",
-                      file.string()));
+                      name));
     }
     if (found > latest) {
       return Error{ErrorCode::kUnsupported,
-                   fmt::format("{}: schema version {} is newer than this rondo knows ({}); use a newer rondo",
-                               file.string(), found, latest)};
+                   fmt::format("{}: schema version {} is newer than this rondo knows ({}); use a newer rondo", name,
+                               found, latest)};
     }
     if (found < latest) {
       return Error::invalid(fmt::format(
           "{}: schema version {} is older than this rondo's {}, and read-only commands never change a store: "
           "run 'rondo log migrate --db {}' first",
-          file.string(), found, latest, file.string()));
+          name, found, latest, name));
     }
     return {};
   });
 }
 
-}  // namespace
-
-int Store::latest_schema_version() {
-  return schema_migrations().back().version;
-}
-
-std::int64_t Store::sqlite_memory_bytes() { return sqlite3_memory_used(); }
-
 Result<Store> Store::open(const std::filesystem::path& file, const StoreOptions& options) {
-  if (auto ok = check_path(file, options.mode); !ok) return ok.error();
-  const bool read_only = options.mode == OpenMode::kReadOnly;
-  const int flags =
-      read_only ? SQLite::OPEN_READONLY
-                : SQLite::OPEN_READWRITE | (options.mode == OpenMode::kCreateIfMissing ? SQLite::OPEN_CREATE : 0);
-  std::unique_ptr<SQLite::Database> db;
-  try {
-    db = std::make_unique<SQLite::Database>(file, flags, busy_timeout_ms(options.busy_timeout));
-  } catch (const SQLite::Exception& e) {
-    return sqlite_error(file, "opening", e);
-  }
-  // Before any setting is written: a foreign file is refused untouched (not even switched to WAL).
-  if (auto ok = check_rondo_file(*db, file); !ok) return ok.error();
-  if (auto ok = limit_page_cache(*db, file); !ok) return ok.error();
-  if (read_only) {
-    if (auto ok = check_readable_schema(*db, file); !ok) return ok.error();
-    return Store(file, std::move(db));
-  }
-  if (auto ok = configure(*db, file, options.sync_commits); !ok) return ok.error();
-  if (auto ok = migrate(*db, schema_migrations(), file); !ok) return ok.error();
-  return Store(file, std::move(db));
+  return open(StoreLocation::sqlite(file), options);
 }
 
-Store::Store(std::filesystem::path file, std::unique_ptr<SQLite::Database> db)
-    : file_(std::move(file)), db_(std::move(db)) {}
+Result<Store> Store::open(const StoreLocation& location, const StoreOptions& options) {
+  if (location.kind == StoreLocation::Kind::kSqlite) {
+    RONDO_ASSIGN_OR_RETURN(std::unique_ptr<db::Connection> db, open_sqlite(location.file, options));
+    return Store(location, std::move(db));
+  }
+  RONDO_ASSIGN_OR_RETURN(std::unique_ptr<db::Connection> db, open_postgres(location, options));
+  return Store(location, std::move(db));
+}
+
+Result<Store> Store::open_named(std::string_view name, const StoreOptions& options) {
+  RONDO_ASSIGN_OR_RETURN(const StoreLocation location, StoreLocation::parse(name));
+  return open(location, options);
+}
+
+Store::Store(StoreLocation location, std::unique_ptr<db::Connection> db)
+    : location_(std::move(location)), name_(location_.name()), db_(std::move(db)) {}
 Store::Store(Store&& other) noexcept = default;
 Store& Store::operator=(Store&& other) noexcept = default;
 Store::~Store() = default;
 
 Result<int> Store::schema_version() const {
-  return guarded(*this, "reading the schema version",
-                 [&]() -> Result<int> { return db_->execAndGet("PRAGMA user_version").getInt(); });
+  return guarded(*this, "reading the schema version", [&]() -> Result<int> { return db::read_schema_version(*db_); });
 }
 
 }  // namespace rondo::store

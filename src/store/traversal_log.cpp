@@ -1,51 +1,37 @@
 #include "rondo/store/traversal_log.h"
 
-#include <SQLiteCpp/Statement.h>
-#include "write_tx.h"
+
+#include <fmt/format.h>
 
 #include <algorithm>
+#include <optional>
 #include <string>
 
-#include "sqlite_error.h"
+#include "store_access.h"
+#include "write_tx.h"
 
 namespace rondo::store {
 namespace {
 
-// The one INSERT of the log. A stored origin makes it a no-op (exec() returns 0 changes); NULL
-// origins never conflict, so live traversals are always stored.
-constexpr const char* kInsert =
-    "INSERT INTO traversals (edge_id, from_node, to_node, start_ms, duration_ms, success, origin, robot) "
-    "VALUES (?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (origin) DO NOTHING";
-
-// Binds `t` to a prepared kInsert, runs it, and resets it for reuse; true if a row was added.
-bool insert(SQLite::Statement& statement, const Traversal& t) {
-  statement.bind(1, t.edge_id);
-  statement.bind(2, t.from);
-  statement.bind(3, t.to);
-  statement.bind(4, to_db(t.start));
-  statement.bind(5, to_db(t.duration));
-  statement.bind(6, t.success ? 1 : 0);
-  if (t.origin.empty()) {
-    statement.bind(7);  // NULL
-  } else {
-    statement.bind(7, t.origin);
-  }
-  statement.bind(8, t.robot);
-  const int changed = statement.exec();
-  statement.reset();
-  return changed == 1;
+// The one INSERT of the log. A stored origin makes it a no-op (0 rows changed); NULL origins never
+// conflict, so live traversals are always stored. True if a row was added.
+bool insert(db::Connection& db, const Traversal& t) {
+  const std::optional<std::string> origin = t.origin.empty() ? std::nullopt : std::optional<std::string>(t.origin);
+  return db.exec("INSERT INTO traversals (edge_id, from_node, to_node, start_ms, duration_ms, success, origin, robot) "
+                 "VALUES ($1, $2, $3, $4, $5, $6, $7, $8) ON CONFLICT (origin) DO NOTHING",
+                 {t.edge_id, t.from, t.to, to_db(t.start), to_db(t.duration), t.success ? 1 : 0, origin, t.robot}) == 1;
 }
 
-Traversal traversal_from_row(const SQLite::Statement& row) {
+Traversal traversal_from_row(const db::Rows& row) {
   Traversal t;
-  t.edge_id = row.getColumn(0).getString();
-  t.from = row.getColumn(1).getString();
-  t.to = row.getColumn(2).getString();
-  t.start = time_from_db(row.getColumn(3).getInt64());
-  t.duration = duration_from_db(row.getColumn(4).getInt64());
-  t.success = row.getColumn(5).getInt() != 0;
-  if (!row.isColumnNull(6)) t.origin = row.getColumn(6).getString();
-  t.robot = row.getColumn(7).getString();
+  t.edge_id = row.text(0);
+  t.from = row.text(1);
+  t.to = row.text(2);
+  t.start = time_from_db(row.int64(3));
+  t.duration = duration_from_db(row.int64(4));
+  t.success = row.int64(5) != 0;
+  if (!row.is_null(6)) t.origin = row.text(6);
+  t.robot = row.text(7);
   return t;
 }
 
@@ -53,21 +39,19 @@ Traversal traversal_from_row(const SQLite::Statement& row) {
 
 Result<bool> add_traversal(Store& store, const Traversal& traversal) {
   return guarded(store, "adding a traversal", [&]() -> Result<bool> {
-    SQLite::Statement statement(connection(store), kInsert);
-    return insert(statement, traversal);  // autocommit: its own transaction
+    return insert(connection(store), traversal);  // autocommit: its own transaction
   });
 }
 
 Result<InsertCounts> add_traversals(Store& store, std::span<const Traversal> traversals, const BatchOptions& options) {
   return guarded(store, "adding traversals", [&]() -> Result<InsertCounts> {
-    SQLite::Database& db = connection(store);
+    db::Connection& db = connection(store);
     WriteTx tx(db);
-    SQLite::Statement statement(db, kInsert);
     const std::size_t every = std::max<std::size_t>(options.progress_every, 1);
     InsertCounts counts;
     std::size_t done = 0;
     for (const Traversal& t : traversals) {
-      ++(insert(statement, t) ? counts.inserted : counts.already_present);
+      ++(insert(db, t) ? counts.inserted : counts.already_present);
       ++done;
       if (options.progress && done % every == 0) options.progress(done, traversals.size());
     }
@@ -79,28 +63,27 @@ Result<InsertCounts> add_traversals(Store& store, std::span<const Traversal> tra
 Result<std::vector<Traversal>> find_traversals(const Store& store, const TraversalQuery& query) {
   return guarded(store, "reading traversals", [&]() -> Result<std::vector<Traversal>> {
     std::string sql =
-        "SELECT edge_id, from_node, to_node, start_ms, duration_ms, success, origin, robot FROM traversals WHERE 1";
-    if (query.edge_id) sql += " AND edge_id = :edge";
-    if (query.robot) sql += " AND robot = :robot";
-    if (query.from) sql += " AND start_ms >= :from";
-    if (query.until) sql += " AND start_ms < :until";
+        "SELECT edge_id, from_node, to_node, start_ms, duration_ms, success, origin, robot FROM traversals WHERE TRUE";
+    db::Params params;
+    const auto where = [&](std::string_view condition, db::Param value) {
+      params.push_back(std::move(value));
+      sql += fmt::format(" AND {} ${}", condition, params.size());
+    };
+    if (query.edge_id) where("edge_id =", *query.edge_id);
+    if (query.robot) where("robot =", *query.robot);
+    if (query.from) where("start_ms >=", to_db(*query.from));
+    if (query.until) where("start_ms <", to_db(*query.until));
     sql += " ORDER BY start_ms, edge_id, id";
-    SQLite::Statement select(connection(store), sql);
-    if (query.edge_id) select.bind(":edge", *query.edge_id);
-    if (query.robot) select.bind(":robot", *query.robot);
-    if (query.from) select.bind(":from", to_db(*query.from));
-    if (query.until) select.bind(":until", to_db(*query.until));
+    auto select = connection(store).query(sql, params);
     std::vector<Traversal> out;
-    while (select.executeStep()) out.push_back(traversal_from_row(select));
+    while (select->next()) out.push_back(traversal_from_row(*select));
     return out;
   });
 }
 
 Result<std::size_t> count_traversals(const Store& store) {
   return guarded(store, "counting traversals", [&]() -> Result<std::size_t> {
-    SQLite::Statement count(connection(store), "SELECT COUNT(*) FROM traversals");
-    count.executeStep();
-    return static_cast<std::size_t>(count.getColumn(0).getInt64());
+    return static_cast<std::size_t>(db::query_int64(connection(store), "SELECT COUNT(*) FROM traversals").value_or(0));
   });
 }
 

@@ -1,35 +1,38 @@
-// One write of the store, all or nothing: its own IMMEDIATE transaction (committed, and with
-// synced commits on disk, by commit()), or, inside a store::Batch (batch.h) or another write, a
-// savepoint of the transaction already open, which the outer commit makes durable. Not committed
-// by the time it is destroyed (an error, an exception): undone.
+// One write of the store, all or nothing: its own write transaction (committed, and with synced
+// commits on disk, by commit()), or, inside a store::Batch (batch.h) or another write, a savepoint
+// of the transaction already open, which the outer commit makes durable. Not committed by the time
+// it is destroyed (an error, an exception): undone. The same on both backends (on PostgreSQL a
+// failed statement spoils the transaction; rolling back to the savepoint mends it, as in SQLite).
 #pragma once
 
-#include <SQLiteCpp/Database.h>
-#include <sqlite3.h>
+#include <string>
+
+#include "db/connection.h"
+#include "db/dialect.h"
 
 namespace rondo::store {
 
 class WriteTx {
  public:
-  explicit WriteTx(SQLite::Database& db) : db_(db), nested_(sqlite3_get_autocommit(db.getHandle()) == 0) {
-    db_.exec(nested_ ? "SAVEPOINT rondo_write" : "BEGIN IMMEDIATE");
+  explicit WriteTx(db::Connection& db) : db_(db), nested_(db.in_transaction()) {
+    db_.exec_script(nested_ ? "SAVEPOINT rondo_write" : std::string(db::begin_write(db.backend())));
   }
   WriteTx(const WriteTx&) = delete;
   WriteTx& operator=(const WriteTx&) = delete;
   ~WriteTx() {
     if (done_) return;
     try {
-      db_.exec(nested_ ? "ROLLBACK TO rondo_write; RELEASE rondo_write" : "ROLLBACK");
-    } catch (...) {  // NOLINT(bugprone-empty-catch): a failed rollback leaves SQLite's own
+      db_.exec_script(nested_ ? "ROLLBACK TO rondo_write; RELEASE rondo_write" : "ROLLBACK");
+    } catch (...) {  // NOLINT(bugprone-empty-catch): a failed rollback leaves the database's own
     }
   }
   void commit() {
-    db_.exec(nested_ ? "RELEASE rondo_write" : "COMMIT");
+    db_.exec_script(nested_ ? "RELEASE rondo_write" : "COMMIT");
     done_ = true;
   }
 
  private:
-  SQLite::Database& db_;
+  db::Connection& db_;
   bool nested_;
   bool done_ = false;
 };

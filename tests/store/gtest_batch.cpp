@@ -5,35 +5,35 @@
 #include <gtest/gtest.h>
 
 #include "rondo/store/task_table.h"
-#include "store/temp_db.h"
+#include "store/store_backends.h"
 
 namespace rondo::store {
 namespace {
 
-using testing::TempDb;
 
 TaskRow row(const std::string& id) {
   return TaskRow{
       .id = id, .task = Json{{"id", id}}, .state = "queued", .created = Time{seconds(1)}, .updated = Time{seconds(1)}};
 }
 
-class BatchTest : public ::testing::Test {
+class BatchTest : public testing::BackendTest {
  protected:
   void SetUp() override {
-    auto opened = Store::open(tmp_.path());
+    BackendTest::SetUp();
+    if (HasFatalFailure()) return;
+    auto opened = temp().open();
     ASSERT_TRUE(opened.ok()) << opened.error().message;
     db_.emplace(std::move(*opened));
-    auto other = Store::open(tmp_.path(), {.mode = OpenMode::kMustExist});
+    auto other = temp().open({.mode = OpenMode::kMustExist});
     ASSERT_TRUE(other.ok());
     reader_.emplace(std::move(*other));
   }
   bool seen(const std::string& id) { return get_task(*reader_, id).ok(); }
 
-  TempDb tmp_;
   std::optional<Store> db_, reader_;
 };
 
-TEST_F(BatchTest, WritesBecomeVisibleTogetherAtTheCommit) {
+TEST_P(BatchTest, WritesBecomeVisibleTogetherAtTheCommit) {
   Batch batch(*db_);
   ASSERT_TRUE(add_task(*db_, row("a")).ok());
   ASSERT_TRUE(set_task_state(*db_, "a", "navigating", Time{seconds(2)}, "departed").ok());
@@ -47,7 +47,7 @@ TEST_F(BatchTest, WritesBecomeVisibleTogetherAtTheCommit) {
   EXPECT_TRUE(seen("b"));
 }
 
-TEST_F(BatchTest, AWriteThatFailsInsideIsUndoneAloneAndTheRestIsKept) {
+TEST_P(BatchTest, AWriteThatFailsInsideIsUndoneAloneAndTheRestIsKept) {
   ASSERT_TRUE(add_task(*db_, row("a")).ok());
   Batch batch(*db_);
   const std::vector<TaskRow> rows{row("b"), row("a")};  // "a" is taken: the whole add is refused
@@ -58,7 +58,7 @@ TEST_F(BatchTest, AWriteThatFailsInsideIsUndoneAloneAndTheRestIsKept) {
   EXPECT_TRUE(seen("c"));
 }
 
-TEST_F(BatchTest, ABatchNotCommittedLeavesNothingAndABatchInsideABatchJoinsIt) {
+TEST_P(BatchTest, ABatchNotCommittedLeavesNothingAndABatchInsideABatchJoinsIt) {
   {
     Batch batch(*db_);
     ASSERT_TRUE(add_task(*db_, row("a")).ok());
@@ -74,6 +74,8 @@ TEST_F(BatchTest, ABatchNotCommittedLeavesNothingAndABatchInsideABatchJoinsIt) {
   ASSERT_TRUE(outer.commit().ok());
   EXPECT_TRUE(seen("b"));
 }
+
+RONDO_ON_BOTH_BACKENDS(BatchTest);
 
 }  // namespace
 }  // namespace rondo::store

@@ -4,31 +4,31 @@
 
 #include <limits>
 
-#include "store/temp_db.h"
+#include "store/store_backends.h"
 
 namespace rondo::store {
 namespace {
 
-using testing::TempDb;
 
 Time at(int s) {
   return Time{seconds(s)};
 }
 
-class Observations : public ::testing::Test {
+class Observations : public testing::BackendTest {
  protected:
   void SetUp() override {
-    auto opened = Store::open(tmp_.path());
+    BackendTest::SetUp();
+    if (HasFatalFailure()) return;
+    auto opened = temp().open();
     ASSERT_TRUE(opened.ok()) << opened.error().message;
     db_.emplace(std::move(*opened));
   }
   Store& db() { return *db_; }
 
-  TempDb tmp_;
   std::optional<Store> db_;
 };
 
-TEST_F(Observations, RoundTripWithAndWithoutText) {
+TEST_P(Observations, RoundTripWithAndWithoutText) {
   const Observation door{"door_open", "door_A110", at(100), 1.0, std::nullopt};
   const Observation load{"load_time", "A-114", at(50), 37.25, "the librarian, green book"};
   auto first = add_observation(db(), door);
@@ -41,7 +41,7 @@ TEST_F(Observations, RoundTripWithAndWithoutText) {
   EXPECT_EQ(*all, (std::vector<Observation>{load, door}));  // by time
 }
 
-TEST_F(Observations, Queries) {
+TEST_P(Observations, Queries) {
   const Observation rows[] = {
       {"door_open", "door_A", at(10), 1, {}},
       {"door_open", "door_B", at(20), 0, {}},
@@ -71,7 +71,7 @@ TEST_F(Observations, Queries) {
   }
 }
 
-TEST_F(Observations, RefusesAValueThatIsNotANumber) {
+TEST_P(Observations, RefusesAValueThatIsNotANumber) {
   for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     auto id = add_observation(db(), {"door_open", "door_A", at(1), bad, {}});
     ASSERT_FALSE(id.ok());
@@ -79,6 +79,8 @@ TEST_F(Observations, RefusesAValueThatIsNotANumber) {
   }
   EXPECT_TRUE(find_observations(db())->empty());
 }
+
+RONDO_ON_BOTH_BACKENDS(Observations);
 
 }  // namespace
 }  // namespace rondo::store

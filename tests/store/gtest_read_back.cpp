@@ -4,12 +4,11 @@
 #include <gtest/gtest.h>
 
 #include "rondo/store/traversal_log.h"
-#include "store/temp_db.h"
+#include "store/store_backends.h"
 
 namespace rondo::store {
 namespace {
 
-using testing::TempDb;
 
 Time at(int s) {
   return Time{seconds(s)};
@@ -29,9 +28,11 @@ void note(Store& db, const std::string& id, int s, const std::string& event, con
   ASSERT_TRUE(append_event(db, {.time = at(s), .task_id = id, .event = event, .code = code, .reason = reason}));
 }
 
-TEST(ReadBack, AnEmptyStoreHasNothing) {
-  TempDb tmp;
-  auto db = Store::open(tmp.path()).value();
+class ReadBack : public testing::BackendTest {};
+class ReadBackMeta : public testing::BackendTest {};
+
+TEST_P(ReadBack, AnEmptyStoreHasNothing) {
+  auto db = temp().open().value();
   const StoredRun run = read_back(db, "robot").value();
   EXPECT_TRUE(run.tasks.empty());
   EXPECT_TRUE(run.events.empty());
@@ -41,10 +42,9 @@ TEST(ReadBack, AnEmptyStoreHasNothing) {
   EXPECT_FALSE(run.latest());
 }
 
-TEST(ReadBack, EachTaskComesWithTheChangeThatPutItInItsStateAndItsDropForNow) {
-  TempDb tmp;
+TEST_P(ReadBack, EachTaskComesWithTheChangeThatPutItInItsStateAndItsDropForNow) {
   {
-    auto db = Store::open(tmp.path()).value();
+    auto db = temp().open().value();
     // One batch whose ids are not in alphabetical order: the read-back keeps the order accepted.
     const std::vector<TaskRow> batch{row("zeta", 10), row("alpha", 10), row("mid", 10), row("gone", 10)};
     ASSERT_TRUE(add_tasks(db, batch, "added by test", "added"));
@@ -68,7 +68,7 @@ TEST(ReadBack, EachTaskComesWithTheChangeThatPutItInItsStateAndItsDropForNow) {
     ASSERT_TRUE(save_robot_state(db, {.robot = "robot", .node = "B", .updated = at(80)}));
     ASSERT_TRUE(set_meta(db, {{"run.seed", "7"}, {"run.days", "3"}}));
   }
-  auto db = Store::open(tmp.path(), {.mode = OpenMode::kReadOnly}).value();
+  auto db = temp().open({.mode = OpenMode::kReadOnly}).value();
   const StoredRun run = read_back(db, "robot").value();
   ASSERT_EQ(run.tasks.size(), 4u);
   EXPECT_EQ(run.tasks[0].row.id, "zeta");
@@ -115,9 +115,8 @@ TEST(ReadBack, EachTaskComesWithTheChangeThatPutItInItsStateAndItsDropForNow) {
   EXPECT_EQ(run.latest(), at(85));
 }
 
-TEST(ReadBack, TheLatestTimeIsTheRobotStateWhenItIsNewest) {
-  TempDb tmp;
-  auto db = Store::open(tmp.path()).value();
+TEST_P(ReadBack, TheLatestTimeIsTheRobotStateWhenItIsNewest) {
+  auto db = temp().open().value();
   ASSERT_TRUE(add_task(db, row("t", 5), "added", "added"));
   ASSERT_TRUE(save_robot_state(db, {.robot = "robot", .node = "B", .updated = at(90)}));
   ASSERT_TRUE(save_robot_state(db, {.robot = "other", .node = "C", .updated = at(200)}));
@@ -125,14 +124,16 @@ TEST(ReadBack, TheLatestTimeIsTheRobotStateWhenItIsNewest) {
   EXPECT_EQ(run.latest(), at(90));  // another robot's row is not this run's
 }
 
-TEST(Meta, SeveralKeysAreSetInOneTransactionAndReadBackTogether) {
-  TempDb tmp;
-  auto db = Store::open(tmp.path()).value();
+TEST_P(ReadBackMeta, SeveralKeysAreSetInOneTransactionAndReadBackTogether) {
+  auto db = temp().open().value();
   ASSERT_TRUE(set_meta(db, {{"a", "1"}, {"b", "2"}}));
   ASSERT_TRUE(set_meta(db, {{"b", "3"}}));
   EXPECT_EQ(read_meta(db).value(), (std::map<std::string, std::string>{{"a", "1"}, {"b", "3"}}));
   EXPECT_EQ(get_meta(db, "b").value(), "3");
 }
+
+RONDO_ON_BOTH_BACKENDS(ReadBack);
+RONDO_ON_BOTH_BACKENDS(ReadBackMeta);
 
 }  // namespace
 }  // namespace rondo::store

@@ -7,12 +7,11 @@
 #include "rondo/store/requests.h"
 #include "rondo/store/robot_state.h"
 #include "rondo/store/task_table.h"
-#include "temp_db.h"
+#include "store/store_backends.h"
 
 namespace rondo::store {
 namespace {
 
-using testing::TempDb;
 
 const Time kT0 = Time{Duration{1'795'392'000'000}};
 
@@ -24,9 +23,10 @@ TaskRow row(const std::string& id) {
   return {.id = id, .task = Json{{"id", id}}, .state = "queued", .created = kT0, .updated = kT0};
 }
 
-TEST(Requests, QueuedInOrderAndTakenOnce) {
-  TempDb tmp;
-  auto db = Store::open(tmp.path());
+class Requests : public testing::BackendTest {};
+
+TEST_P(Requests, QueuedInOrderAndTakenOnce) {
+  auto db = temp().open();
   ASSERT_TRUE(db.ok());
   EXPECT_EQ(*queue_request(*db, request("a")), 1);
   EXPECT_EQ(*queue_request(*db, request("b")), 2);
@@ -45,9 +45,8 @@ TEST(Requests, QueuedInOrderAndTakenOnce) {
   EXPECT_EQ(read_events(*db)->size(), 1u);  // the event, once
 }
 
-TEST(Requests, TakenInTheTransactionThatStoresItsTasks) {
-  TempDb tmp;
-  auto db = Store::open(tmp.path());
+TEST_P(Requests, TakenInTheTransactionThatStoresItsTasks) {
+  auto db = temp().open();
   ASSERT_TRUE(db.ok());
   ASSERT_TRUE(add_task(*db, row("t0")).ok());
   ASSERT_TRUE(queue_request(*db, request("two tasks")).ok());
@@ -67,9 +66,8 @@ TEST(Requests, TakenInTheTransactionThatStoresItsTasks) {
   EXPECT_FALSE(get_task(*db, "t3").ok());
 }
 
-TEST(Requests, TakenWithItsMetaEntriesInOneTransaction) {
-  TempDb tmp;
-  auto db = Store::open(tmp.path());
+TEST_P(Requests, TakenWithItsMetaEntriesInOneTransaction) {
+  auto db = temp().open();
   ASSERT_TRUE(db.ok());
   ASSERT_TRUE(queue_request(*db, request("a routine")).ok());
   const Event e{.time = kT0, .subject = Subject::kRequest, .about = "request 1", .event = "routines added"};
@@ -81,6 +79,8 @@ TEST(Requests, TakenWithItsMetaEntriesInOneTransaction) {
   EXPECT_EQ(read_events(*db)->size(), 1u);
   EXPECT_EQ(list_requests(*db)->front().outcome, "added 1 routine(s)");
 }
+
+RONDO_ON_BOTH_BACKENDS(Requests);
 
 }  // namespace
 }  // namespace rondo::store

@@ -4,24 +4,25 @@
 
 #include <cmath>
 
-#include "store/temp_db.h"
+#include "store/store_backends.h"
 
 namespace rondo::store {
 namespace {
 
-using testing::TempDb;
 
-TEST(RobotState, IsSavedReplacedAndReadBackAfterReopening) {
-  TempDb tmp;
+class RobotStates : public testing::BackendTest {};
+class Meta : public testing::BackendTest {};
+
+TEST_P(RobotStates, IsSavedReplacedAndReadBackAfterReopening) {
   {
-    auto db = Store::open(tmp.path()).value();
+    auto db = temp().open().value();
     EXPECT_FALSE(load_robot_state(db, "r1").value().has_value());
     ASSERT_TRUE(save_robot_state(db, {.robot = "r1", .node = "Hall", .updated = Time{seconds(5)}}).ok());
     const RobotState later{.robot = "r1", .node = "Office", .x = 2.0, .y = -1.5, .yaw = 0.25, .battery = 0.75,
                            .on_board = Json::array({"red letter"}), .fault = "bumper", .updated = Time{seconds(9)}};
     ASSERT_TRUE(save_robot_state(db, later).ok());
   }
-  auto db = Store::open(tmp.path(), {.mode = OpenMode::kMustExist}).value();
+  auto db = temp().open({.mode = OpenMode::kMustExist}).value();
   const auto back = load_robot_state(db, "r1").value();
   ASSERT_TRUE(back);
   EXPECT_EQ(back->node, "Office");
@@ -32,9 +33,8 @@ TEST(RobotState, IsSavedReplacedAndReadBackAfterReopening) {
   EXPECT_FALSE(load_robot_state(db, "r2").value().has_value());
 }
 
-TEST(RobotState, BadValuesAreRefused) {
-  TempDb tmp;
-  auto db = Store::open(tmp.path()).value();
+TEST_P(RobotStates, BadValuesAreRefused) {
+  auto db = temp().open().value();
   EXPECT_EQ(save_robot_state(db, {.robot = "", .node = "Hall"}).error().code, ErrorCode::kInvalidInput);
   EXPECT_EQ(save_robot_state(db, {.robot = "r", .node = "Hall", .battery = 1.5}).error().code,
             ErrorCode::kInvalidInput);
@@ -43,14 +43,16 @@ TEST(RobotState, BadValuesAreRefused) {
   EXPECT_FALSE(load_robot_state(db, "r").value().has_value());
 }
 
-TEST(Meta, KeysAreSetReplacedAndRead) {
-  TempDb tmp;
-  auto db = Store::open(tmp.path()).value();
+TEST_P(Meta, KeysAreSetReplacedAndRead) {
+  auto db = temp().open().value();
   EXPECT_FALSE(get_meta(db, "run.seed").value().has_value());
   ASSERT_TRUE(set_meta(db, "run.seed", "7").ok());
   ASSERT_TRUE(set_meta(db, "run.seed", "8").ok());
   EXPECT_EQ(get_meta(db, "run.seed").value(), "8");
 }
+
+RONDO_ON_BOTH_BACKENDS(RobotStates);
+RONDO_ON_BOTH_BACKENDS(Meta);
 
 }  // namespace
 }  // namespace rondo::store

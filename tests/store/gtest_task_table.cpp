@@ -4,13 +4,12 @@
 
 #include "rondo/store/events.h"
 #include "store/child_process.h"
-#include "store/temp_db.h"
+#include "store/store_backends.h"
 
 namespace rondo::store {
 namespace {
 
 using testing::run_in_child;
-using testing::TempDb;
 
 Time at(int s) {
   return Time{seconds(s)};
@@ -28,20 +27,23 @@ TaskRow sample(std::string id, int created_s = 100) {
   return TaskRow{std::move(id), std::move(task), "queued", at(created_s), at(created_s)};
 }
 
-class TaskTable : public ::testing::Test {
+class TaskTable : public testing::BackendTest {
  protected:
   void SetUp() override {
-    auto opened = Store::open(tmp_.path());
+    BackendTest::SetUp();
+    if (HasFatalFailure()) return;
+    auto opened = temp().open();
     ASSERT_TRUE(opened.ok()) << opened.error().message;
     db_.emplace(std::move(*opened));
   }
   Store& db() { return *db_; }
 
-  TempDb tmp_;
   std::optional<Store> db_;
 };
 
-TEST_F(TaskTable, RoundTripsEveryField) {
+class TaskTableDurability : public testing::BackendTest {};
+
+TEST_P(TaskTable, RoundTripsEveryField) {
   const TaskRow r = sample("t1");
   ASSERT_TRUE(add_task(db(), r).ok());
   auto back = get_task(db(), "t1");
@@ -50,8 +52,8 @@ TEST_F(TaskTable, RoundTripsEveryField) {
   EXPECT_EQ(back->task.dump(), r.task.dump());  // key order is kept too
 }
 
-TEST_F(TaskTable, AnAcceptedTaskIsVisibleToAnotherConnectionAtOnce) {
-  auto other = Store::open(tmp_.path(), {.mode = OpenMode::kMustExist});
+TEST_P(TaskTable, AnAcceptedTaskIsVisibleToAnotherConnectionAtOnce) {
+  auto other = temp().open({.mode = OpenMode::kMustExist});
   ASSERT_TRUE(other.ok());
   EXPECT_EQ(get_task(*other, "t1").error().code, ErrorCode::kNotFound);
   ASSERT_TRUE(add_task(db(), sample("t1")).ok());
@@ -60,7 +62,7 @@ TEST_F(TaskTable, AnAcceptedTaskIsVisibleToAnotherConnectionAtOnce) {
   EXPECT_EQ(seen->state, "queued");
 }
 
-TEST_F(TaskTable, AddingWritesTheAcceptanceEvent) {
+TEST_P(TaskTable, AddingWritesTheAcceptanceEvent) {
   ASSERT_TRUE(add_task(db(), sample("t1", 42), "from the web page").ok());
   auto events = read_events_of(db(), "t1");
   ASSERT_TRUE(events.ok());
@@ -70,7 +72,7 @@ TEST_F(TaskTable, AddingWritesTheAcceptanceEvent) {
   EXPECT_EQ((*events)[0].reason, "from the web page");
 }
 
-TEST_F(TaskTable, RefusesADuplicateIdAndKeepsTheFirst) {
+TEST_P(TaskTable, RefusesADuplicateIdAndKeepsTheFirst) {
   ASSERT_TRUE(add_task(db(), sample("t1")).ok());
   TaskRow second = sample("t1", 200);
   second.state = "dropped";
@@ -82,7 +84,7 @@ TEST_F(TaskTable, RefusesADuplicateIdAndKeepsTheFirst) {
   EXPECT_EQ(read_events_of(db(), "t1")->size(), 1u);  // no event for the refused one
 }
 
-TEST_F(TaskTable, StoresABatchWhole) {
+TEST_P(TaskTable, StoresABatchWhole) {
   const std::vector<TaskRow> batch{sample("a", 10), sample("b", 10), sample("c", 10)};
   ASSERT_TRUE(add_tasks(db(), batch, "routine").ok());
   auto all = list_tasks(db());
@@ -95,7 +97,7 @@ TEST_F(TaskTable, StoresABatchWhole) {
   }
 }
 
-TEST_F(TaskTable, StoresNoneOfABatchWithAStoredId) {
+TEST_P(TaskTable, StoresNoneOfABatchWithAStoredId) {
   ASSERT_TRUE(add_task(db(), sample("b")).ok());
   const std::vector<TaskRow> batch{sample("a", 200), sample("b", 200), sample("c", 200)};
   Status s = add_tasks(db(), batch);
@@ -109,24 +111,24 @@ TEST_F(TaskTable, StoresNoneOfABatchWithAStoredId) {
   EXPECT_EQ(read_events_of(db(), "b")->size(), 1u);
 }
 
-TEST_F(TaskTable, AnEmptyBatchStoresNothing) {
+TEST_P(TaskTable, AnEmptyBatchStoresNothing) {
   ASSERT_TRUE(add_tasks(db(), {}).ok());
   EXPECT_TRUE(list_tasks(db())->empty());
 }
 
-TEST_F(TaskTable, StoresNoneOfABatchThatRepeatsAnId) {
+TEST_P(TaskTable, StoresNoneOfABatchThatRepeatsAnId) {
   Status s = add_tasks(db(), std::vector<TaskRow>{sample("a"), sample("a", 300)});
   ASSERT_FALSE(s.ok());
   EXPECT_TRUE(list_tasks(db())->empty());
 }
 
-TEST_F(TaskTable, RefusesAnEmptyId) {
+TEST_P(TaskTable, RefusesAnEmptyId) {
   Status s = add_task(db(), sample(""));
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.error().code, ErrorCode::kInvalidInput);
 }
 
-TEST_F(TaskTable, StateChangesUpdateTheTaskAndAppendEvents) {
+TEST_P(TaskTable, StateChangesUpdateTheTaskAndAppendEvents) {
   ASSERT_TRUE(add_task(db(), sample("t1", 100)).ok());
   ASSERT_TRUE(set_task_state(db(), "t1", "navigating", at(150), "scheduled start").ok());
   ASSERT_TRUE(set_task_state(db(), "t1", "failed", at(180), "door A-110 closed").ok());
@@ -146,7 +148,7 @@ TEST_F(TaskTable, StateChangesUpdateTheTaskAndAppendEvents) {
 
 // The planned start and end go with a state change when given (both may be none), and stay as
 // they are when not.
-TEST_F(TaskTable, AStateChangeRecordsThePlannedTimesWhenGiven) {
+TEST_P(TaskTable, AStateChangeRecordsThePlannedTimesWhenGiven) {
   ASSERT_TRUE(add_task(db(), sample("t1", 100)).ok());
   EXPECT_FALSE(get_task(db(), "t1")->planned_start.has_value());
   ASSERT_TRUE(set_task_state(db(), "t1", "navigating", at(150), "", "", PlannedTimes{at(160), at(280)}).ok());
@@ -161,21 +163,21 @@ TEST_F(TaskTable, AStateChangeRecordsThePlannedTimesWhenGiven) {
   EXPECT_FALSE(r->planned_end.has_value());
 }
 
-TEST_F(TaskTable, StateChangeOfAnUnknownTaskIsNotFoundAndLogsNothing) {
+TEST_P(TaskTable, StateChangeOfAnUnknownTaskIsNotFoundAndLogsNothing) {
   Status s = set_task_state(db(), "ghost", "failed", at(1), "");
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.error().code, ErrorCode::kNotFound);
   EXPECT_TRUE(read_events(db())->empty());
 }
 
-TEST_F(TaskTable, GetOfAnUnknownTaskIsNotFound) {
+TEST_P(TaskTable, GetOfAnUnknownTaskIsNotFound) {
   auto r = get_task(db(), "ghost");
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().code, ErrorCode::kNotFound);
   EXPECT_NE(r.error().message.find("ghost"), std::string::npos);
 }
 
-TEST_F(TaskTable, ListsInAcceptanceOrderAndByState) {
+TEST_P(TaskTable, ListsInAcceptanceOrderAndByState) {
   ASSERT_TRUE(add_task(db(), sample("b", 20)).ok());
   ASSERT_TRUE(add_task(db(), sample("c", 10)).ok());
   ASSERT_TRUE(add_task(db(), sample("a", 20)).ok());
@@ -197,17 +199,16 @@ TEST_F(TaskTable, ListsInAcceptanceOrderAndByState) {
 
 // The acceptance promise: once add_task returns, the task is on disk. The child process adds a
 // task and is killed at once, without closing the connection; the task is still there after.
-TEST(TaskTableDurability, AnAcceptedTaskSurvivesTheProcessDyingRightAfter) {
-  TempDb tmp;
-  ASSERT_TRUE(Store::open(tmp.path()).ok());
+TEST_P(TaskTableDurability, AnAcceptedTaskSurvivesTheProcessDyingRightAfter) {
+  ASSERT_TRUE(temp().open().ok());
   auto end = run_in_child([&] {
-    auto db = Store::open(tmp.path());
+    auto db = temp().open();
     if (!db || !add_task(*db, sample("survivor"))) ::_exit(4);
     ::raise(SIGKILL);
   });
   ASSERT_TRUE(end.killed_by(SIGKILL)) << "child status " << end.status;
 
-  auto db = Store::open(tmp.path(), {.mode = OpenMode::kMustExist});
+  auto db = temp().open({.mode = OpenMode::kMustExist});
   ASSERT_TRUE(db.ok()) << db.error().message;
   auto r = get_task(*db, "survivor");
   ASSERT_TRUE(r.ok()) << r.error().message;
@@ -215,18 +216,20 @@ TEST(TaskTableDurability, AnAcceptedTaskSurvivesTheProcessDyingRightAfter) {
   EXPECT_EQ(read_events_of(*db, "survivor")->size(), 1u);
 }
 
-TEST(TaskTableDurability, SurvivesAnExitWithoutClosing) {
-  TempDb tmp;
+TEST_P(TaskTableDurability, SurvivesAnExitWithoutClosing) {
   auto end = run_in_child([&] {
-    auto db = Store::open(tmp.path());
+    auto db = temp().open();
     if (!db || !add_task(*db, sample("t1"))) ::_exit(4);
     ::_exit(0);  // no destructor: the connection is never closed, the WAL never checkpointed
   });
   ASSERT_TRUE(end.exited_with(0)) << "child status " << end.status;
-  auto db = Store::open(tmp.path(), {.mode = OpenMode::kMustExist});
+  auto db = temp().open({.mode = OpenMode::kMustExist});
   ASSERT_TRUE(db.ok()) << db.error().message;
   EXPECT_TRUE(get_task(*db, "t1").ok());
 }
+
+RONDO_ON_BOTH_BACKENDS(TaskTable);
+RONDO_ON_BOTH_BACKENDS(TaskTableDurability);
 
 }  // namespace
 }  // namespace rondo::store

@@ -6,6 +6,9 @@
 //
 //   Result<BackupReport> b = backup_store(db, "/backup/rondo-2026-12-02.sqlite");
 //
+// Both are built for SQLite stores: on a PostgreSQL store they are kUnsupported (its backup is
+// PostgreSQL's pg_dump, docs/operations.md).
+//
 // archive_old_records moves what is older than `age` (counted back from the latest time the store
 // records, so a simulated run's clock counts, not the machine's) into an archive file, an SQLite
 // database with the same tables, and deletes it from the live store: the events that are not about
