@@ -1,5 +1,6 @@
 // `rondo backup --data DIR FILE` (or --db STORE FILE): a consistent copy of a store, also while
-// `rondo serve` runs on it (SQLite's online backup; docs/operations.md).
+// `rondo serve` runs on it (SQLite's online backup, or pg_dump for a PostgreSQL store;
+// docs/operations.md).
 #include <fmt/format.h>
 
 #include <memory>
@@ -28,8 +29,12 @@ void run_backup(const BackupArgs& args, CommandContext& ctx) {
   if (!db) return (void)fail(ctx, db.error());
   auto report = store::backup_store(*db, args.file);
   if (!report) return (void)fail(ctx, report.error());
-  ctx.out << fmt::format("{}: backed up to {} ({} pages, {} bytes, integrity ok)\n", source, report->file.string(),
-                         report->pages, report->bytes);
+  if (db->is_postgres())
+    ctx.out << fmt::format("{}: backed up to {} (pg_dump custom format, {} bytes, read back by pg_restore --list)\n",
+                           source, report->file.string(), report->bytes);
+  else
+    ctx.out << fmt::format("{}: backed up to {} ({} pages, {} bytes, integrity ok)\n", source, report->file.string(),
+                           report->pages, report->bytes);
 }
 
 }  // namespace
@@ -39,7 +44,8 @@ void add_backup_commands(CLI::App& root, CommandContext& ctx) {
   auto* backup = root.add_subcommand("backup", "Copy a store while it is in use (SQLite online backup), checked");
   backup->add_option("file", args->file, "The backup file to write (must not exist)")->required();
   backup->add_option("--data", args->data, "The data folder of `rondo serve` (holds rondo.sqlite)");
-  backup->add_option("--db", args->db, "The store file itself, instead of --data");
+  backup->add_option("--db", args->db,
+                     "The store itself, instead of --data: a file, or a postgresql:// URL (backed up with pg_dump)");
   backup->callback([args, &ctx] { run_backup(*args, ctx); });
 }
 

@@ -13,6 +13,7 @@
 
 #include "deployment_parts.h"
 #include "request_intake.h"
+#include "request_listener.h"
 #include "robot_factory.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
@@ -153,9 +154,16 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   if (out_of_service == "1") executor.set_out_of_service(true, false, "as before the restart");
   executor.start();
   // Requests queued by `rondo task add --data` (while it was down, and from now on): read again
-  // every half second of wall time.
+  // every half second of wall time; on PostgreSQL as soon as each is committed (LISTEN/NOTIFY),
+  // with a poll once a minute of wall time in case a notification was missed.
   RequestIntake intake(clock, executor, db);
-  intake.poll_every(intake_period(request.speed));
+  std::unique_ptr<RequestListener> listener;
+  if (db.is_postgres()) {
+    RONDO_ASSIGN_OR_RETURN(listener, RequestListener::start(clock, intake, db.location(), log));
+    intake.poll_every(120 * intake_period(request.speed));
+  } else {
+    intake.poll_every(intake_period(request.speed));
+  }
   trim_heap_every(clock, std::max(Duration{1}, Duration{static_cast<Duration::rep>(60'000.0 * request.speed)}));
   sim::Rng people_rng(d.seed * 0x9E3779B97F4A7C15ULL + 17);
   if (parts.people) schedule_people(clock, executor, *parts.people, people_rng, d.zone, clock.now());

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "rondo/store/backup.h"
+#include "pg_backup.h"
 #include "store_access.h"
 
 namespace rondo::store {
@@ -35,10 +36,7 @@ Result<BackupReport> backup_store(const Store& store, const std::filesystem::pat
   if (std::filesystem::exists(file, ec))
     return Error::invalid(fmt::format("{}: exists already (a backup never overwrites; name another file)", file.string()));
   SQLite::Database* source = sqlite_database(store);
-  if (source == nullptr)
-    return Error::unsupported(fmt::format("{}: backup_store copies SQLite stores; back a PostgreSQL store up with "
-                                          "pg_dump (docs/operations.md)",
-                                          store.name()));
+  if (source == nullptr) return pg_dump_store(store.location(), file);
   std::filesystem::path part = file;
   part += ".part";
   std::filesystem::remove(part, ec);  // left by an interrupted backup

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "db/dialect.h"
 #include "event_rows.h"
 #include "request_rows.h"
 #include "store_access.h"
@@ -60,6 +61,7 @@ Result<std::int64_t> queue_request(Store& store, const RequestRow& request) {
     const auto id = db::query_int64(
         db, "INSERT INTO requests (queued_ms, source, sentence, body_json) VALUES ($1, $2, $3, $4) RETURNING id",
         {to_db(request.queued), request.source, request.sentence, request.body.dump()});
+    if (id) db::notify_request_queued(db, *id);  // a running service that LISTENs takes it at once
     tx.commit();
     return id.value_or(0);
   });

@@ -12,7 +12,10 @@
 #include "db/pg_connection.h"
 #include "migrations.h"
 #include "rondo/store/backup.h"
+#include "rondo/store/batch.h"
 #include "rondo/store/events.h"
+#include "rondo/store/request_watch.h"
+#include "rondo/store/requests.h"
 #include "rondo/store/store.h"
 #include "rondo/store/task_table.h"
 #include "store/pg_cluster.h"
@@ -228,20 +231,54 @@ TEST_F(PostgresStore, ThePasswordComesFromAFileOrTheEnvironment) {
   EXPECT_TRUE(get_task(*from_env, "t1").ok());
 }
 
-// SQLite's backup API and its ATTACHed archive have no PostgreSQL counterpart in rondo yet: both
-// say so (pg_dump backs a database up, docs/operations.md).
-TEST_F(PostgresStore, BackupAndArchiveAreRefusedAsSqliteOnly) {
+// LISTEN/NOTIFY: a queued request wakes the watch at its commit, not before; a watch told nothing
+// times out; stop() from another thread ends a wait at once.
+TEST_F(PostgresStore, AQueuedRequestWakesTheWatchWhenItCommits) {
   auto db = Store::open(location());
   ASSERT_TRUE(db.ok()) << db.error().message;
+  auto watch = RequestWatch::open(location());
+  ASSERT_TRUE(watch.ok()) << watch.error().message;
+  EXPECT_EQ((*watch)->wait(Duration{20}).value(), false) << "nothing queued yet";
+  {
+    Batch batch(*db);
+    ASSERT_TRUE(queue_request(*db, {.queued = at(1), .source = "words", .sentence = "s", .body = Json::object()}).ok());
+    EXPECT_EQ((*watch)->wait(Duration{20}).value(), false) << "not committed yet";
+    ASSERT_TRUE(batch.commit().ok());
+  }
+  const auto began = std::chrono::steady_clock::now();
+  EXPECT_EQ((*watch)->wait(seconds(30)).value(), true);
+  EXPECT_LT(std::chrono::steady_clock::now() - began, std::chrono::seconds(5));
+  EXPECT_EQ((*watch)->wait(Duration{20}).value(), false) << "one notification, taken once";
+
+  std::thread stopper([&] { (*watch)->stop(); });
+  EXPECT_EQ((*watch)->wait(seconds(30)).value(), false);
+  stopper.join();
+}
+
+// rondo backup on PostgreSQL: pg_dump's archive, restored by pg_restore into an empty database,
+// holds the same tasks and events, and the log's sequence numbers go on after the restored ones.
+TEST_F(PostgresStore, ABackupRestoresToTheSameStore) {
+  auto db = Store::open(location());
+  ASSERT_TRUE(db.ok()) << db.error().message;
+  for (const char* id : {"t1", "t2"}) ASSERT_TRUE(add_task(*db, {id, Json::object(), "queued", at(1), at(1)}).ok());
+  ASSERT_TRUE(set_task_state(*db, "t1", "failed", at(5), "too late", "late").ok());
   TempDb file;
-  const auto backup = backup_store(*db, file.path());
-  ASSERT_FALSE(backup.ok());
-  EXPECT_EQ(backup.error().code, ErrorCode::kUnsupported);
-  EXPECT_NE(backup.error().message.find("pg_dump"), std::string::npos) << backup.error().message;
-  const auto archive = archive_old_records(*db, hours(24 * 90), hours(24 * 14), file.path());
-  ASSERT_FALSE(archive.ok());
-  EXPECT_EQ(archive.error().code, ErrorCode::kUnsupported);
-  EXPECT_FALSE(std::filesystem::exists(file.path()));
+  auto report = backup_store(*db, file.path());
+  ASSERT_TRUE(report.ok()) << report.error().message;
+  EXPECT_GT(report->bytes, 0u);
+  EXPECT_FALSE(std::filesystem::exists(file.path().string() + ".part"));
+  EXPECT_EQ(backup_store(*db, file.path()).error().code, ErrorCode::kInvalidInput) << "never overwrites";
+
+  const std::string restored = PgCluster::get().create_database();
+  const std::string restore = "pg_restore --no-owner --dbname='" + restored + "' '" + file.str() + "' 2>&1";
+  ASSERT_EQ(std::system(restore.c_str()), 0) << restore;
+  auto back = Store::open(StoreLocation::postgres(restored).value(), {.mode = OpenMode::kMustExist});
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  EXPECT_EQ(*list_tasks(*back), *list_tasks(*db));
+  EXPECT_EQ(*read_events(*back), *read_events(*db));
+  const auto next = append_event(*back, {.time = at(9), .task_id = "t2", .event = "navigating"});
+  ASSERT_TRUE(next.ok()) << next.error().message;
+  EXPECT_EQ(*next, read_events(*db)->back().seq + 1);
 }
 
 // The log commands take a URL for --db, and the two backends report the same numbers.
@@ -256,6 +293,24 @@ TEST_F(PostgresStore, LogImportAndStatsOnAUrlMatchSqlite) {
   ASSERT_EQ(on_pg.exit_code, 0) << on_pg.err;
   EXPECT_EQ(on_pg.out, on_sqlite.out);
   EXPECT_NE(on_pg.out.find("total (62 edges)"), std::string::npos) << on_pg.out;
+}
+
+// Retention ATTACHes an SQLite archive: built for SQLite stores only, and it says so.
+TEST_F(PostgresStore, ArchivingIsRefusedAsSqliteOnly) {
+  auto db = Store::open(location());
+  ASSERT_TRUE(db.ok()) << db.error().message;
+  TempDb file;
+  const auto archive = archive_old_records(*db, hours(24 * 90), hours(24 * 14), file.path());
+  ASSERT_FALSE(archive.ok());
+  EXPECT_EQ(archive.error().code, ErrorCode::kUnsupported);
+  EXPECT_FALSE(std::filesystem::exists(file.path()));
+}
+
+TEST(PostgresStoreWatch, AnSqliteStoreHasNoNotificationsToWatch) {
+  TempDb tmp;
+  auto watch = RequestWatch::open(StoreLocation::sqlite(tmp.path()));
+  ASSERT_FALSE(watch.ok());
+  EXPECT_EQ(watch.error().code, ErrorCode::kUnsupported);
 }
 
 }  // namespace

@@ -59,6 +59,11 @@ void write_stamp(Connection& db, std::int64_t application_id, int version) {
       {application_id, version});
 }
 
+void notify_request_queued(Connection& db, std::int64_t id) {
+  if (db.backend() == Backend::kPostgres)
+    (void)db.query("SELECT pg_notify($1, $2)", {std::string(kRequestChannel), std::to_string(id)})->next();
+}
+
 void lock_for_migration(Connection& db, std::int64_t application_id) {
   if (db.backend() == Backend::kPostgres) (void)db.query("SELECT pg_advisory_xact_lock($1)", {application_id})->next();
 }

@@ -44,6 +44,12 @@ inline int read_schema_version(Connection& db) {
 }
 // Inside the migration step's transaction.
 void write_stamp(Connection& db, std::int64_t application_id, int version);
+// The channel on which PostgreSQL tells that a request was queued (request_watch.h).
+inline constexpr std::string_view kRequestChannel = "rondo_requests";
+// Inside the transaction that queues request `id`: PostgreSQL NOTIFYs kRequestChannel (delivered at
+// the commit); SQLite has nothing to tell.
+void notify_request_queued(Connection& db, std::int64_t id);
+
 // Inside a write transaction: waits until no other process migrates this database (SQLite: the
 // write lock BEGIN IMMEDIATE took already; PostgreSQL: a transaction-scoped advisory lock).
 void lock_for_migration(Connection& db, std::int64_t application_id);
