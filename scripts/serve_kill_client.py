@@ -45,9 +45,10 @@ class Server:
     def start(self):
         self.generation += 1
         log = open(self.log_path(), "w")
+        store = ["--store", self.args.store] if self.args.store else []
         self.proc = subprocess.Popen(
             [self.args.rondo, "serve", self.args.deployment, "--listen", "127.0.0.1:0",
-             "--data", os.path.join(self.args.work, "data")], stdout=log, stderr=subprocess.STDOUT)
+             "--data", os.path.join(self.args.work, "data")] + store, stdout=log, stderr=subprocess.STDOUT)
         log.close()
 
     def wait_listening(self, deadline_s=120.0):
@@ -216,6 +217,7 @@ def main():
     p.add_argument("--clients", type=int, required=True)
     p.add_argument("--seed", type=int, required=True)
     p.add_argument("--minutes", type=int, required=True)
+    p.add_argument("--store", default="", help="a postgresql:// URL of an empty database (default: the data folder)")
     args = p.parse_args()
     rng = random.Random(args.seed)
     started = time.monotonic()
@@ -259,11 +261,17 @@ def main():
     server.stop()
 
     answered_ids = [i for ids in ledger.answered.values() for i in ids]
-    db = sqlite3.connect(os.path.join(args.work, "data", "rondo.sqlite"))
-    stored = dict(db.execute("SELECT id, source FROM tasks").fetchall())
-    added = dict(db.execute("SELECT task_id, COUNT(*) FROM events WHERE subject = 'task' AND event = 'queued' "
-                            "AND code = 'added' GROUP BY task_id").fetchall())
-    db.close()
+    stored_sql = "SELECT id, source FROM tasks"
+    added_sql = ("SELECT task_id, COUNT(*) FROM events WHERE subject = 'task' AND event = 'queued' "
+                 "AND code = 'added' GROUP BY task_id")
+    if args.store:
+        stored = dict(psql_rows(args.store, stored_sql))
+        added = {k: int(v) for k, v in psql_rows(args.store, added_sql)}
+    else:
+        db = sqlite3.connect(os.path.join(args.work, "data", "rondo.sqlite"))
+        stored = dict(db.execute(stored_sql).fetchall())
+        added = dict(db.execute(added_sql).fetchall())
+        db.close()
     for i in answered_ids:
         if i not in stored:
             breaches.append(f"{i}: answered 201 but not in the store")
@@ -291,6 +299,13 @@ def main():
         return 1
     print("serve-kill-test: all held")
     return 0
+
+
+def psql_rows(url, sql):
+    """The rows of `sql` on a PostgreSQL store, read with psql (Debian's postgresql-client)."""
+    out = subprocess.run(["psql", "--no-psqlrc", "-At", "-F", "\t", "-d", url, "-c", sql],
+                         check=True, capture_output=True, text=True).stdout
+    return [tuple(line.split("\t")) for line in out.splitlines() if line]
 
 
 if __name__ == "__main__":
