@@ -128,7 +128,7 @@ void Charging::enter_low() {
           ? fmt::format("below {}, what the way to the charger needs to keep the reserve {}", percent(home),
                         percent(ctx_.options.battery_reserve))
           : fmt::format("below the hard threshold {}", percent(ctx_.options.battery_threshold));
-  ctx_.book.note_robot(EventKind::kBatteryLow, Outcome::kCharging,
+  ctx_.book.note_robot(ctx_.options.robot_name, EventKind::kBatteryLow, Outcome::kCharging,
                        fmt::format("battery {} at {}, {}: the robot goes to charge at the next interruptible moment "
                                    "and starts nothing new until {} (about {} on the charger)",
                                    percent(watch_.level()), ctx_.map.node(ctx_.robot.location()).name, below,
@@ -138,7 +138,7 @@ void Charging::enter_low() {
 void Charging::start_planned(Time until, Duration length, double target) {
   const Time now = ctx_.clock.now();
   planned_ = PlannedCharge{.since = now, .until = until, .length = length, .target = std::max(target, resume_level())};
-  ctx_.book.note_robot(EventKind::kCharging, Outcome::kCharging,
+  ctx_.book.note_robot(ctx_.options.robot_name, EventKind::kCharging, Outcome::kCharging,
                        fmt::format("a planned charge: battery {} at {}, on the charger until {} or about {}",
                                    percent(watch_.level()), ctx_.map.node(ctx_.robot.location()).name,
                                    ctx_.zone.format_clock(until), percent(planned_->target)));
@@ -156,12 +156,12 @@ bool Charging::planned_goes_on() {
   const bool missed = !c.on_charger && now >= c.until + c.length;
   if (watch_.level() < c.target && (c.on_charger ? now < c.until : !missed)) return true;
   if (missed)
-    ctx_.book.note_robot(EventKind::kChargeMissed, Outcome::kCharging,
+    ctx_.book.note_robot(ctx_.options.robot_name, EventKind::kChargeMissed, Outcome::kCharging,
                          fmt::format("battery {}: the robot did not reach the charger in {} since {}: dispatch resumes",
                                      percent(watch_.level()), duration_text(now - c.since),
                                      ctx_.zone.format_clock(c.since)));
   else
-    ctx_.book.note_robot(EventKind::kCharged, Outcome::kCharging,
+    ctx_.book.note_robot(ctx_.options.robot_name, EventKind::kCharged, Outcome::kCharging,
                          fmt::format("battery {} after the planned charge ({} since {}): dispatch resumes",
                                      percent(watch_.level()), duration_text(now - c.since),
                                      ctx_.zone.format_clock(c.since)));
@@ -198,7 +198,7 @@ Time Charging::retry_way_home(map::EdgeIndex edge) {
     break;
   }
   w.retry_at = at;
-  ctx_.book.note_robot(EventKind::kWayHomeClosed, Outcome::kNoRouteNow,
+  ctx_.book.note_robot(ctx_.options.robot_name, EventKind::kWayHomeClosed, Outcome::kNoRouteNow,
                        fmt::format("battery {} at {}: {} failed on the way to the charger ({} in a row); the next try "
                                    "at {}{}",
                                    percent(watch_.level()), ctx_.map.node(ctx_.robot.location()).name,

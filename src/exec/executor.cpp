@@ -36,47 +36,49 @@ const char* to_string(ExecutorPhase phase) {
 
 Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::Store& store, const TimeZone& zone,
                    ExecutorOptions options, ExecutorParts parts)
-    : clock_(clock),
+    : Executor(std::make_unique<Building>(clock, map, store, zone, options, std::move(parts.models)), nullptr, robot,
+               options, std::move(parts.scheduler)) {}
+
+Executor::Executor(Building& building, Robot& robot, ExecutorOptions options,
+                   std::unique_ptr<schedule::Scheduler> scheduler)
+    : Executor(nullptr, &building, robot, options, std::move(scheduler)) {}
+
+Executor::Executor(std::unique_ptr<Building> owned, Building* borrowed, Robot& robot, ExecutorOptions options,
+                   std::unique_ptr<schedule::Scheduler> scheduler)
+    : owned_building_(std::move(owned)),
+      building_(owned_building_ ? *owned_building_ : *borrowed),
+      clock_(building_.clock),
       robot_(robot),
-      map_(map),
-      store_(store),
-      zone_(zone),
+      map_(building_.map),
+      store_(building_.store),
+      zone_(building_.zone),
       options_(options),
-      models_(parts.models ? std::move(parts.models)
-                           : std::make_shared<plan::LearnedEdgeModels>(
-                                 map, nullptr, plan::DistancePriorOptions{},
-                                 options.online_model ? plan::LearnedEdgeModels::Reading::kOnline
-                                                      : plan::LearnedEdgeModels::Reading::kOffline)),
-      planner_(std::make_unique<plan::TravelPlanner>(map_, models_,
-                                                    planner_options(options_.slot_width))),
-      travel_(std::make_unique<TravelCache>(map_, models_, *planner_, options_.slot_width, options_.route_threshold)),
-      offline_models_(std::make_shared<plan::LearnedEdgeModels>(map, nullptr)),
-      offline_planner_(std::make_unique<plan::TravelPlanner>(
-          map_, offline_models_, planner_options(options_.slot_width))),
-      offline_travel_(std::make_unique<TravelCache>(map_, offline_models_, *offline_planner_, options_.slot_width,
-                                                    options_.route_threshold)),
-      scheduler_(parts.scheduler ? std::move(parts.scheduler) : std::make_unique<schedule::DefaultScheduler>()),
-      rng_(options.seed),
-      book_(store, clock, options.robot_name),
-      dispatcher_(std::make_unique<Dispatcher>(map_, *travel_, book_, options_, zone_)),
-      deliveries_(std::make_unique<Deliveries>()),
-      loading_(std::make_unique<LoadingTimes>()),
+      models_(*building_.models),
+      planner_(building_.planner),
+      travel_(building_.travel),
+      offline_models_(*building_.offline_models),
       // With the online model off the executor plans with the snapshot itself: no second cache.
-      found_blocked_(std::make_unique<FoundBlocked>()),
-      steps_{clock_,    robot_, map_,   book_,        *travel_, options_.online_model ? *offline_travel_ : *travel_,
-             *planner_, options_, zone_, stats_, navigations_, in_fault_, *models_, [this] { read_battery(); },
-             *found_blocked_},
+      offline_travel_(options_.online_model ? building_.offline_travel : building_.travel),
+      scheduler_(scheduler ? std::move(scheduler) : std::make_unique<schedule::DefaultScheduler>()),
+      rng_(options.seed),
+      book_(building_.book),
+      dispatcher_(std::make_unique<Dispatcher>(map_, travel_, book_, options_, zone_)),
+      deliveries_(std::make_unique<Deliveries>()),
+      loading_(*building_.loading),
+      found_blocked_(*building_.found_blocked),
+      steps_{clock_,    robot_, map_,  book_,        travel_, offline_travel_, planner_, options_,
+             zone_,     stats_, navigations_, in_fault_, models_, [this] { read_battery(); }, found_blocked_},
       assumption_map_(std::make_unique<AssumptionMap>(map_, options_.dock)),
       opportunities_(std::make_unique<Opportunities>()),
-      door_models_(std::make_unique<DoorModels>(zone_)) {
+      door_models_(*building_.door_models) {
   charging_ = std::make_unique<Charging>(ChargingContext{.map = map_,
                                                         .options = options_,
                                                         .clock = clock_,
                                                         .robot = robot_,
                                                         .book = book_,
                                                         .zone = zone_,
-                                                        .travel = *travel_,
-                                                        .snapshot = *offline_models_});
+                                                        .travel = travel_,
+                                                        .snapshot = offline_models_});
   robot_.set_listener(this);
   if (options_.forget_finished)
     book_.forget_finished([this] { clock_.schedule_at(clock_.now(), [this] { sweep_finished(); }); });
@@ -124,7 +126,7 @@ Result<std::vector<TaskId>> Executor::insert_tasks(std::vector<Task> tasks, std:
   for (const Task& t : tasks) RONDO_RETURN_IF_ERROR(accept(t));
   std::vector<TaskId> ids;
   for (const Task& t : tasks) ids.push_back(t.id);
-  RONDO_RETURN_IF_ERROR(book_.add(std::move(tasks), source, taken));
+  RONDO_RETURN_IF_ERROR(book_.add(std::move(tasks), source, taken, std::vector<std::string>(ids.size(), options_.robot_name)));
   std::vector<TaskId> standard;
   for (const TaskId& id : ids) {
     deliveries_->add(book_.at(id).task);

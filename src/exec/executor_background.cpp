@@ -106,8 +106,8 @@ void Executor::launch_background() {
                                       .current = current_task(),
                                       .waiting = run_ && run_->waiting()};
   ++bg.generation;
-  if (!bg.models || bg.models->version() != models_->version())
-    bg.models = std::make_shared<const plan::LearnedEdgeModels>(*models_);
+  if (!bg.models || bg.models->version() != models_.version())
+    bg.models = std::make_shared<const plan::LearnedEdgeModels>(models_);
   bg.worker->submit({.generation = bg.generation, .problem = std::move(call->problem), .models = bg.models});
 }
 

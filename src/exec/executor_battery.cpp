@@ -46,7 +46,7 @@ void Executor::restore_battery() {
     why = "its numbers are not an estimate (not finite, or not a positive-definite information matrix)";
   else
     return;
-  book_.note_robot(EventKind::kBatteryEstimateReset, Outcome::kBattery,
+  book_.note_robot(options_.robot_name, EventKind::kBatteryEstimateReset, Outcome::kBattery,
                    fmt::format("the stored battery estimate ({}) could not be read: {}; the estimator starts again "
                                "from its prior",
                                key, why));
@@ -101,7 +101,7 @@ bool Executor::must_charge() {
     return true;
   }
   if (charging_->level() < charging_->resume_level()) return true;
-  book_.note_robot(EventKind::kCharged, Outcome::kCharging,
+  book_.note_robot(options_.robot_name, EventKind::kCharged, Outcome::kCharging,
                    fmt::format("battery {} after {} since it fell below {}: dispatch resumes",
                                percent(charging_->level()), duration_text(clock_.now() - charging_->low_since()),
                                percent(options_.battery_threshold)));

@@ -13,7 +13,7 @@ Status Executor::confirm_action(const TaskId& id, const std::string& by) {
   const std::optional<TaskState> state = book_.state_of(id);
   if (!state) return Error::not_found(fmt::format("no task '{}'", id));
   const std::optional<std::string> action = run_ && run_->id() == id ? run_->running_action() : std::nullopt;
-  if (!action || !loading_->learns(*action))
+  if (!action || !loading_.learns(*action))
     return Error{ErrorCode::kConflict,
                  fmt::format("task {} is {}, not loading or unloading: nothing to confirm", id, to_string(*state))};
   if (confirmed_ == id)

@@ -1,14 +1,11 @@
 // The executor's daily rhythm: routine tasks created at local midnight for the day ahead, and the
-// nightly refit of the edge models from the traversal log of the last `refit_window`.
+// nightly refit of what the building learned (building_learning.cpp).
 #include <fmt/format.h>
 #include <malloc.h>
 
 #include <chrono>
 
 #include "rondo/exec/executor.h"
-#include "rondo/learn/edge_models.h"
-#include "rondo/store/traversal_log.h"
-#include "attempt_laws.h"
 
 namespace rondo::exec {
 namespace {
@@ -63,44 +60,7 @@ void Executor::schedule_refit() {
 }
 
 void Executor::refit() {
-  refit_doors();  // executor_observations.cpp
-  // A bounded window: the same cost every night however long the robot has lived.
-  store::TraversalQuery window;
-  if (options_.refit_window) window.from = clock_.now() - *options_.refit_window;
-  auto log = store::find_traversals(store_, window);
-  if (!log) {
-    book_.write_error(log.error().message);
-    return;
-  }
-  if (log->empty()) return;
-  const std::vector<learn::EdgeSpec> specs = plan::edge_specs(map_);
-  // Local time of day; hourly duration bins (a robot's own log has many attempts per edge and
-  // hour; sparse bins shrink towards the edge's whole-day table).
-  learn::EdgeModelsOptions options;
-  options.episode.zone = zone_;
-  options.episode.duration_bins = options_.duration_bins;
-  auto fitted = learn::EdgeModels::fit(specs, *log, options);
-  if (!fitted) {
-    book_.write_error(fitted.error().message);
-    return;
-  }
-  *fitted = with_week(std::move(*fitted));  // executor_weekly.cpp
-  if (options_.risk_alpha) {
-    // The chance constraint's travel-time distribution: attempt durations with their own laws.
-    plan::AttemptLaws learned = learn_attempt_laws(**fitted, *log);
-    store::ObservationQuery q{.what = kStoppedAttempt};
-    q.from = window.from;
-    if (auto stopped = store::find_observations(store_, q))
-      learned.stopped = learn_stopped_attempts(map_, *log, *stopped);
-    else
-      book_.write_error(stopped.error().message);
-    auto laws = std::make_shared<const plan::AttemptLaws>(std::move(learned));
-    models_->set_attempt_laws(laws);
-    offline_models_->set_attempt_laws(laws);
-  }
-  models_->set(*fitted);
-  if (options_.online_model) offline_models_->set(*fitted);
-  ++stats_.refits;
+  if (building_.refit()) ++stats_.refits;
 }
 
 }  // namespace rondo::exec

@@ -106,7 +106,7 @@ std::vector<TaskId> Executor::settle_jobs() {
     back.actions = {Action{.name = "unload", .args = {{"object", what.object}}}};
     back.delivery = Delivery{.job = name, .role = DeliveryRole::kDrop, .object = what.object,
                              .appearance = what.appearance, .load = what.load};
-    if (auto ok = book_.add({back}, "executor"); !ok) {
+    if (auto ok = book_.add({back}, "executor", nullptr, {options_.robot_name}); !ok) {
       book_.write_error(ok.error().message);
       deliveries_->close(name);
       continue;

@@ -46,22 +46,10 @@ std::string joined(const std::vector<TaskId>& ids) {
 bool Executor::blocked(const TaskId& id) const { return opportunities_->blocked(id); }
 
 std::optional<double> Executor::door_open_probability(const std::string& door, Time t) const {
-  return door_models_->probability(door, t);
+  return door_models_.probability(door, t);
 }
 
-std::vector<std::string> Executor::door_names() const { return door_models_->doors(); }
-
-void Executor::refit_doors() { door_models_->refit(clock_.now(), options_.refit_window); }
-
-Status Executor::restore_door_models() {
-  store::ObservationQuery q{.what = "door_open"};
-  if (options_.refit_window) q.from = clock_.now() - *options_.refit_window;
-  RONDO_ASSIGN_OR_RETURN(const std::vector<store::Observation> seen, store::find_observations(store_, q));
-  if (seen.empty()) return Status{};
-  for (const store::Observation& o : seen) door_models_->observe(o.where, o.when, o.value >= 0.5);
-  refit_doors();
-  return Status{};
-}
+std::vector<std::string> Executor::door_names() const { return door_models_.doors(); }
 
 // The task waits for its door (kept in its stored progress): it fails at its latest start unless
 // the door is seen open first, and is retried when the door is likely open.
@@ -85,13 +73,13 @@ void Executor::unblock(const TaskId& id) {
 // the scheduler again at the first time its door is likely open, if that is before its latest start.
 void Executor::place_retry(const TaskId& id, const std::string& door, Time latest, std::uint64_t serial) {
   const Time now = clock_.now();
-  const std::optional<Time> at = door_models_->next_likely_open(door, now, latest, kLikelyOpen);
+  const std::optional<Time> at = door_models_.next_likely_open(door, now, latest, kLikelyOpen);
   if (!at) return;
   book_.note(id, EventKind::kRetryPlanned, Outcome::kOpportunity,
              fmt::format("{} is likely open at {} (p = {:.2f}, learned from {} observations): offered to the "
                          "scheduler again then",
-                         door, zone_.format_clock(*at), door_models_->probability(door, *at).value_or(0),
-                         door_models_->samples(door)));
+                         door, zone_.format_clock(*at), door_models_.probability(door, *at).value_or(0),
+                         door_models_.samples(door)));
   clock_.schedule_at(*at, [this, id, serial] { retry_blocked(id, serial); });
 }
 
@@ -184,7 +172,7 @@ bool Executor::can_wait(const TaskId& id) const {
 
 void Executor::door_seen_closed(const Observation& seen) {
   const Time now = clock_.now();
-  door_models_->observe(seen.where, seen.when, false);
+  door_models_.observe(seen.where, seen.when, false);
   std::vector<std::pair<TaskId, Assumption>> hit;
   for (const Assumption& a : assumptions_) {
     if (a.kind != Assumption::Kind::kDoorOpen || a.what != seen.where || a.until < now) continue;
@@ -262,7 +250,7 @@ bool Executor::opportunity_fits(const TaskId& id, bool interrupt, const std::vec
   // queue), or once the running task and the on-demand ones are done.
   auto [from, at] = interrupt ? std::pair{robot_.location(), now} : free_at();
   const map::NodeIndex start = *map_.find_node(r.task.start_node);
-  const Duration travel = travel_->travel(from, start, at);
+  const Duration travel = travel_.travel(from, start, at);
   const Time begins = std::max(at + travel, r.task.window->release);
   const Time ends = begins + r.remaining();
   if (travel >= kUnreachable || ends > r.task.window->deadline) {
@@ -288,7 +276,7 @@ bool Executor::opportunity_fits(const TaskId& id, bool interrupt, const std::vec
                       .picked_up_by = id});
   }
   std::mt19937_64 rng(options_.seed);  // a trial: the executor's own draws stay as they were
-  const ScheduleInputs in{.map = map_, .travel = *travel_, .book = book_, .zone = zone_, .scheduler = *scheduler_,
+  const ScheduleInputs in{.map = map_, .travel = travel_, .book = book_, .zone = zone_, .scheduler = *scheduler_,
                           .polls = options_.scheduler_polls, .rng = rng, .capacity = options_.capacity,
                           .on_board = std::move(load), .risk_alpha = options_.risk_alpha};
   const map::NodeIndex end = r.task.end_node.empty() ? start : *map_.find_node(r.task.end_node);
@@ -309,7 +297,7 @@ bool Executor::opportunity_fits(const TaskId& id, bool interrupt, const std::vec
 }
 
 void Executor::door_seen_open(const Observation& seen) {
-  door_models_->observe(seen.where, seen.when, true);
+  door_models_.observe(seen.where, seen.when, true);
   std::vector<TaskId> waiting;
   for (const TaskId& id : opportunities_->waiting_for(seen.where)) {
     if (book_.finished(id)) {

@@ -10,7 +10,6 @@
 #include "rondo/exec/executor.h"
 #include "deliveries.h"
 #include "dispatcher.h"
-#include "loading_times.h"
 #include "rondo/store/observations.h"
 #include "rondo/store/read_back.h"
 
@@ -38,8 +37,7 @@ Status Executor::restore() {
     deliveries_->add(r.task);  // what is on board follows from the restored states
     book_.restore(std::move(r));
   }
-  RONDO_RETURN_IF_ERROR(restore_loading_times());
-  RONDO_RETURN_IF_ERROR(restore_door_models());  // executor_observations.cpp
+  RONDO_RETURN_IF_ERROR(building_.restore_learning());
   restore_battery();  // executor_battery.cpp
 
   const Time now = clock_.now();
@@ -87,22 +85,6 @@ Status Executor::restore() {
   }
   // The models learnt so far, at once rather than at the next nightly refit.
   if (run.traversals_end) refit();
-  return Status{};
-}
-
-// The loading times learnt so far, from the store's observations ("load time" at a place, with
-// the task that took it): the declared prior of each comes from that task.
-Status Executor::restore_loading_times() {
-  for (const std::string& action : loading_->actions()) {
-    RONDO_ASSIGN_OR_RETURN(const std::vector<store::Observation> seen,
-                           store::find_observations(store_, {.what = action + " time"}));
-    for (const store::Observation& o : seen) {
-      if (!o.text || !book_.contains(*o.text)) continue;
-      const TaskRecord& r = book_.at(*o.text);
-      const Duration declared = r.task.duration / static_cast<std::int64_t>(r.action_count());
-      loading_->observe(action, o.where, declared, from_seconds(o.value), true, o.when);
-    }
-  }
   return Status{};
 }
 

@@ -27,7 +27,7 @@ void Executor::learn_from(const EdgeAttempt& a) {
                       .success = a.succeeded(), .robot = options_.robot_name};
     if (auto ok = store::add_traversal(store_, t); !ok) book_.write_error(ok.error().message);
     // The online model of the edge: the next estimate reads it.
-    models_->observe(
+    models_.observe(
         a.edge,
         {.start = a.start, .end = a.start + a.duration, .seconds = to_seconds(a.duration), .success = a.succeeded()});
     ++stats_.navigation_attempts;
@@ -50,7 +50,7 @@ void Executor::learn_from(const EdgeAttempt& a) {
   if (run_)
     book_.note(run_->id(), EventKind::kEdge, code, what);
   else
-    book_.note_robot(EventKind::kEdge, code, what);
+    book_.note_robot(options_.robot_name, EventKind::kEdge, code, what);
 }
 
 void Executor::on_edge_finished(const EdgeAttempt& a) {
@@ -78,7 +78,7 @@ void Executor::on_edge_finished(const EdgeAttempt& a) {
 // a sample of that length (so the expectation, and with it the monitor's limit, grows until the
 // person can finish); one stopped for any other reason says nothing.
 void Executor::learn_from(const ActionResult& result) {
-  if (!run_ || !loading_->learns(result.name)) return;
+  if (!run_ || !loading_.learns(result.name)) return;
   const bool overran = result.outcome == ActionOutcome::kCancelled && run_->stop_kind() == TaskRun::Stop::kOverrun;
   const bool done = result.outcome == ActionOutcome::kSucceeded || result.outcome == ActionOutcome::kFailed;
   if (!done && !overran) return;
@@ -86,9 +86,9 @@ void Executor::learn_from(const ActionResult& result) {
   const std::string& place = map_.node(robot_.location()).name;
   const Duration declared = r.task.duration / static_cast<std::int64_t>(r.action_count());
   if (overran)  // the person had not finished: a lower bound of their time, which raises the estimate
-    loading_->observe_stopped(result.name, place, declared, result.duration, result.start);
+    loading_.observe_stopped(result.name, place, declared, result.duration, result.start);
   else
-    loading_->observe(result.name, place, declared, result.duration, result.outcome != ActionOutcome::kFailed,
+    loading_.observe(result.name, place, declared, result.duration, result.outcome != ActionOutcome::kFailed,
                       result.start);
   if (result.outcome != ActionOutcome::kSucceeded) return;
   const store::Observation o{.what = result.name + " time", .where = place, .when = clock_.now(),
@@ -101,12 +101,12 @@ std::vector<map::EdgeIndex> Executor::route() {
   if (run_) navigation = dynamic_cast<const NavigateStep*>(run_->current());
   if (navigation == nullptr) return {};
   std::vector<map::EdgeIndex> edges;
-  for (const plan::PolicyStep& s : planner_->policy(navigation->target(), clock_.now()).route(robot_.location()))
+  for (const plan::PolicyStep& s : planner_.policy(navigation->target(), clock_.now()).route(robot_.location()))
     edges.push_back(s.edge);
   return edges;
 }
 
-std::vector<LearnedActionTime> Executor::loading_times() const { return loading_->entries(); }
+std::vector<LearnedActionTime> Executor::loading_times() const { return loading_.entries(); }
 
 void Executor::refresh_learned_durations(const std::vector<TaskId>& ids) {
   for (const TaskId& id : ids) {
@@ -116,16 +116,16 @@ void Executor::refresh_learned_durations(const std::vector<TaskId>& ids) {
     Duration total{0}, patience{0};
     bool learned = false, slow = false;
     for (const Action& a : r.task.actions) {
-      if (!loading_->learns(a.name)) {
+      if (!loading_.learns(a.name)) {
         total += share;
         patience += share;
         continue;
       }
-      const Duration e = loading_->expected(a.name, r.task.start_node, share);
+      const Duration e = loading_.expected(a.name, r.task.start_node, share);
       learned = learned || e != share;
       total += e;
       const std::optional<Duration> q = options_.person_patience > 0
-                                            ? loading_->quantile(a.name, r.task.start_node, share, options_.person_patience)
+                                            ? loading_.quantile(a.name, r.task.start_node, share, options_.person_patience)
                                             : std::nullopt;
       slow = slow || q.has_value();
       patience += q.value_or(e);
@@ -203,7 +203,7 @@ void Executor::on_fault(const RobotFault& fault) {
   in_fault_ = true;
   fault_since_ = clock_.now();
   save_robot_state();
-  book_.note_robot(EventKind::kFault, Outcome::kRobotFault,
+  book_.note_robot(options_.robot_name, EventKind::kFault, Outcome::kRobotFault,
                    fmt::format("{}: {}; dispatch paused", to_string(fault.kind), fault.message));
   if (run_) {
     if (Step* s = run_->current()) s->suspend();
@@ -223,7 +223,7 @@ void Executor::on_ready() {
   fault_.reset();
   fault_since_.reset();
   in_fault_ = false;
-  book_.note_robot(EventKind::kReady, Outcome::kRobotReady,
+  book_.note_robot(options_.robot_name, EventKind::kReady, Outcome::kRobotReady,
                    fmt::format("ready again after {}; dispatch resumes", duration_text(down)));
   if (run_) {
     if (Step* s = run_->current()) s->resume();

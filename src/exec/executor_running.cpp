@@ -83,7 +83,7 @@ bool Executor::charge_first(const TaskId& id) {
   book_.note(id, EventKind::kWaitsForTheCharge, Outcome::kCharging, short_of->why);
   const double hours = std::max(0.0, charging_->estimator().hours_to_charge(charging_->level(), short_of->needed));
   const Duration on_charger = from_seconds(hours * 3600) + minutes(1);
-  charging_->start_planned(now + travel_->travel(robot_.location(), options_.dock, now) + on_charger, on_charger,
+  charging_->start_planned(now + travel_.travel(robot_.location(), options_.dock, now) + on_charger, on_charger,
                            short_of->needed);
   reschedule({}, "charging for task " + id);
   return true;
@@ -166,7 +166,7 @@ void Executor::trip_ended(StepEnd e) {
   switch (e.status) {
     case StepEnd::Status::kDone: return next();
     case StepEnd::Status::kHalted:
-      book_.note_robot(EventKind::kStopped, Outcome::kScheduleChanged,
+      book_.note_robot(options_.robot_name, EventKind::kStopped, Outcome::kScheduleChanged,
                        fmt::format("{} stopped at {}: the executor looks again at what to do", journey, here));
       return next();
     case StepEnd::Status::kBlocked:
@@ -185,13 +185,13 @@ void Executor::trip_ended(StepEnd e) {
     }
   }
   if (again) {
-    book_.note_robot(EventKind::kWaits, Outcome::kNoRouteNow,
+    book_.note_robot(options_.robot_name, EventKind::kWaits, Outcome::kNoRouteNow,
                      fmt::format("{} waits at {}: {}; it looks again at {}", journey, here, e.reason,
                                  zone_.format_clock(*again)));
     return look_again_at(*again);
   }
   const Time later = now + (e.status == StepEnd::Status::kBlocked ? hours(24) : options_.slot_width);
-  book_.note_robot(EventKind::kGaveUp, e.outcome,
+  book_.note_robot(options_.robot_name, EventKind::kGaveUp, e.outcome,
                    fmt::format("{} gave up at {}: {}; it looks again at {}", journey, here, e.reason,
                                zone_.format_clock(later)));
   look_again_at(later);
@@ -228,7 +228,7 @@ bool Executor::hold_back(const TaskId& id, map::EdgeIndex edge, std::optional<Ti
 }
 
 std::optional<std::pair<Time, double>> Executor::passable_again(map::EdgeIndex edge, Time until) const {
-  return exec::passable_again(*models_, *planner_, options_.slot_width, edge, clock_.now(), until);
+  return exec::passable_again(models_, planner_, options_.slot_width, edge, clock_.now(), until);
 }
 
 void Executor::hold_on_demand(const TaskId& id, Outcome outcome, const std::string& reason) {

@@ -25,7 +25,7 @@ std::pair<map::NodeIndex, Time> Executor::free_at() const {
     if (acting_until) {
       t = std::max(now, *acting_until);
     } else {
-      Time s = t + travel_->travel(here, start, t);
+      Time s = t + travel_.travel(here, start, t);
       if (task.window) s = std::max(s, r.release());
       t = s + r.remaining();
     }
@@ -35,7 +35,7 @@ std::pair<map::NodeIndex, Time> Executor::free_at() const {
   // Below the hard threshold (to the dock, and charged back to the resume level), or in a planned
   // charge (until its target or its end).
   if (charging_->low() || charging_->planned()) {
-    t += travel_->travel(here, options_.dock, t) + charging_->time_to_charge();
+    t += travel_.travel(here, options_.dock, t) + charging_->time_to_charge();
     here = options_.dock;
   }
   for (const TaskId& id : dispatcher_->on_demand())  // one held back for a blocked way comes later
@@ -95,7 +95,7 @@ std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_
     // An on-demand task is never given up for scheduled work.
     running = schedule::RunningTask{run_->id(), t.priority, t.kind == TaskKind::kStandard && interruptible_now()};
   }
-  ScheduleInputs in{.map = map_, .travel = *travel_, .book = book_, .zone = zone_, .scheduler = *scheduler_,
+  ScheduleInputs in{.map = map_, .travel = travel_, .book = book_, .zone = zone_, .scheduler = *scheduler_,
                           .polls = options_.scheduler_polls, .rng = rng_, .capacity = options_.capacity,
                           .on_board = on_board_when_free(), .risk_alpha = options_.risk_alpha};
   if (options_.battery_planning) {
@@ -136,7 +136,7 @@ void Executor::finish_schedule(const std::vector<TaskId>& ids, std::vector<TaskI
 // are offered again at the next slot start, when the travel estimates may have moved.
 void Executor::offer_again_at_next_slot() {
   if (!options_.risk_alpha || dispatcher_->deferred().empty() || offer_again_ != 0) return;
-  const Time at = travel_->slot_start(clock_.now()) + options_.slot_width;
+  const Time at = travel_.slot_start(clock_.now()) + options_.slot_width;
   offer_again_ = clock_.schedule_at(at, [this] {
     offer_again_ = 0;
     if (dispatcher_->deferred().empty()) return;

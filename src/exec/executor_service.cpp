@@ -136,14 +136,14 @@ void Executor::set_out_of_service(bool out, bool halt, const std::string& reason
   out_of_service_ = out;
   const std::string why = reason.empty() ? "" : ": " + reason;
   if (!out) {
-    book_.note_robot(EventKind::kBackInService, Outcome::kNone, "dispatch resumed" + why);
+    book_.note_robot(options_.robot_name, EventKind::kBackInService, Outcome::kNone, "dispatch resumed" + why);
     if (started_) {
       reschedule({}, "back in service");
       kick();
     }
     return;
   }
-  book_.note_robot(
+  book_.note_robot(options_.robot_name, 
       EventKind::kOutOfService, Outcome::kNone,
       fmt::format("dispatch paused{}; {}", why, halt ? "the running task is halted" : "the running task finishes"));
   if (run_ && run_->waiting()) {  // not started yet: back to the head of the queue

@@ -39,7 +39,7 @@ void NavigateStep::start() {
                                      purpose_ == Purpose::kToEnd ? " (its end place)" : "", from,
                                      duration_text(expected_)));
   } else {
-    ctx_.book.note_robot(EventKind::kDeparted, Outcome::kDeparted,
+    ctx_.book.note_robot(ctx_.options.robot_name, EventKind::kDeparted, Outcome::kDeparted,
                          fmt::format("to {} ({}) from {}, expected travel {}", to, errand(), from,
                                      duration_text(expected_)));
   }
@@ -242,7 +242,7 @@ void NavigateStep::arrived() {
                                 .offline_expected = offline_expected_, .actual = ctx_.clock.now() - started_,
                                 .arrived = true});
   if (!task_)
-    ctx_.book.note_robot(EventKind::kArrived, Outcome::kArrived,
+    ctx_.book.note_robot(ctx_.options.robot_name, EventKind::kArrived, Outcome::kArrived,
                          fmt::format("at {} ({}) after {}, expected {}", ctx_.map.node(target_).name, errand(),
                                      duration_text(ctx_.clock.now() - started_), duration_text(expected_)));
   end({.status = StepEnd::Status::kDone});

@@ -31,6 +31,7 @@ Result<TaskRecord> record_of(const store::StoredTask& stored, const TimeZone& zo
   auto state = parse_task_state(row.state);
   if (!state) return Error::storage(fmt::format("stored task {}: {}", row.id, state.error().message));
   TaskRecord r{.task = std::move(*task),
+               .robot = row.robot,
                .state = *state,
                .outcome = stored_outcome(stored.last_transition),
                .reason = stored.last_transition ? stored.last_transition->reason : std::string(),

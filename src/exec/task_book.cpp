@@ -10,7 +10,10 @@
 
 namespace rondo::exec {
 
-Status TaskBook::add(std::vector<Task> tasks, std::string_view source, const store::RequestTaken* taken) {
+Status TaskBook::add(std::vector<Task> tasks, std::string_view source, const store::RequestTaken* taken,
+                     const std::vector<std::string>& robots) {
+  if (!robots.empty() && robots.size() != tasks.size())
+    return Error::internal(fmt::format("{} tasks, allocated to {} robots", tasks.size(), robots.size()));
   std::set<TaskId> ids;
   for (const Task& t : tasks) {
     if (t.id.empty()) return Error::invalid("a task needs an id");
@@ -23,22 +26,36 @@ Status TaskBook::add(std::vector<Task> tasks, std::string_view source, const sto
   const std::string reason = fmt::format("added by {}", source);
   std::vector<store::TaskRow> rows;
   rows.reserve(tasks.size());
-  for (const Task& t : tasks) {
+  for (std::size_t i = 0; i < tasks.size(); ++i) {
+    const Task& t = tasks[i];
     rows.push_back({.id = t.id,
                     .task = encode(t),
                     .state = to_string(TaskState::kQueued),
                     .created = now,
                     .updated = now,
                     .source = std::string(source),
-                    .robot = robot_});
+                    .robot = robots.empty() ? std::string() : robots[i]});
   }
   RONDO_RETURN_IF_ERROR(store::add_tasks(store_, rows, reason, to_string(Outcome::kAdded), taken));
-  for (Task& t : tasks) {
-    const TaskId id = t.id;
-    records_.emplace(id, TaskRecord{.task = std::move(t), .state = TaskState::kQueued, .outcome = Outcome::kAdded,
-                                    .reason = reason, .source = std::string(source), .added = now});
+  for (std::size_t i = 0; i < tasks.size(); ++i) {
+    const TaskId id = tasks[i].id;
+    records_.emplace(id, TaskRecord{.task = std::move(tasks[i]),
+                                    .robot = robots.empty() ? std::string() : robots[i],
+                                    .state = TaskState::kQueued,
+                                    .outcome = Outcome::kAdded,
+                                    .reason = reason,
+                                    .source = std::string(source),
+                                    .added = now});
     order_.push_back(id);
   }
+  return {};
+}
+
+Status TaskBook::allocate(const TaskId& id, const std::string& robot) {
+  TaskRecord& r = records_.at(id);
+  if (r.robot == robot) return {};
+  RONDO_RETURN_IF_ERROR(store::set_task_robot(store_, id, robot));
+  r.robot = robot;
   return {};
 }
 
@@ -173,10 +190,10 @@ void TaskBook::note(const TaskId& id, EventKind event, Outcome outcome, const st
   append({.time = clock_.now(), .task_id = id, .event = std::string(to_string(event)), .code = std::string(to_string(outcome)), .reason = reason});
 }
 
-void TaskBook::note_robot(EventKind event, Outcome outcome, const std::string& reason) {
+void TaskBook::note_robot(const std::string& robot, EventKind event, Outcome outcome, const std::string& reason) {
   append({.time = clock_.now(),
           .subject = store::Subject::kRobot,
-          .about = robot_,
+          .about = robot,
           .event = std::string(to_string(event)),
           .code = std::string(to_string(outcome)),
           .reason = reason});

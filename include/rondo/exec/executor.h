@@ -52,6 +52,7 @@
 #include "rondo/core/task.h"
 #include "rondo/core/timezone.h"
 #include "rondo/exec/assumption.h"
+#include "rondo/exec/building.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor_types.h"
 #include "rondo/exec/map_travel.h"
@@ -66,10 +67,6 @@
 #include "rondo/schedule/try_schedule.h"
 #include "rondo/store/requests.h"
 #include "rondo/store/store.h"
-
-namespace rondo::learn {
-class WeeklyMemory;
-}  // namespace rondo::learn
 
 namespace rondo::exec {
 
@@ -102,7 +99,12 @@ const char* to_string(ExecutorPhase phase);
 
 class Executor final : public RobotListener {
  public:
-  // Precondition: `dock` is a node of `map`; clock, robot, map and store outlive the executor.
+  // A robot of `building`. Precondition: `options.dock` is a node of the building's map; building
+  // and robot outlive the executor. Empty `scheduler`: schedule::DefaultScheduler.
+  Executor(Building& building, Robot& robot, ExecutorOptions options,
+           std::unique_ptr<schedule::Scheduler> scheduler = {});
+  // A deployment of one robot, with a building of its own. Precondition: `dock` is a node of `map`;
+  // clock, robot, map and store outlive the executor.
   Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::Store& store, const TimeZone& zone,
            ExecutorOptions options, ExecutorParts parts = {});
   ~Executor() override;
@@ -151,8 +153,8 @@ class Executor final : public RobotListener {
   const std::vector<NavigationRecord>& navigations() const { return navigations_; }
   // Store writes that failed (the run goes on; the caller reports them).
   const std::vector<std::string>& write_errors() const { return book_.write_errors(); }
-  const plan::LearnedEdgeModels& models() const { return *models_; }
-  const TravelCache& travel_cache() const { return *travel_; }
+  const plan::LearnedEdgeModels& models() const { return models_; }
+  const TravelCache& travel_cache() const { return travel_; }
   ExecutorPhase phase() const;
   // The running navigation's route from where the robot is (a task's or the executor's own trip
   // to the dock): the edges its policy expects to take now, in order; empty when it is not moving.
@@ -245,7 +247,6 @@ class Executor final : public RobotListener {
   void learn_from(const ActionResult& result);
   // The pending tasks' processing times from the loading times learned so far.
   void refresh_learned_durations(const std::vector<TaskId>& ids);
-  Status restore_loading_times();  // executor_restore.cpp
   // the battery (executor_battery.cpp; what is kept about it: Charging)
   void read_battery();  // a reading for the BatteryWatch
   bool charging_as_planned();  // in must_charge(): false (and rescheduled) once it is done
@@ -352,45 +353,44 @@ class Executor final : public RobotListener {
   // A blocked task's retry when its door is likely open (learned), before its latest start.
   void place_retry(const TaskId& id, const std::string& door, Time latest, std::uint64_t serial);
   void retry_blocked(const TaskId& id, std::uint64_t serial);
-  void refit_doors();  // the door-open models, at the nightly refit
-  Status restore_door_models();  // learned again from the stored door observations, and fitted
 
   // daily (executor_daily.cpp)
   void create_routine_tasks(std::chrono::year_month_day day);
   void schedule_midnight();
   void schedule_refit();
-  void refit();
-  // The live weekly term (executor_weekly.cpp): adds the whole local days since the last refit to
-  // the weekly memory (loaded from the store the first time), saves it, and returns `fitted` with
-  // the term the memory chooses for each edge.
-  std::shared_ptr<const learn::EdgeModels> with_week(std::shared_ptr<const learn::EdgeModels> fitted);
+  void refit();  // the building's, counted
 
+  Executor(std::unique_ptr<Building> owned, Building* borrowed, Robot& robot, ExecutorOptions options,
+           std::unique_ptr<schedule::Scheduler> scheduler);
+
+  std::unique_ptr<Building> owned_building_;  // a deployment of one robot keeps its own
+  Building& building_;
+  // The building's parts, by the names the executor's files use.
   Clock& clock_;
   Robot& robot_;
   const map::TopoMap& map_;
   store::Store& store_;
-  TimeZone zone_;
+  const TimeZone& zone_;
   ExecutorOptions options_;
-  std::shared_ptr<plan::LearnedEdgeModels> models_;
-  std::unique_ptr<plan::TravelPlanner> planner_;
-  std::unique_ptr<TravelCache> travel_;
-  // The snapshot read offline, only for NavigationRecord::offline_expected (the same models when
-  // the online model is off).
-  std::shared_ptr<plan::LearnedEdgeModels> offline_models_;
-  std::unique_ptr<plan::TravelPlanner> offline_planner_;
-  std::unique_ptr<TravelCache> offline_travel_;
+  plan::LearnedEdgeModels& models_;
+  plan::TravelPlanner& planner_;
+  TravelCache& travel_;
+  // The snapshot read offline, only for NavigationRecord::offline_expected, and the cache that
+  // reads it (the live one when the online model is off: it reads the snapshot itself).
+  plan::LearnedEdgeModels& offline_models_;
+  TravelCache& offline_travel_;
   std::unique_ptr<schedule::Scheduler> scheduler_;
   std::mt19937_64 rng_;
 
-  TaskBook book_;
+  TaskBook& book_;
   std::unique_ptr<Dispatcher> dispatcher_;
   std::unique_ptr<Deliveries> deliveries_;
-  std::unique_ptr<LoadingTimes> loading_;
+  LoadingTimes& loading_;
   std::vector<Routine> routines_;
   ExecutorStats stats_;
   std::vector<NavigationRecord> navigations_;
   bool in_fault_ = false;
-  std::unique_ptr<FoundBlocked> found_blocked_;  // what journeys found of the edges (steps_ holds it)
+  FoundBlocked& found_blocked_;  // what journeys found of the edges (steps_ holds it)
   StepContext steps_;  // what every step works with
 
   std::unique_ptr<TaskRun> run_;        // the task waited for, navigated to or acted on
@@ -414,8 +414,7 @@ class Executor final : public RobotListener {
   std::optional<std::string> broken_;   // the next schedule's event says what the break changed
   std::vector<TaskId> plan_before_break_;
   std::string look_alikes_;  // the last look-alike note
-  std::unique_ptr<DoorModels> door_models_;
-  std::unique_ptr<learn::WeeklyMemory> weekly_memory_;  // null until the first refit
+  DoorModels& door_models_;
   std::unique_ptr<Background, BackgroundDeleter> background_;  // last: its worker goes first
 };
 

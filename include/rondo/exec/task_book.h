@@ -46,6 +46,7 @@ struct DoorWait {
 // What the executor knows of one task.
 struct TaskRecord {
   Task task;
+  std::string robot;  // the robot it is allocated to (fleet::Fleet); empty: none yet
   TaskState state = TaskState::kQueued;
   Outcome outcome = Outcome::kAdded;  // the code of the last transition
   std::string reason;                 // of the last transition
@@ -94,16 +95,18 @@ struct TaskRecord {
 
 class TaskBook {
  public:
-  // Precondition: store and clock outlive the book. `robot`: the robot its tasks are allocated to
-  // and its robot events are about (the store's tasks.robot, events.robot).
-  TaskBook(store::Store& store, const Clock& clock, std::string robot = "robot")
-      : store_(store), clock_(clock), robot_(std::move(robot)) {}
+  // Precondition: store and clock outlive the book.
+  TaskBook(store::Store& store, const Clock& clock) : store_(store), clock_(clock) {}
 
-  // Stores the tasks, all or nothing, then records them as queued. kInvalidInput for an empty or
-  // repeated id or one already in the book or the store (which also holds the finished tasks that
-  // have left the book); kStorage when the store cannot write. With `taken`, the queued request
-  // they come from is marked taken in the same transaction.
-  Status add(std::vector<Task> tasks, std::string_view source, const store::RequestTaken* taken = nullptr);
+  // Stores the tasks, all or nothing, then records them as queued, each allocated to its robot in
+  // `robots` (the same order; empty: every task to none). kInvalidInput for an empty or repeated id
+  // or one already in the book or the store (which also holds the finished tasks that have left the
+  // book); kStorage when the store cannot write. With `taken`, the queued request they come from is
+  // marked taken in the same transaction.
+  Status add(std::vector<Task> tasks, std::string_view source, const store::RequestTaken* taken = nullptr,
+             const std::vector<std::string>& robots = {});
+  // Allocates a task to another robot (stored); precondition: the task is in the book.
+  Status allocate(const TaskId& id, const std::string& robot);
 
   // Restore after a restart (exec/executor_restore.cpp): records a task read back from the store
   // as it is, without writing anything (precondition: its id is not in the book yet), and counts
@@ -159,8 +162,8 @@ class TaskBook {
   static void read_progress(const Json& progress, TaskRecord& r);
   // An event of a task that is not a change of its state.
   void note(const TaskId& id, EventKind event, Outcome outcome, const std::string& reason);
-  // Events about the robot, a request (`about`: its id) or the schedule.
-  void note_robot(EventKind event, Outcome outcome, const std::string& reason);
+  // Events about a robot (by its name), a request (`about`: its id) or the schedule.
+  void note_robot(const std::string& robot, EventKind event, Outcome outcome, const std::string& reason);
   void note_schedule(EventKind event, Outcome outcome, const std::string& reason);
   // With `taken`, the queued request is marked taken in the event's transaction.
   void note_request(const std::string& about, EventKind event, Outcome outcome, const std::string& reason,
@@ -184,7 +187,6 @@ class TaskBook {
 
   store::Store& store_;
   const Clock& clock_;
-  std::string robot_;
   std::map<TaskId, TaskRecord> records_;
   std::vector<TaskId> order_;
   std::map<std::string, std::map<Outcome, int>> event_counts_;
