@@ -74,8 +74,8 @@ int main(int argc, char** argv) {
       tasks.push_back(half(fmt::format("job{}", j), DeliveryRole::kPickup, from, s.at("08:00"), deadline));
       tasks.push_back(half(fmt::format("job{}", j), DeliveryRole::kDrop, to, s.at("08:00"), deadline));
     }
-    if (!s.executor().add_tasks(tasks, "bench").ok()) return 1;
-    s.executor().start();
+    if (!s.fleet().add_tasks(tasks, "bench").ok()) return 1;
+    s.fleet().start();
     s.settle();
     // A door the plan needs, of a task after the first (the first one runs: its door is checked too).
     std::vector<std::string> doors;

@@ -1,6 +1,6 @@
 // The running executive's side of the request queue (store/requests.h): the requests that
 // `rondo task add SENTENCE --data DIR` queued in the deployment's store are taken into the
-// executor, each exactly once. Tasks are added with the request marked taken in the transaction
+// fleet, each exactly once. Tasks are added with the request marked taken in the transaction
 // that stores them; routines are added as POST /api/v1/routines adds them, the request marked taken
 // in the transaction that keeps them in the store (service/stored_routines.h) for a restart; a
 // cancellation is applied to the tasks it names, then marked taken (applying it again after a kill
@@ -10,7 +10,7 @@
 // map, an action the robot cannot run) is marked taken with a `rejected` request event (code
 // `invalid request`) that says why.
 //
-//   RequestIntake intake(clock, executor, db);
+//   RequestIntake intake(clock, fleet, db);
 //   intake.take_waiting();          // a simulated run or a restart: once, at start
 //   intake.poll_every(seconds(1));  // on the system clock: the queue is read again each period
 #pragma once
@@ -18,7 +18,7 @@
 #include "rondo/core/result.h"
 #include "rondo/core/time.h"
 #include "rondo/exec/clock.h"
-#include "rondo/exec/executor.h"
+#include "rondo/fleet/fleet.h"
 #include "rondo/store/store.h"
 
 namespace rondo::app {
@@ -26,8 +26,8 @@ namespace rondo::app {
 class RequestIntake {
  public:
   // Precondition: all three outlive the intake, and the intake outlives the clock's events.
-  RequestIntake(exec::Clock& clock, exec::Executor& executor, store::Store& store)
-      : clock_(clock), executor_(executor), store_(store) {}
+  RequestIntake(exec::Clock& clock, fleet::Fleet& fleet, store::Store& store)
+      : clock_(clock), fleet_(fleet), store_(store) {}
 
   // Takes every request waiting in the queue, oldest first; returns how many it took.
   // kStorage when the queue cannot be read.
@@ -37,7 +37,7 @@ class RequestIntake {
 
  private:
   exec::Clock& clock_;
-  exec::Executor& executor_;
+  fleet::Fleet& fleet_;
   store::Store& store_;
 };
 

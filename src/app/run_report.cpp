@@ -300,7 +300,8 @@ Json weekly_summary(std::span<const Traversal> log, std::span<const store::Event
   return out;
 }
 
-Json run_report(const exec::Executor& executor, const RunFigures& figures) {
+Json run_report(const fleet::Fleet& fleet, const RunFigures& figures) {
+  const exec::Executor& executor = fleet.robot();
   const exec::ExecutorStats& s = executor.stats();
   Json j = Json::object();
   j["from"] = format_time(figures.from);
@@ -326,7 +327,7 @@ Json run_report(const exec::Executor& executor, const RunFigures& figures) {
                      {"waiting", to_seconds(s.waiting)},
                      {"charging", to_seconds(figures.charging)}};
   j["scheduler_calls"] = s.schedules;
-  j["model_refits"] = s.refits;
+  j["model_refits"] = fleet.refits();
   j["live_estimates"] = live_estimates(executor.navigations());
   j["battery"] = battery_summary(executor);
   return j;

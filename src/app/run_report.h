@@ -11,6 +11,7 @@
 #include "rondo/core/timezone.h"
 #include "rondo/core/traversal.h"
 #include "rondo/exec/executor.h"
+#include "rondo/fleet/fleet.h"
 #include "rondo/map/topo_map.h"
 #include "rondo/store/events.h"
 
@@ -51,7 +52,7 @@ Json weekly_summary(std::span<const Traversal> log, std::span<const store::Event
 // threshold, tasks moved/dropped/failed for charging by event, and the learned costs.
 Json battery_summary(const exec::Executor& executor);
 
-Json run_report(const exec::Executor& executor, const RunFigures& figures);
+Json run_report(const fleet::Fleet& fleet, const RunFigures& figures);
 
 // The schedule picture of one local day [from, to).
 DayPicture day_picture(const exec::Executor& executor, const std::string& title, Time from, Time to,

@@ -17,6 +17,7 @@
 #include "rondo/core/task_codec.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
+#include "rondo/fleet/fleet.h"
 #include "rondo/map/map_geometry.h"
 #include "rondo/service/stored_routines.h"
 #include "rondo/sim/request_generator.h"
@@ -151,7 +152,8 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   options.dock = dock;
   options.seed = d.seed;
   options.robot_name = "robot";
-  exec::Executor executor(clock, robot, map, db, d.zone, options);
+  fleet::Fleet fleet(clock, map, db, d.zone, options);
+  exec::Executor& executor = fleet.add_robot(robot, options);
   std::unique_ptr<exec::RobotListener> listener;
   if (request.wrap_listener) {
     listener = request.wrap_listener(executor);
@@ -163,18 +165,18 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
                          service::routines_to_run(db, s.parts.plan.routines, map, d.zone, &skipped));
   for (const std::string& why : skipped)
     progress_to << fmt::format("rondo run: a routine a request added is not run: {}\n", why);
-  executor.add_routines(std::move(routines));
-  if (resumed) RONDO_RETURN_IF_ERROR(executor.restore());
+  fleet.add_routines(std::move(routines));
+  if (resumed) RONDO_RETURN_IF_ERROR(fleet.restore());
   // The deployment's one-off tasks, unless a previous start already stored them.
   std::vector<Task> one_off;
   for (const Task& t : s.parts.plan.tasks)
-    if (!executor.book().contains(t.id)) one_off.push_back(t);
-  if (!one_off.empty()) RONDO_RETURN_IF_ERROR(executor.add_tasks(std::move(one_off), "deployment"));
+    if (!fleet.book().contains(t.id)) one_off.push_back(t);
+  if (!one_off.empty()) RONDO_RETURN_IF_ERROR(fleet.add_tasks(std::move(one_off), "deployment"));
   // Requests queued by `rondo task add --data`: taken at start, and on the system clock every
   // half second of wall time as well.
-  RequestIntake intake(clock, executor, db);
+  RequestIntake intake(clock, fleet, db);
   if (auto taken = intake.take_waiting(); !taken) return taken.error();
-  executor.start();
+  fleet.start();
   if (request.realtime) intake.poll_every(intake_period(request.speed));
   // Said once the executor is running (scripts/crash-test waits for it before it aims a kill).
   if (!request.progress)
@@ -221,10 +223,9 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
     const bool done_before = resumed && day_to <= resume_at;  // its picture is already drawn
     if (s.parts.people) {
       for (sim::Request& r : s.parts.people->between(day_from, day_to, people_rng)) {
-        if (resumed && (r.at < resume_at || executor.book().contains(r.task.id))) continue;
-        clock.schedule_at(r.at, [&executor, tasks = r.tasks()]() mutable {
-          (void)executor.add_tasks(std::move(tasks), "request");
-        });
+        if (resumed && (r.at < resume_at || fleet.book().contains(r.task.id))) continue;
+        clock.schedule_at(
+            r.at, [&fleet, tasks = r.tasks()]() mutable { (void)fleet.add_tasks(std::move(tasks), "request"); });
       }
     }
     if (done_before) {
@@ -257,7 +258,7 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   RONDO_ASSIGN_OR_RETURN(const std::vector<Traversal> log, store::find_traversals(db));
   RunFigures figures{.from = start, .to = end, .charging = deployed.charging_time()};
   navigation_from_log(map, log, start, end, figures);
-  result.report = run_report(executor, figures);
+  result.report = run_report(fleet, figures);
   // The simulated truth beside what was learned of it (not for a real vehicle, which has no world).
   if (s.parts.world && result.report.contains("loading_times"))
     for (Json& t : result.report["loading_times"])

@@ -17,6 +17,7 @@
 #include "robot_factory.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
+#include "rondo/fleet/fleet.h"
 #include "rondo/service/server.h"
 #include "rondo/service/stored_routines.h"
 #include "rondo/sim/request_generator.h"
@@ -61,16 +62,16 @@ class ScopeExit {
 
 }  // namespace
 
-void schedule_people(exec::Clock& clock, exec::Executor& executor, sim::RequestGenerator& people, sim::Rng& rng,
+void schedule_people(exec::Clock& clock, fleet::Fleet& fleet, sim::RequestGenerator& people, sim::Rng& rng,
                      const TimeZone& zone, Time from) {
   const auto day = zone.local_date(from);
   const Time to = zone.at(std::chrono::year_month_day{std::chrono::sys_days{day} + std::chrono::days{1}}, Duration{0});
   for (sim::Request& r : people.between(from, to, rng))
-    clock.schedule_at(r.at, [&executor, tasks = r.tasks()]() mutable {
-      if (!executor.book().known(tasks.front().id)) (void)executor.add_tasks(std::move(tasks), "request");
+    clock.schedule_at(r.at, [&fleet, tasks = r.tasks()]() mutable {
+      if (!fleet.book().known(tasks.front().id)) (void)fleet.add_tasks(std::move(tasks), "request");
     });
   clock.schedule_at(
-      to, [&clock, &executor, &people, &rng, &zone, to] { schedule_people(clock, executor, people, rng, zone, to); });
+      to, [&clock, &fleet, &people, &rng, &zone, to] { schedule_people(clock, fleet, people, rng, zone, to); });
 }
 
 Status serve_deployment(const ServeRequest& request, std::ostream& log) {
@@ -133,30 +134,31 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   // Requests are answered after their commit, not after the reschedule (docs/executor.md).
   options.background_scheduling = true;
   options.forget_finished = true;  // finished tasks stay only in the store: months of service do not grow
-  exec::Executor executor(clock, robot, parts.map, db, d.zone, options);
+  fleet::Fleet fleet(clock, parts.map, db, d.zone, options);
+  exec::Executor& executor = fleet.add_robot(robot, options);
   // The deployment's routines with the changes made through the API (kept in the store).
   std::vector<std::string> skipped;
   RONDO_ASSIGN_OR_RETURN(std::vector<Routine> routines,
                          service::routines_to_run(db, parts.plan.routines, parts.map, d.zone, &skipped));
   for (const std::string& s : skipped)
     log << fmt::format("rondo serve: a routine added through the API is not run: {}\n", s);
-  executor.add_routines(std::move(routines));
+  fleet.add_routines(std::move(routines));
   // A data folder that holds a run is restored (kill -9 and start again loses nothing); stored
   // tasks that the deployment, edited meanwhile, can no longer run end with that reason. The
   // deployment's one-off tasks are added to a fresh store only.
   if (!stored.empty())
-    RONDO_RETURN_IF_ERROR(executor.restore());
+    RONDO_RETURN_IF_ERROR(fleet.restore());
   else if (!parts.plan.tasks.empty())
-    RONDO_RETURN_IF_ERROR(executor.add_tasks(parts.plan.tasks, "deployment"));
+    RONDO_RETURN_IF_ERROR(fleet.add_tasks(parts.plan.tasks, "deployment"));
   // Out of service when it stopped (POST /api/v1/pause), out of service again.
   RONDO_ASSIGN_OR_RETURN(const std::optional<std::string> out_of_service,
                          store::get_meta(db, service::kOutOfServiceKey));
   if (out_of_service == "1") executor.set_out_of_service(true, false, "as before the restart");
-  executor.start();
+  fleet.start();
   // Requests queued by `rondo task add --data` (while it was down, and from now on): read again
   // every half second of wall time; on PostgreSQL as soon as each is committed (LISTEN/NOTIFY),
   // with a poll once a minute of wall time in case a notification was missed.
-  RequestIntake intake(clock, executor, db);
+  RequestIntake intake(clock, fleet, db);
   std::unique_ptr<RequestListener> listener;
   if (db.is_postgres()) {
     RONDO_ASSIGN_OR_RETURN(listener, RequestListener::start(clock, intake, db.location(), log));
@@ -166,18 +168,19 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
   }
   trim_heap_every(clock, std::max(Duration{1}, Duration{static_cast<Duration::rep>(60'000.0 * request.speed)}));
   sim::Rng people_rng(d.seed * 0x9E3779B97F4A7C15ULL + 17);
-  if (parts.people) schedule_people(clock, executor, *parts.people, people_rng, d.zone, clock.now());
+  if (parts.people) schedule_people(clock, fleet, *parts.people, people_rng, d.zone, clock.now());
 
-  service::Server server({.clock = clock,
-                          .executor = executor,
-                          .robot = robot,
-                          .store = db,
-                          .map = parts.map,
-                          .zone = d.zone,
-                          .deployment = d.name,
-                          .places = parts.places ? &*parts.places : nullptr},
-                         {.host = request.host, .port = request.port, .token = token,
-                          .threads = 2 * request.max_streams});
+  service::Server server(
+      {.clock = clock,
+       .fleet = fleet,
+       .executor = executor,
+       .robot = robot,
+       .store = db,
+       .map = parts.map,
+       .zone = d.zone,
+       .deployment = d.name,
+       .places = parts.places ? &*parts.places : nullptr},
+      {.host = request.host, .port = request.port, .token = token, .threads = 2 * request.max_streams});
   RONDO_ASSIGN_OR_RETURN(const int port, server.bind());
   log << fmt::format("rondo serve: {} on http://{}:{}/ (speed {}, store {}, {})\n", d.name, request.host, port,
                      request.speed, db.name(), token ? "writes need the token" : "writes open on loopback")

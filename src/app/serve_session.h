@@ -16,6 +16,7 @@
 #include "rondo/core/result.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
+#include "rondo/fleet/fleet.h"
 #include "rondo/sim/request_generator.h"
 #include "rondo/sim/rng.h"
 #include "rondo/store/store.h"
@@ -39,9 +40,9 @@ struct ServeRequest {
 Status serve_deployment(const ServeRequest& request, std::ostream& log);
 
 // The simulated people's requests from `from` to the end of its local day, each added to the
-// executor (source "request") when it falls due, as in `rondo run`; at the day's end the next day's
+// fleet (source "request") when it falls due, as in `rondo run`; at the day's end the next day's
 // are drawn, and so on. Precondition: everything outlives the clock's events.
-void schedule_people(exec::Clock& clock, exec::Executor& executor, sim::RequestGenerator& people, sim::Rng& rng,
+void schedule_people(exec::Clock& clock, fleet::Fleet& fleet, sim::RequestGenerator& people, sim::Rng& rng,
                      const TimeZone& zone, Time from);
 
 }  // namespace rondo::app

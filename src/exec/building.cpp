@@ -18,10 +18,10 @@ Building::Building(Clock& clock_in, const map::TopoMap& map_in, store::Store& st
       store(store_in),
       zone(zone_in),
       models(models_in ? std::move(models_in)
-                       : std::make_shared<plan::LearnedEdgeModels>(
-                             map_in, nullptr, plan::DistancePriorOptions{},
-                             options.online_model ? plan::LearnedEdgeModels::Reading::kOnline
-                                                  : plan::LearnedEdgeModels::Reading::kOffline)),
+                       : std::make_shared<plan::LearnedEdgeModels>(map_in, nullptr, plan::DistancePriorOptions{},
+                                                                   options.online_model
+                                                                       ? plan::LearnedEdgeModels::Reading::kOnline
+                                                                       : plan::LearnedEdgeModels::Reading::kOffline)),
       planner(map_in, models, planner_options(options.slot_width)),
       travel(map_in, models, planner, options.slot_width, options.route_threshold),
       offline_models(std::make_shared<plan::LearnedEdgeModels>(map_in, nullptr)),

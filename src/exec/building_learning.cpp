@@ -60,7 +60,9 @@ bool Building::refit() {
   return true;
 }
 
-void Building::refit_doors() { door_models->refit(clock.now(), options.refit_window); }
+void Building::refit_doors() {
+  door_models->refit(clock.now(), options.refit_window);
+}
 
 Status Building::restore_door_models() {
   store::ObservationQuery q{.what = "door_open"};

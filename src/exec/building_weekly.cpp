@@ -41,7 +41,7 @@ std::shared_ptr<const learn::EdgeModels> Building::with_week(std::shared_ptr<con
                                      : learn::WeeklyMemory::from_json(j);
       if (!memory)
         book.write_error(fmt::format("the stored weekly memory is not used, the week is learned afresh: {}",
-                                      memory.error().message));
+                                     memory.error().message));
       else if (memory->options().half_life_days == wanted.half_life_days)
         *weekly_memory = std::move(*memory);  // a memory forgotten at another rate starts afresh
     }
@@ -53,7 +53,8 @@ std::shared_ptr<const learn::EdgeModels> Building::with_week(std::shared_ptr<con
   const std::int64_t oldest = today - 7 * memory.options().weeks_kept;
   const std::int64_t first = std::max(memory.next_day().value_or(oldest), oldest);
   if (first >= today) return fitted->with_weekly(memory);
-  store::TraversalQuery query{.from = zone.at(date_of(first), Duration{0}), .until = zone.at(date_of(today), Duration{0})};
+  store::TraversalQuery query{.from = zone.at(date_of(first), Duration{0}),
+                              .until = zone.at(date_of(today), Duration{0})};
   auto log = store::find_traversals(store, query);
   if (!log) {
     book.write_error(log.error().message);

@@ -34,19 +34,9 @@ const char* to_string(ExecutorPhase phase) {
   return "idle";
 }
 
-Executor::Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::Store& store, const TimeZone& zone,
-                   ExecutorOptions options, ExecutorParts parts)
-    : Executor(std::make_unique<Building>(clock, map, store, zone, options, std::move(parts.models)), nullptr, robot,
-               options, std::move(parts.scheduler)) {}
-
 Executor::Executor(Building& building, Robot& robot, ExecutorOptions options,
                    std::unique_ptr<schedule::Scheduler> scheduler)
-    : Executor(nullptr, &building, robot, options, std::move(scheduler)) {}
-
-Executor::Executor(std::unique_ptr<Building> owned, Building* borrowed, Robot& robot, ExecutorOptions options,
-                   std::unique_ptr<schedule::Scheduler> scheduler)
-    : owned_building_(std::move(owned)),
-      building_(owned_building_ ? *owned_building_ : *borrowed),
+    : building_(building),
       clock_(building_.clock),
       robot_(robot),
       map_(building_.map),
@@ -66,8 +56,9 @@ Executor::Executor(std::unique_ptr<Building> owned, Building* borrowed, Robot& r
       deliveries_(std::make_unique<Deliveries>()),
       loading_(*building_.loading),
       found_blocked_(*building_.found_blocked),
-      steps_{clock_,    robot_, map_,  book_,        travel_, offline_travel_, planner_, options_,
-             zone_,     stats_, navigations_, in_fault_, models_, [this] { read_battery(); }, found_blocked_},
+      steps_{clock_,        robot_, map_,   book_,        travel_,   offline_travel_, planner_,
+             options_,      zone_,  stats_, navigations_, in_fault_, models_,         [this] { read_battery(); },
+             found_blocked_},
       assumption_map_(std::make_unique<AssumptionMap>(map_, options_.dock)),
       opportunities_(std::make_unique<Opportunities>()),
       door_models_(*building_.door_models) {
@@ -99,34 +90,11 @@ Executor::~Executor() {
   if (offer_again_ != 0) clock_.cancel(offer_again_);
 }
 
-Status Executor::accept(const Task& task) const {
-  if (auto ok = validate(task, "task " + task.id); !ok) return ok;
-  if (book_.contains(task.id)) return Error::invalid(fmt::format("task {}: the id is already taken", task.id));
-  RONDO_RETURN_IF_ERROR(runs_here(task));
-  // Refused now rather than failed at its place: the robot says it cannot run one of its actions.
-  if (auto why = cannot_run(robot_, task.actions)) return Error::invalid(fmt::format("task {}: {}", task.id, *why));
-  return Status{};
+std::optional<std::string> Executor::cannot_run(const std::vector<Action>& actions) const {
+  return exec::cannot_run(robot_, actions);
 }
 
-Status Executor::runs_here(const Task& task) const {
-  if (!task.robot.empty() && task.robot != options_.robot_name)
-    return Error::invalid(fmt::format("task {}: robot '{}' is not in this deployment (its robot is '{}')", task.id,
-                                      task.robot, options_.robot_name));
-  for (const std::string* node : {&task.start_node, &task.end_node}) {
-    if (!node->empty() && !map_.find_node(*node))
-      return Error::invalid(fmt::format("task {}: node '{}' is not on the map", task.id, *node));
-  }
-  if (task.kind == TaskKind::kStandard && task.start_node.empty())
-    return Error::invalid(fmt::format("task {}: a standard task needs a start node", task.id));
-  return Status{};
-}
-
-Result<std::vector<TaskId>> Executor::insert_tasks(std::vector<Task> tasks, std::string_view source,
-                                                   const store::RequestTaken* taken) {
-  for (const Task& t : tasks) RONDO_RETURN_IF_ERROR(accept(t));
-  std::vector<TaskId> ids;
-  for (const Task& t : tasks) ids.push_back(t.id);
-  RONDO_RETURN_IF_ERROR(book_.add(std::move(tasks), source, taken, std::vector<std::string>(ids.size(), options_.robot_name)));
+void Executor::take(std::vector<TaskId> ids) {
   std::vector<TaskId> standard;
   for (const TaskId& id : ids) {
     deliveries_->add(book_.at(id).task);
@@ -135,26 +103,9 @@ Result<std::vector<TaskId>> Executor::insert_tasks(std::vector<Task> tasks, std:
     else
       standard.push_back(id);
   }
-  return standard;
-}
-
-Status Executor::add_tasks(std::vector<Task> tasks, std::string_view source, const store::RequestTaken* taken) {
-  std::string ids;
-  for (const Task& t : tasks) ids += (ids.empty() ? "" : ",") + t.id;
-  auto inserted = insert_tasks(std::move(tasks), source, taken);
-  if (!inserted) {
-    // A refused request is part of the record too (a queued one is taken with it).
-    std::optional<store::RequestTaken> refused;
-    if (taken) refused = store::RequestTaken{taken->id, taken->at, "rejected: " + inserted.error().message};
-    book_.note_request(taken ? fmt::format("request {}", taken->id) : ids, EventKind::kRejected, Outcome::kInvalidRequest,
-                       fmt::format("from {}: {}", source, inserted.error().message), refused ? &*refused : nullptr);
-    return inserted.error();
-  }
-  std::vector<TaskId> standard = std::move(*inserted);
-  if (!started_) return Status{};  // start() schedules everything added before it
+  if (!started_) return;  // schedule_restored() schedules everything given before it
   if (!standard.empty()) reschedule(std::move(standard), "new tasks");
   if (!give_way_to_on_demand()) kick();
-  return Status{};
 }
 
 bool Executor::give_way_to_on_demand() {
@@ -167,10 +118,6 @@ bool Executor::give_way_to_on_demand() {
   book_.note(*ready, EventKind::kWaitsForRunningTask, Outcome::kRunsAfterCurrent,
              fmt::format("the running task {} cannot be interrupted now; runs right after it", run_->id()));
   return false;
-}
-
-void Executor::reject_request(const store::RequestTaken& taken, const std::string& reason) {
-  book_.note_request(fmt::format("request {}", taken.id), EventKind::kRejected, Outcome::kInvalidRequest, reason, &taken);
 }
 
 Status Executor::cancel_task(const TaskId& id, const std::string& reason) {
@@ -205,26 +152,26 @@ Status Executor::cancel_task(const TaskId& id, const std::string& reason) {
   return Status{};
 }
 
-void Executor::add_routines(std::vector<Routine> routines) {
-  for (Routine& r : routines) routines_.push_back(std::move(r));
-}
-
 void Executor::start() {
   if (started_) return;
   started_ = true;
   if (auto up = robot_.activate(); !up) on_fault({.kind = RobotFault::Kind::kError, .message = up.error().message});
   read_battery();
-  create_routine_tasks(zone_.local_date(clock_.now()));
+}
+
+void Executor::schedule_restored() {
   std::vector<TaskId> pending;
   for (const TaskId& id : book_.order())
-    if (book_.at(id).task.kind == TaskKind::kStandard && book_.at(id).state == TaskState::kQueued &&
+    if (book_.at(id).robot == name() && book_.at(id).task.kind == TaskKind::kStandard &&
+        book_.at(id).state == TaskState::kQueued &&
         !book_.at(id).dropped_for_now &&  // deferred (restore): reschedule() offers them again
         !blocked(id) &&                   // waits for its door (restore)
         !dispatcher_->is_planned(id) && !dispatcher_->is_deferred(id))
       pending.push_back(id);
   if (!pending.empty()) reschedule(std::move(pending), "start");
-  schedule_midnight();
-  schedule_refit();
+}
+
+void Executor::kick_soon() {
   clock_.schedule_at(clock_.now(), [this] { kick(); });
 }
 

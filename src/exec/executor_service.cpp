@@ -1,6 +1,6 @@
 // The service's additions to the executor (`rondo serve`, rondo::service): a read-only view of
 // what it is doing, and the changes a person makes while it runs (a waiting task's window or
-// priority, routines added and removed). Everything here runs on the clock's thread, like the
+// priority, out of service). Everything here runs on the clock's thread, like the
 // rest of the executor; the HTTP threads reach it only through Clock::post().
 #include <fmt/format.h>
 
@@ -58,76 +58,6 @@ Status Executor::update_task(const TaskId& id, std::optional<TimeWindow> window,
   if (started_)
     reschedule(deferred ? std::vector<TaskId>{} : std::vector<TaskId>{id}, fmt::format("task {} changed", id));
   if (started_) kick();
-  return Status{};
-}
-
-Status Executor::add_routine_now(Routine routine) {
-  for (const Routine& r : routines_)
-    if (r.name == routine.name) return Error::invalid(fmt::format("routine '{}': the name is already taken", r.name));
-  for (const std::string* node : {&routine.task.start_node, &routine.task.end_node})
-    if (!node->empty() && !map_.find_node(*node))
-      return Error::invalid(fmt::format("routine '{}': node '{}' is not on the map", routine.name, *node));
-  if (auto why = cannot_run(robot_, routine.task.actions))
-    return Error::invalid(fmt::format("routine '{}': {}", routine.name, *why));
-  const std::string name = routine.name;
-  routines_.push_back(std::move(routine));
-  if (!started_) return Status{};
-  std::vector<Task> batch;
-  const Time now = clock_.now();
-  for (Task& t : instances_on(routines_.back(), zone_.local_date(now), zone_))
-    if (t.window && t.window->deadline - t.duration > now && !book_.known(t.id)) batch.push_back(std::move(t));
-  if (batch.empty()) return Status{};
-  if (auto ok = add_tasks(std::move(batch), "routine"); !ok) {
-    routines_.pop_back();
-    return ok;
-  }
-  kick();
-  return Status{};
-}
-
-Status Executor::add_routines_now(std::vector<Routine> routines, const store::RequestTaken& taken,
-                                  const std::string& why) {
-  std::set<std::string> names;
-  for (const Routine& r : routines_) names.insert(r.name);
-  Status valid;
-  if (routines.empty()) valid = Error::invalid("it holds no routine");
-  for (const Routine& routine : routines) {
-    if (!valid) break;
-    if (!names.insert(routine.name).second)
-      valid = Error::invalid(fmt::format("routine '{}': the name is already taken", routine.name));
-    for (const std::string* node : {&routine.task.start_node, &routine.task.end_node})
-      if (valid && !node->empty() && !map_.find_node(*node))
-        valid = Error::invalid(fmt::format("routine '{}': node '{}' is not on the map", routine.name, *node));
-    if (auto cannot = cannot_run(robot_, routine.task.actions); valid && cannot)
-      valid = Error::invalid(fmt::format("routine '{}': {}", routine.name, *cannot));
-  }
-  if (!valid) {
-    const store::RequestTaken refused{taken.id, taken.at, "rejected: " + valid.error().message};
-    book_.note_request(fmt::format("request {}", taken.id), EventKind::kRejected, Outcome::kInvalidRequest, valid.error().message,
-                       &refused);
-    return valid;
-  }
-  // Marked taken with what keeps the routines: a kill after this finds them at the restart.
-  RONDO_RETURN_IF_ERROR(book_.take_request(taken, EventKind::kRoutinesAdded, Outcome::kNone, why));
-  const std::size_t first = routines_.size();
-  for (Routine& r : routines) routines_.push_back(std::move(r));
-  if (!started_) return Status{};  // start() adds today's instances
-  std::vector<Task> batch;
-  const Time now = clock_.now();
-  for (std::size_t i = first; i < routines_.size(); ++i)
-    for (Task& t : instances_on(routines_[i], zone_.local_date(now), zone_))
-      if (t.window && t.window->deadline - t.duration > now && !book_.known(t.id)) batch.push_back(std::move(t));
-  if (batch.empty()) return Status{};
-  // A refusal here is in the event log; the routines stay (they are kept), and make tomorrow's.
-  if (auto ok = add_tasks(std::move(batch), "routine"); !ok) book_.write_error(ok.error().message);
-  kick();
-  return Status{};
-}
-
-Status Executor::remove_routine(const std::string& name) {
-  const auto it = std::find_if(routines_.begin(), routines_.end(), [&](const Routine& r) { return r.name == name; });
-  if (it == routines_.end()) return Error::not_found(fmt::format("no routine '{}'", name));
-  routines_.erase(it);
   return Status{};
 }
 

@@ -27,14 +27,14 @@ Reply already_queued(Api& api, const lang::Command& c, const std::vector<std::st
   r.body = Json{{"message", already_queued_text(ids)}, {"already_queued", ids}};
   if (!c.routines.empty()) {
     Json routines = Json::array();
-    for (const Routine& routine : api.ctx.executor.routines())
+    for (const Routine& routine : api.ctx.fleet.routines())
       if (std::find(ids.begin(), ids.end(), routine.name) != ids.end()) routines.push_back(encode(routine));
     r.body["routines"] = std::move(routines);
     return r;
   }
   Json tasks = Json::array();
   for (const std::string& id : ids)
-    if (auto found = api.ctx.executor.task(id); found && *found) tasks.push_back(task_json(**found));
+    if (auto found = api.ctx.fleet.task(id); found && *found) tasks.push_back(task_json(**found));
   r.body["tasks"] = std::move(tasks);
   return r;
 }
@@ -53,7 +53,7 @@ Reply command(Api& api, const httplib::Request& req) {
     const Time now = std::chrono::floor<std::chrono::minutes>(api.ctx.clock.now());
     auto parsed = lang::parse_command(text, {.places = &places, .zone = api.ctx.zone, .now = now});
     if (!parsed) return error_reply(422, "invalid", "text: " + parsed.error().message, "text");
-    auto repeated = settle_against_executor(*parsed, api.ctx.executor);
+    auto repeated = settle_against_fleet(*parsed, api.ctx.fleet);
     if (!repeated) {
       Reply e = error_reply(repeated.error());
       e.body["error"]["field"] = "text";
@@ -68,24 +68,24 @@ Reply command(Api& api, const httplib::Request& req) {
     Reply r;
     if (parsed->cancel) {
       std::vector<TaskId> ids;
-      for (const auto& [id, record] : api.ctx.executor.tasks())
+      for (const auto& [id, record] : api.ctx.fleet.tasks())
         if (!is_final(record.state) && lang::matches(*parsed->cancel, record.task)) ids.push_back(id);
       Json cancelled = Json::array();
       for (const TaskId& id : ids)
-        if (api.ctx.executor.cancel_task(id, "cancelled in words: " + text)) cancelled.push_back(id);
+        if (api.ctx.fleet.cancel_task(id, "cancelled in words: " + text)) cancelled.push_back(id);
       r.body = Json{{"cancelled", std::move(cancelled)}};
       return r;
     }
     std::vector<TaskId> ids;
     for (const Task& t : parsed->tasks) ids.push_back(t.id);
-    if (Status ok = api.ctx.executor.add_tasks(std::move(parsed->tasks), "api"); !ok) {
+    if (Status ok = api.ctx.fleet.add_tasks(std::move(parsed->tasks), "api"); !ok) {
       Reply e = error_reply(ok.error());
       e.body["error"]["field"] = "text";
       return e;
     }
     Json tasks = Json::array();
     for (const TaskId& id : ids)
-      if (auto found = api.ctx.executor.task(id); found && *found) tasks.push_back(task_json(**found));
+      if (auto found = api.ctx.fleet.task(id); found && *found) tasks.push_back(task_json(**found));
     r.status = 201;
     r.body = Json{{"tasks", std::move(tasks)}};
     return r;

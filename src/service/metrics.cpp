@@ -93,12 +93,12 @@ Reply metrics_reply(Api& api) {
         "# TYPE rondo_background_schedules_total counter\nrondo_background_schedules_total {}\n"
         "# HELP rondo_background_stale_total Of those, answers not applied: the book had moved on.\n"
         "# TYPE rondo_background_stale_total counter\nrondo_background_stale_total {}\n",
-        st.schedules, st.refits, st.navigation_attempts, robot.battery(), robot.charging() ? 1 : 0,
-        robot.busy() ? 1 : 0, robot.fault() ? 1 : 0, api.ctx.executor.write_errors().size(), st.background_runs,
+        st.schedules, api.ctx.fleet.refits(), st.navigation_attempts, robot.battery(), robot.charging() ? 1 : 0,
+        robot.busy() ? 1 : 0, robot.fault() ? 1 : 0, api.ctx.fleet.write_errors().size(), st.background_runs,
         st.background_stale);
     // What the process holds (docs/operations.md, "Memory over time"): tasks and navigation
     // records in memory, the executor's travel caches, and the heap as glibc's malloc counts it.
-    const exec::TravelCache& travel = api.ctx.executor.travel_cache();
+    const exec::TravelCache& travel = api.ctx.fleet.travel_cache();
     const struct mallinfo2 heap = ::mallinfo2();
     out += fmt::format(
         "# HELP rondo_memory_tasks Tasks held in the executor's memory (the unfinished ones).\n"
@@ -119,7 +119,7 @@ Reply metrics_reply(Api& api) {
         "# TYPE rondo_memory_sqlite_bytes gauge\nrondo_memory_sqlite_bytes {}\n"
         "# HELP rondo_memory_http_threads HTTP threads running (started when needed, ended when idle).\n"
         "# TYPE rondo_memory_http_threads gauge\nrondo_memory_http_threads {}\n",
-        api.ctx.executor.tasks().size(), api.ctx.executor.navigations().size(), travel.cached_count(),
+        api.ctx.fleet.tasks().size(), api.ctx.executor.navigations().size(), travel.cached_count(),
         api.ctx.executor.stats().background_travel_policies, travel.planner().cached_slot_count(),
         heap.uordblks + heap.hblkhd, heap.fordblks, store::Store::sqlite_memory_bytes(), api.http_threads.load());
     Reply r;

@@ -90,7 +90,7 @@ Reply schedule(Api& api, const httplib::Request& req) {
     if (!page) return error_reply(page.error());
     Json tasks = Json::array();
     for (const store::TaskRow& row : page->rows) {
-      auto found = api.ctx.executor.task(row.id);
+      auto found = api.ctx.fleet.task(row.id);
       if (!found) return error_reply(found.error());
       if (!*found) continue;
       const exec::TaskRecord& t = **found;
@@ -132,7 +132,7 @@ Reply edge_model(Api& api, const httplib::Request& req) {
   return api.on_clock([&api, e = *edge, edge_id, date = date_param(req), step_min] {
     auto day = local_day(date, api.ctx.zone, api.ctx.clock.now());
     if (!day) return error_reply(422, "invalid", day.error().message, "date");
-    const plan::LearnedEdgeModels& models = api.ctx.executor.models();
+    const plan::LearnedEdgeModels& models = api.ctx.fleet.models();
     const std::size_t index = models.model_index(e);
     const auto& fitted = models.models();
     const bool learned = fitted && index != plan::LearnedEdgeModels::kUnknown;
@@ -168,7 +168,7 @@ Reply edges_now(Api& api, const httplib::Request& req) {
   if (!at) return error_reply(422, "invalid", at.error().message, "at");
   return api.on_clock([&api, at = *at] {
     const Time t = at.value_or(api.ctx.clock.now());
-    const plan::LearnedEdgeModels& models = api.ctx.executor.models();
+    const plan::LearnedEdgeModels& models = api.ctx.fleet.models();
     Json list = Json::array();
     for (map::EdgeIndex e = 0; e < api.ctx.map.edge_count(); ++e) {
       const plan::EdgeCrossing o = models.outcome(e, t);
@@ -189,7 +189,7 @@ Reply edges_now(Api& api, const httplib::Request& req) {
 Reply routines(Api& api, const httplib::Request&) {
   return api.on_clock([&api] {
     Json list = Json::array();
-    for (const Routine& r : api.ctx.executor.routines()) list.push_back(encode(r));
+    for (const Routine& r : api.ctx.fleet.routines()) list.push_back(encode(r));
     Reply reply;
     reply.body = Json{{"routines", std::move(list)}};
     return reply;
@@ -216,10 +216,10 @@ Reply add_routines_now(Api& api, std::vector<Routine> list) {
   for (Routine& r : list) {
     Json encoded = encode(r);
     const Routine kept = r;
-    if (Status ok = api.ctx.executor.add_routine_now(std::move(r)); !ok) return error_reply(ok.error());
+    if (Status ok = api.ctx.fleet.add_routine_now(std::move(r)); !ok) return error_reply(ok.error());
     // Stored before the answer, so that it comes back after a restart; not run when it cannot be.
     if (Status ok = remember_added_routine(api.ctx.store, kept); !ok) {
-      (void)api.ctx.executor.remove_routine(kept.name);
+      (void)api.ctx.fleet.remove_routine(kept.name);
       return error_reply(ok.error());
     }
     added.push_back(std::move(encoded));
@@ -235,12 +235,12 @@ namespace {
 Reply remove_routine(Api& api, const httplib::Request& req) {
   const std::string name = req.matches[1];
   return api.on_clock([&api, name] {
-    const auto& list = api.ctx.executor.routines();
+    const auto& list = api.ctx.fleet.routines();
     if (std::none_of(list.begin(), list.end(), [&name](const Routine& r) { return r.name == name; }))
       return error_reply(Error::not_found(fmt::format("no routine '{}'", name)));
     // Stored first: a deployment routine removed here stays removed after a restart.
     if (Status ok = remember_removed_routine(api.ctx.store, name); !ok) return error_reply(ok.error());
-    if (Status ok = api.ctx.executor.remove_routine(name); !ok) return error_reply(ok.error());
+    if (Status ok = api.ctx.fleet.remove_routine(name); !ok) return error_reply(ok.error());
     Reply reply;
     reply.body = Json{{"removed", name}};
     return reply;

@@ -5,16 +5,16 @@
 
 namespace rondo::service {
 
-Result<std::vector<std::string>> settle_against_executor(lang::Command& command, const exec::Executor& executor) {
-  const auto task_held = [&executor](const Task& said) {
-    auto found = executor.task(said.id);
+Result<std::vector<std::string>> settle_against_fleet(lang::Command& command, const fleet::Fleet& fleet) {
+  const auto task_held = [&fleet](const Task& said) {
+    auto found = fleet.task(said.id);
     if (!found) return lang::Held::kOther;
     if (!*found) return lang::Held::kFree;
     const exec::TaskRecord& held = **found;
     return !is_final(held.state) && held.task == said ? lang::Held::kSame : lang::Held::kOther;
   };
-  const auto routine_held = [&executor](const Routine& said) {
-    for (const Routine& r : executor.routines()) {
+  const auto routine_held = [&fleet](const Routine& said) {
+    for (const Routine& r : fleet.routines()) {
       if (r.name == said.name) return lang::same_routine(said, r) ? lang::Held::kSame : lang::Held::kOther;
     }
     return lang::Held::kFree;

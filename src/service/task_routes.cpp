@@ -28,7 +28,7 @@ std::string fingerprint(std::string_view text) {
 
 // A task as the API shows it, from the executor's memory or (a finished one) the store.
 Result<Json> task_view(Api& api, const TaskId& id) {
-  RONDO_ASSIGN_OR_RETURN(std::optional<exec::TaskRecord> r, api.ctx.executor.task(id));
+  RONDO_ASSIGN_OR_RETURN(std::optional<exec::TaskRecord> r, api.ctx.fleet.task(id));
   if (!r) return Error::not_found(fmt::format("no task '{}'", id));
   return task_json(*r);
 }
@@ -68,13 +68,13 @@ Reply submit_on_clock(Api& api, std::vector<Task> tasks, const std::string& key,
       }
       // Pending: the first attempt stopped between its two writes.
       const bool all_stored =
-          std::all_of(ids.begin(), ids.end(), [&](const TaskId& id) { return api.ctx.executor.book().known(id); });
+          std::all_of(ids.begin(), ids.end(), [&](const TaskId& id) { return api.ctx.fleet.book().known(id); });
       if (all_stored) return created(api, ids);
     } else if (auto ok = store::set_meta(db, meta_key, Json{{"fingerprint", print}}.dump()); !ok) {
       return error_reply(ok.error());
     }
   }
-  if (Status ok = api.ctx.executor.add_tasks(std::move(tasks), "api"); !ok) {
+  if (Status ok = api.ctx.fleet.add_tasks(std::move(tasks), "api"); !ok) {
     (void)batch.commit();  // the key as pending, and the refusal's event
     return error_reply(ok.error());
   }
@@ -179,7 +179,7 @@ Reply cancel(Api& api, const httplib::Request& req) {
   std::string reason = "cancelled through the API";
   if (auto bad = read_text_field(req, "reason", reason)) return *bad;
   return api.on_clock([&api, id, reason] {
-    if (Status ok = api.ctx.executor.cancel_task(id, reason); !ok) return error_reply(ok.error());
+    if (Status ok = api.ctx.fleet.cancel_task(id, reason); !ok) return error_reply(ok.error());
     auto view = task_view(api, id);
     if (!view) return error_reply(view.error());
     Reply r;
@@ -193,7 +193,7 @@ Reply confirm(Api& api, const httplib::Request& req) {
   std::string by;
   if (auto bad = read_text_field(req, "by", by)) return *bad;
   return api.on_clock([&api, id, by] {
-    if (Status ok = api.ctx.executor.confirm_action(id, by.empty() ? "a person, through the API" : by); !ok)
+    if (Status ok = api.ctx.fleet.confirm_action(id, by.empty() ? "a person, through the API" : by); !ok)
       return error_reply(ok.error());
     auto view = task_view(api, id);
     if (!view) return error_reply(view.error());
@@ -236,7 +236,7 @@ Reply change(Api& api, const httplib::Request& req) {
   }
   if (!window && !priority) return error_reply(422, "invalid", "request: nothing to change (window, priority)");
   return api.on_clock([&api, id, window, priority] {
-    if (Status ok = api.ctx.executor.update_task(id, window, priority); !ok) {
+    if (Status ok = api.ctx.fleet.update_task(id, window, priority); !ok) {
       Reply r = error_reply(ok.error());
       // "task t1.window: the deadline ..." from validate(): name the request's field.
       if (r.status == 422 && window && ok.error().message.find("window") != std::string::npos)

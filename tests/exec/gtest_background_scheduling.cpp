@@ -91,14 +91,14 @@ class Background : public ScriptedExecutor {
 TEST(BackgroundScheduling, ABurstOfSubmissionsGivesOneReschedule) {
   GatedScheduler* gate = nullptr;
   Background s(gate);
-  s.executor().start();
+  s.fleet().start();
   s.settle();
   constexpr int kBurst = 8;
   const char* nodes[] = {"Office", "Lab", "Kitchen", "Hall"};
   for (int i = 0; i < kBurst; ++i)  // as the HTTP threads post them
     s.clock().post([&s, &nodes, i] {
       const Task t = task("T" + std::to_string(i), nodes[i % 4], s.at("08:00"), s.at("18:00"), minutes(5));
-      ASSERT_TRUE(s.executor().add_task(t, "api").ok());
+      ASSERT_TRUE(s.fleet().add_task(t, "api").ok());
     });
   ASSERT_TRUE(s.settle_until([&] { return s.stats().background_runs >= 1; }));
   s.settle();
@@ -118,14 +118,14 @@ TEST(BackgroundScheduling, ABurstOfSubmissionsGivesOneReschedule) {
 TEST(BackgroundScheduling, TheOldScheduleRunsMeanwhileAndAStaleAnswerIsNotApplied) {
   GatedScheduler* gate = nullptr;
   Background s(gate);
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.fleet().start();
   ASSERT_TRUE(s.settle_until([&] { return s.robot().driving(); }));  // A is planned and on its way
   EXPECT_EQ(s.stats().background_runs, 1);
 
   gate->set_open(false);
   // Answered after its commit, not after the reschedule: the worker is stuck at the gate.
-  ASSERT_TRUE(s.executor().add_task(task("B", "Lab", s.at("08:00"), s.at("12:00"), minutes(5)), "api").ok());
+  ASSERT_TRUE(s.fleet().add_task(task("B", "Lab", s.at("08:00"), s.at("12:00"), minutes(5)), "api").ok());
   EXPECT_TRUE(store::get_task(s.store(), "B").ok());
   // B's problem is in flight. The clock's posts are delivered meanwhile: the worker says it is
   // ready for B's problem only after A's answer, in a post of its own.
@@ -136,7 +136,7 @@ TEST(BackgroundScheduling, TheOldScheduleRunsMeanwhileAndAStaleAnswerIsNotApplie
   EXPECT_TRUE(s.robot().acting());
   EXPECT_EQ(s.state("A"), "acting");
   // Meanwhile C comes and B is cancelled: the answer in flight plans B, so it is stale.
-  ASSERT_TRUE(s.executor().add_task(task("C", "Kitchen", s.at("08:00"), s.at("12:00"), minutes(5)), "api").ok());
+  ASSERT_TRUE(s.fleet().add_task(task("C", "Kitchen", s.at("08:00"), s.at("12:00"), minutes(5)), "api").ok());
   ASSERT_TRUE(s.executor().cancel_task("B", "not needed").ok());
   gate->set_open(true);
   ASSERT_TRUE(s.settle_until([&] { return s.planned("C"); }));
@@ -151,9 +151,9 @@ TEST(BackgroundScheduling, TheOldScheduleRunsMeanwhileAndAStaleAnswerIsNotApplie
 TEST(BackgroundScheduling, AChangeMeanwhileMakesTheAnswerStale) {
   GatedScheduler* gate = nullptr;
   Background s(gate);
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("10:00"), s.at("11:00"), minutes(5)), "test").ok());
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("10:00"), s.at("11:00"), minutes(5)), "test").ok());
   gate->set_open(false);
-  s.executor().start();
+  s.fleet().start();
   ASSERT_TRUE(s.settle_until([&] { return gate->holding_a_solve(); }));
   // A's window moves while its first problem is solved: that answer (10:00) must not be used.
   const TimeWindow later{s.at("14:00"), s.at("15:00")};

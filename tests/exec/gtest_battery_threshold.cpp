@@ -38,8 +38,8 @@ ExecutorOptions battery_options() {
 TEST(BatteryThreshold, InterruptsAnInterruptibleTaskAndDispatchWaitsForTheCharge) {
   ScriptedExecutor s(battery_options());
   s.robot().battery_level = 0.5;
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("12:00"), minutes(10)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("12:00"), minutes(10)), "test").ok());
+  s.fleet().start();
   s.settle();
   ASSERT_EQ(s.robot().calls.back(), "drive Dock_Hall +1");
   // The battery falls below the threshold on the way: the next edge is cancelled at once.
@@ -76,12 +76,12 @@ TEST(BatteryThreshold, InterruptsAnInterruptibleTaskAndDispatchWaitsForTheCharge
 
 TEST(BatteryThreshold, ATaskThatCannotBeInterruptedFinishesFirst) {
   ScriptedExecutor s(battery_options());
-  ASSERT_TRUE(s.executor()
-                  .add_task(task("A", "Office", s.at("08:00"), s.at("12:00"), minutes(10), 1, /*interruptible=*/false),
-                            "test")
-                  .ok());
-  ASSERT_TRUE(s.executor().add_task(task("B", "Lab", s.at("08:00"), s.at("12:00"), minutes(10)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(
+      s.fleet()
+          .add_task(task("A", "Office", s.at("08:00"), s.at("12:00"), minutes(10), 1, /*interruptible=*/false), "test")
+          .ok());
+  ASSERT_TRUE(s.fleet().add_task(task("B", "Lab", s.at("08:00"), s.at("12:00"), minutes(10)), "test").ok());
+  s.fleet().start();
   s.settle();
   s.robot().battery_level = 0.05;
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
@@ -101,8 +101,8 @@ TEST(BatteryThreshold, ATaskWhoseWindowPassesWhileCharging) {
   ScriptedExecutor s(battery_options());
   s.robot().battery_level = 0.05;  // low from the start, on the charger
   s.robot().on_charger = true;
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("08:30"), minutes(10)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("08:30"), minutes(10)), "test").ok());
+  s.fleet().start();
   s.run_until("09:00");
   EXPECT_FALSE(s.robot().busy());
   EXPECT_EQ(robot_code(s, "battery low"), "charging");
@@ -116,8 +116,8 @@ TEST(BatteryThreshold, ZeroTurnsItOff) {
   o.battery_threshold = 0;
   ScriptedExecutor s(o);
   s.robot().battery_level = 0.05;
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("12:00"), minutes(10)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("12:00"), minutes(10)), "test").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
   EXPECT_FALSE(s.executor().charging_for_battery());
   EXPECT_TRUE(s.robot().acting());

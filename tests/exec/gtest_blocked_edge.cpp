@@ -41,8 +41,8 @@ struct Blocked : ScriptedExecutor {
   // Hall_Office.
   void fail_on_the_way(std::optional<Task> t = std::nullopt) {
     if (!t) t = task("A", "Office", at("08:00"), at("12:00"), minutes(5));
-    ASSERT_TRUE(executor().add_task(*t, "test").ok());
-    executor().start();
+    ASSERT_TRUE(fleet().add_task(*t, "test").ok());
+    fleet().start();
     ASSERT_NO_FATAL_FAILURE(drive_to("Hall"));
     settle();
     ASSERT_TRUE(robot().driving());
@@ -119,7 +119,7 @@ TEST(BlockedEdge, WaitHoldsAnOnDemandTaskForTheWayWithinItsPatienceThenRunsIt) {
   EXPECT_GT(retry, s.now());
   EXPECT_LE(retry, s.executor().tasks().at("B").added + hours(4));
   // A standard task that comes meanwhile runs while B waits; B takes the robot at its retry time.
-  ASSERT_TRUE(s.executor().add_task(task("K", "Kitchen", s.now(), s.now() + hours(3), minutes(2)), "test").ok());
+  ASSERT_TRUE(s.fleet().add_task(task("K", "Kitchen", s.now(), s.now() + hours(3), minutes(2)), "test").ok());
   ASSERT_NO_FATAL_FAILURE(s.run_to_success("B", retry));
   EXPECT_EQ(s.state("K"), "succeeded");
   EXPECT_EQ(s.drives_of("Hall_Office"), 2u);
@@ -130,7 +130,7 @@ TEST(BlockedEdge, WaitHoldsAnOnDemandTaskForTheWayWithinItsPatienceThenRunsIt) {
 TEST(BlockedEdge, ATaskThatNeedsAWayJustFoundBlockedWaitsBeforeLeavingWhenLaterArrivesSooner) {
   Blocked s(ExecutorOptions::BlockedEdge::kWait);
   ASSERT_NO_FATAL_FAILURE(s.fail_on_the_way());
-  ASSERT_TRUE(s.executor().add_task(on_demand("B", "Office", minutes(5)), "test").ok());
+  ASSERT_TRUE(s.fleet().add_task(on_demand("B", "Office", minutes(5)), "test").ok());
   s.settle();
   EXPECT_EQ(s.state("B"), "queued");
   EXPECT_EQ(s.code_of("B", "queued"), "no route now");
@@ -147,7 +147,7 @@ TEST(BlockedEdge, ATaskThatNeedsAWayJustFoundBlockedWaitsBeforeLeavingWhenLaterA
 TEST(BlockedEdge, ATaskWithNoTimeToWaitLeavesAtOnceIntoAWayJustFoundBlocked) {
   Blocked s(ExecutorOptions::BlockedEdge::kWait, Duration{0});
   ASSERT_NO_FATAL_FAILURE(s.fail_on_the_way());
-  ASSERT_TRUE(s.executor().add_task(on_demand("B", "Office", minutes(5)), "test").ok());
+  ASSERT_TRUE(s.fleet().add_task(on_demand("B", "Office", minutes(5)), "test").ok());
   s.settle();
   EXPECT_EQ(s.state("B"), "navigating");
   EXPECT_EQ(s.drives_of("Hall_Office"), 2u);
@@ -194,8 +194,8 @@ TEST(BlockedEdge, UnderRiskAlphaATaskDroppedForNowIsOfferedAgainAtTheNextSlotSta
   ExecutorOptions o = Blocked::options_with(ExecutorOptions::BlockedEdge::kWait, hours(4));
   o.risk_alpha = 0.1;
   ScriptedExecutor s(o, scenario_map(), Blocked::parts());
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:30"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("09:30"), minutes(5)), "test").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Hall"));
   s.settle();
   ASSERT_EQ(s.robot().calls.back(), "drive Hall_Office +0");
@@ -235,11 +235,11 @@ struct SharedClosure {
       : s(ExecutorOptions{}, scenario_map(), history ? Blocked::parts() : ExecutorParts{}) {
     for (int i = 0; i < tasks; ++i) {
       const std::string id(1, static_cast<char>('A' + i));
-      EXPECT_TRUE(s.executor().add_task(task(id, "Office", s.at("10:00"), s.at("12:30"), minutes(5)), "test").ok());
+      EXPECT_TRUE(s.fleet().add_task(task(id, "Office", s.at("10:00"), s.at("12:30"), minutes(5)), "test").ok());
       ids.push_back(id);
     }
     s.clock().run_until(s.at("09:59"));
-    s.executor().start();
+    s.fleet().start();
     answer_until(s.at("13:00"));
   }
   void answer_until(Time end) {

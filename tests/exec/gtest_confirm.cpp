@@ -18,8 +18,8 @@ Task loading(const std::string& id, const std::string& action, Time release, Tim
 
 // The robot at the Office, running the task's one action.
 void acting(ScriptedExecutor& s, const Task& t) {
-  ASSERT_TRUE(s.executor().add_task(t, "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(t, "test").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
   s.settle();
   ASSERT_TRUE(s.robot().acting());
@@ -45,7 +45,7 @@ TEST(ConfirmAction, AConfirmedLoadEndsTheActionAsDoneBeforeThePersonAtTheRobot) 
 
 TEST(ConfirmAction, OnlyARunningLoadOrUnloadCanBeConfirmed) {
   ScriptedExecutor s;
-  ASSERT_TRUE(s.executor().add_task(loading("later", "unload", s.at("10:00"), s.at("12:00")), "test").ok());
+  ASSERT_TRUE(s.fleet().add_task(loading("later", "unload", s.at("10:00"), s.at("12:00")), "test").ok());
   ASSERT_NO_FATAL_FAILURE(acting(s, task("work", "Office", s.at("08:00"), s.at("09:00"), minutes(10))));
   EXPECT_EQ(s.executor().confirm_action("work", "").error().code, ErrorCode::kConflict);  // not a load
   const Status queued = s.executor().confirm_action("later", "");

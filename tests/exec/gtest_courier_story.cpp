@@ -47,7 +47,7 @@ class Story : public ScriptedExecutor {
     if (!command.ok()) return {};
     std::vector<TaskId> ids;
     for (const Task& t : command->tasks) ids.push_back(t.id);
-    EXPECT_TRUE(executor().add_tasks(command->tasks, "words").ok());
+    EXPECT_TRUE(fleet().add_tasks(command->tasks, "words").ok());
     return ids;
   }
   Time planned(const TaskId& id) const { return executor_->tasks().at(id).planned_start.value(); }
@@ -110,7 +110,7 @@ Started pick_up_both_and_reach_a120(Story& s) {
   EXPECT_EQ(book.size(), 2u);
   if (letter.size() != 2 || book.size() != 2) return ids;
   ids = {letter[0], letter[1], book[0], book[1]};
-  s.executor().start();
+  s.fleet().start();
   s.settle();
   // The first schedule interleaves: both pickups before both drops, the letter's drop first.
   EXPECT_LT(std::max(s.planned(ids.letter_pickup), s.planned(ids.book_pickup)),
@@ -205,7 +205,7 @@ TEST(CourierStory, ADoorSeenClosedFromInsideWhileActingBreaksNothing) {
   Story s;
   const std::vector<TaskId> book = s.say(kBook);
   ASSERT_EQ(book.size(), 2u);
-  s.executor().start();
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("A-110-Desk"));
   ASSERT_TRUE(s.robot().acting());
   s.robot().observe("door_open", "A-110-door", 0);
@@ -218,7 +218,7 @@ TEST(CourierStory, ADoorSeenClosedFromInsideWhileActingBreaksNothing) {
 
 TEST(CourierStory, AnOnDemandTaskIsNotBlockedByItsDoor) {
   Story s;
-  s.executor().start();
+  s.fleet().start();
   s.settle();
   Task come;
   come.id = "come";
@@ -227,7 +227,7 @@ TEST(CourierStory, AnOnDemandTaskIsNotBlockedByItsDoor) {
   come.duration = minutes(2);
   come.start_node = "A-120";
   come.actions = {Action{.name = "visit", .args = {}}};
-  ASSERT_TRUE(s.executor().add_task(come, "test").ok());
+  ASSERT_TRUE(s.fleet().add_task(come, "test").ok());
   s.settle();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Hall-A-117"));
   s.robot().observe("door_open", "A-120-door", 0);
@@ -254,8 +254,8 @@ TEST(CourierStory, BothHalvesOfAJobWaitForThePickupsDoor) {
     t.delivery = Delivery{.job = "parcel", .role = role, .object = "parcel", .appearance = "parcel", .load = 1};
     job.push_back(t);
   }
-  ASSERT_TRUE(s.executor().add_tasks(job, "requests").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_tasks(job, "requests").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Hall-A-120"));
   s.robot().observe("door_open", "A-120-door", 0);
   s.settle();
@@ -280,7 +280,7 @@ TEST(CourierStory, TwoRedLettersAreNeverOnBoardTogetherAndTheScheduleSaysWhy) {
       s.say("deliver the red letter from the librarian's desk in room A-110 to the desk in room A-114");
   ASSERT_EQ(first.size(), 2u);
   ASSERT_EQ(second.size(), 2u);
-  s.executor().start();
+  s.fleet().start();
   s.settle();
   const bool first_first = s.planned(first[0]) < s.planned(second[0]);
   const std::vector<TaskId>& a = first_first ? first : second;
@@ -311,7 +311,7 @@ TEST(CourierStory, AfterAKillTheLetterOnBoardIsNotPickedUpAgain) {
   const std::vector<TaskId> letter = s.say(kLetter);
   const std::vector<TaskId> book = s.say(kBook);
   ASSERT_EQ(letter.size(), 2u);
-  s.executor().start();
+  s.fleet().start();
   s.settle();
   // Serve the pickups in order until the letter is on board, then kill the executive.
   while (s.state(letter[0]) != "succeeded") {

@@ -35,13 +35,13 @@ class Courier : public ScriptedExecutor {
   // Both halves of a job, open all morning.
   void job(const std::string& name, const std::string& from, const std::string& to, const std::string& object,
            const std::string& looks = "") {
-    ASSERT_TRUE(executor()
-                    .add_tasks({half(name + "-pickup", name, DeliveryRole::kPickup, from, object, looks, at("08:00"),
-                                     at("12:00")),
-                                half(name + "-drop", name, DeliveryRole::kDrop, to, object, looks, at("08:00"),
-                                     at("12:00"))},
-                               "test")
-                    .ok());
+    ASSERT_TRUE(
+        fleet()
+            .add_tasks(
+                {half(name + "-pickup", name, DeliveryRole::kPickup, from, object, looks, at("08:00"), at("12:00")),
+                 half(name + "-drop", name, DeliveryRole::kDrop, to, object, looks, at("08:00"), at("12:00"))},
+                "test")
+            .ok());
   }
   Time planned(const std::string& id) { return executor().tasks().at(id).planned_start.value(); }
   // From memory, or from the store once it has left memory.
@@ -64,7 +64,7 @@ TEST_P(Deliveries, PickupsComeBeforeTheirDropsAndInterleaveWhenThatIsFaster) {
   Courier c({}, GetParam());
   ASSERT_NO_FATAL_FAILURE(c.job("letter", "Office", "Kitchen", "letter"));
   ASSERT_NO_FATAL_FAILURE(c.job("book", "Lab", "Kitchen", "book"));
-  c.executor().start();
+  c.fleet().start();
   for (const char* j : {"letter", "book"})
     EXPECT_LT(c.planned(std::string(j) + "-pickup"), c.planned(std::string(j) + "-drop")) << j;
   // Office, Lab, Kitchen, Kitchen beats Office, Kitchen, Lab, Kitchen: both pickups first.
@@ -77,7 +77,7 @@ TEST_P(Deliveries, TwoObjectsThatLookTheSameAreNeverOnBoardTogether) {
   Courier c({}, GetParam());
   ASSERT_NO_FATAL_FAILURE(c.job("a", "Office", "Kitchen", "red letter", "red letter"));
   ASSERT_NO_FATAL_FAILURE(c.job("b", "Lab", "Kitchen", "red letter", "red letter"));
-  c.executor().start();
+  c.fleet().start();
   const bool a_first = c.planned("a-pickup") < c.planned("b-pickup");
   const std::string first = a_first ? "a" : "b", second = a_first ? "b" : "a";
   EXPECT_LT(c.planned(first + "-drop"), c.planned(second + "-pickup"));
@@ -86,7 +86,7 @@ TEST_P(Deliveries, TwoObjectsThatLookTheSameAreNeverOnBoardTogether) {
 TEST_P(Deliveries, WhatIsOnBoardFollowsThePickupAndTheDrop) {
   Courier c({}, GetParam());
   ASSERT_NO_FATAL_FAILURE(c.job("letter", "Office", "Kitchen", "letter"));
-  c.executor().start();
+  c.fleet().start();
   EXPECT_TRUE(c.executor().on_board().empty());
   ASSERT_NO_FATAL_FAILURE(c.serve("Office"));
   EXPECT_EQ(c.state("letter-pickup"), "succeeded");
@@ -101,7 +101,7 @@ TEST_P(Deliveries, WhatIsOnBoardFollowsThePickupAndTheDrop) {
 TEST_P(Deliveries, AFailedPickupFailsItsDrop) {
   Courier c({}, GetParam());
   ASSERT_NO_FATAL_FAILURE(c.job("letter", "Office", "Kitchen", "letter"));
-  c.executor().start();
+  c.fleet().start();
   ASSERT_NO_FATAL_FAILURE(c.serve("Office", ActionOutcome::kFailed));
   EXPECT_EQ(c.state("letter-pickup"), "failed");
   EXPECT_EQ(c.state("letter-drop"), "failed");
@@ -112,7 +112,7 @@ TEST_P(Deliveries, AFailedPickupFailsItsDrop) {
 TEST_P(Deliveries, CancellingAJobBeforeItsPickupCancelsBothHalves) {
   Courier c({}, GetParam());
   ASSERT_NO_FATAL_FAILURE(c.job("letter", "Office", "Kitchen", "letter"));
-  c.executor().start();
+  c.fleet().start();
   ASSERT_TRUE(c.executor().cancel_task("letter-drop", "not needed").ok());
   c.settle();
   EXPECT_EQ(c.state("letter-drop"), "cancelled");
@@ -123,7 +123,7 @@ TEST_P(Deliveries, CancellingAJobBeforeItsPickupCancelsBothHalves) {
 TEST_P(Deliveries, AnObjectOnBoardWhoseDropIsCancelledIsTakenBack) {
   Courier c({}, GetParam());
   ASSERT_NO_FATAL_FAILURE(c.job("letter", "Office", "Kitchen", "letter"));
-  c.executor().start();
+  c.fleet().start();
   ASSERT_NO_FATAL_FAILURE(c.serve("Office"));
   ASSERT_TRUE(c.executor().cancel_task("letter-drop", "the recipient left").ok());
   c.settle();
@@ -145,7 +145,7 @@ TEST_P(Deliveries, CapacityKeepsTheLoadOnBoardWithinTheLimit) {
   Courier c(one, GetParam());
   ASSERT_NO_FATAL_FAILURE(c.job("letter", "Office", "Kitchen", "letter"));
   ASSERT_NO_FATAL_FAILURE(c.job("book", "Lab", "Kitchen", "book"));
-  c.executor().start();
+  c.fleet().start();
   const bool letter_first = c.planned("letter-pickup") < c.planned("book-pickup");
   const std::string first = letter_first ? "letter" : "book", second = letter_first ? "book" : "letter";
   EXPECT_LT(c.planned(first + "-drop"), c.planned(second + "-pickup"));

@@ -37,13 +37,15 @@ class Life {
     const map::NodeIndex dock = *map_.find_node("Dock");
     robot_ = std::make_unique<sim::SimRobot>(clock_, map_, *world_,
                                              sim::SimRobotOptions{.start = *map_.find_node(robot_at), .dock = dock});
-    executor_ = std::make_unique<Executor>(clock_, *robot_, map_, store_, zone_, ExecutorOptions{.dock = dock});
+    fleet_ = std::make_unique<fleet::Fleet>(clock_, map_, store_, zone_, ExecutorOptions{.dock = dock});
+    executor_ = &fleet_->add_robot(*robot_, ExecutorOptions{.dock = dock});
   }
   ~Life() {
-    executor_.reset();
+    fleet_.reset();
     robot_.reset();
   }
 
+  fleet::Fleet& fleet() { return *fleet_; }
   Executor& executor() { return *executor_; }
   store::Store& store() { return store_; }
   SimClock& clock() { return clock_; }
@@ -58,7 +60,8 @@ class Life {
   store::Store store_;
   std::unique_ptr<sim::SimWorld> world_;
   std::unique_ptr<sim::SimRobot> robot_;
-  std::unique_ptr<Executor> executor_;
+  std::unique_ptr<fleet::Fleet> fleet_;
+  Executor* executor_ = nullptr;
 };
 
 // Where the next life starts: the latest stored time, the robot's stored node.
@@ -105,7 +108,7 @@ TEST(ExecutorRestore, TheWeeklyMemoryComesBackAndNoDayIsAddedTwice) {
   {
     Life first(db, start);
     weekly_history(first.store(), start);
-    first.executor().start();
+    first.fleet().start();
     first.run_until("03:00");  // past the refit at 02:00
     EXPECT_TRUE(dock_hall_weekly(first.executor()));
     auto stored = store::get_meta(first.store(), "learn.weekly_memory");
@@ -114,15 +117,15 @@ TEST(ExecutorRestore, TheWeeklyMemoryComesBackAndNoDayIsAddedTwice) {
   }
   {
     Life second(db, resume_point(db).at + minutes(30));
-    ASSERT_TRUE(second.executor().restore());
-    second.executor().start();
+    ASSERT_TRUE(second.fleet().restore());
+    second.fleet().start();
     EXPECT_TRUE(dock_hall_weekly(second.executor())) << "the term is planned with before the next refit";
     EXPECT_EQ(store::get_meta(second.store(), "learn.weekly_memory").value().value(), saved);
     EXPECT_TRUE(second.executor().write_errors().empty());
     ASSERT_TRUE(store::set_meta(second.store(), "learn.weekly_memory", "{not json"));
   }
   Life third(db, resume_point(db).at + hours(1));
-  ASSERT_TRUE(third.executor().restore());
+  ASSERT_TRUE(third.fleet().restore());
   ASSERT_EQ(third.executor().write_errors().size(), 1u);
   EXPECT_THAT(third.executor().write_errors()[0], HasSubstr("learned afresh"));
   EXPECT_TRUE(dock_hall_weekly(third.executor()));
@@ -139,19 +142,18 @@ TEST(ExecutorRestore, ARunningTaskComesBackInterruptedThenQueuedAndIsCompleted) 
   const Time start = TimeZone::named("Europe/London").value().parse_time("2026-11-23T08:00").value();
   {
     Life first(db, start);
-    first.executor().start();
-    ASSERT_TRUE(
-        first.executor().add_task(task("A", "Office", first.at("09:00"), first.at("10:00"), minutes(20)), "test"));
+    first.fleet().start();
+    ASSERT_TRUE(first.fleet().add_task(task("A", "Office", first.at("09:00"), first.at("10:00"), minutes(20)), "test"));
     first.run_until("09:05");
     ASSERT_EQ(first.state("A"), "acting");
   }  // the crash
   const Resume r = resume_point(db);
   EXPECT_EQ(r.node, "Office");  // the robot's last known node
   Life second(db, r.at, r.node);
-  ASSERT_TRUE(second.executor().restore());
+  ASSERT_TRUE(second.fleet().restore());
   EXPECT_EQ(second.state("A"), "queued");
   EXPECT_EQ(second.executor().tasks().at("A").outcome, Outcome::kInterrupted);
-  second.executor().start();
+  second.fleet().start();
   second.run_until("10:00");
   EXPECT_EQ(second.state("A"), "succeeded");
   EXPECT_TRUE(second.executor().write_errors().empty());
@@ -178,15 +180,14 @@ TEST(ExecutorRestore, AnInterruptedTaskWhoseWindowIsGoneFailsWithThatReason) {
   const Time start = TimeZone::named("Europe/London").value().parse_time("2026-11-23T08:00").value();
   {
     Life first(db, start);
-    first.executor().start();
-    ASSERT_TRUE(
-        first.executor().add_task(task("A", "Office", first.at("09:00"), first.at("09:30"), minutes(20)), "test"));
+    first.fleet().start();
+    ASSERT_TRUE(first.fleet().add_task(task("A", "Office", first.at("09:00"), first.at("09:30"), minutes(20)), "test"));
     first.run_until("09:05");
     ASSERT_EQ(first.state("A"), "acting");
   }
   // The executive comes back after a power cut: at 09:20 the 20 minutes no longer fit by 09:30.
   Life second(db, start + minutes(80), resume_point(db).node);
-  ASSERT_TRUE(second.executor().restore());
+  ASSERT_TRUE(second.fleet().restore());
   EXPECT_EQ(second.state("A"), "failed");
   EXPECT_EQ(second.executor().tasks().at("A").outcome, Outcome::kInterrupted);
   EXPECT_THAT(second.executor().tasks().at("A").reason, HasSubstr("its window no longer allows it"));
@@ -200,18 +201,18 @@ TEST(ExecutorRestore, ADroppedForNowTaskStaysDroppedForNowAndComesBackWhenACance
   std::map<std::string, std::map<Outcome, int>> counts_before;
   {
     Life first(db, start);
-    first.executor().start();
+    first.fleet().start();
     ASSERT_TRUE(
-        first.executor().add_tasks({task("Big", "Office", first.at("09:00"), first.at("10:00"), minutes(50), 5),
-                                    task("Small", "Kitchen", first.at("09:00"), first.at("10:00"), minutes(30), 1)},
-                                   "test"));
+        first.fleet().add_tasks({task("Big", "Office", first.at("09:00"), first.at("10:00"), minutes(50), 5),
+                                 task("Small", "Kitchen", first.at("09:00"), first.at("10:00"), minutes(30), 1)},
+                                "test"));
     first.run_until("08:30");
     ASSERT_TRUE(first.executor().tasks().at("Small").dropped_for_now.has_value());
     counts_before = first.executor().book().event_counts();
   }
   const Resume r = resume_point(db);
   Life second(db, r.at, r.node);
-  ASSERT_TRUE(second.executor().restore());
+  ASSERT_TRUE(second.fleet().restore());
   const TaskRecord& small = second.executor().tasks().at("Small");
   EXPECT_EQ(small.state, TaskState::kQueued);
   ASSERT_TRUE(small.dropped_for_now.has_value());
@@ -219,7 +220,7 @@ TEST(ExecutorRestore, ADroppedForNowTaskStaysDroppedForNowAndComesBackWhenACance
   EXPECT_FALSE(second.executor().tasks().at("Big").dropped_for_now.has_value());
   // The book counts what happened before the restart as it did then.
   EXPECT_EQ(second.executor().book().event_counts(), counts_before);
-  second.executor().start();
+  second.fleet().start();
   ASSERT_TRUE(second.executor().cancel_task("Big", "meeting moved").ok());
   second.run_until("11:00");
   EXPECT_EQ(second.state("Small"), "succeeded");
@@ -231,17 +232,17 @@ TEST(ExecutorRestore, ADroppedForNowTaskIsDroppedForGoodWhenItsWindowPassesAfter
   const Time start = TimeZone::named("Europe/London").value().parse_time("2026-11-23T08:00").value();
   {
     Life first(db, start);
-    first.executor().start();
+    first.fleet().start();
     ASSERT_TRUE(
-        first.executor().add_tasks({task("Big", "Office", first.at("09:00"), first.at("10:00"), minutes(50), 5),
-                                    task("Small", "Kitchen", first.at("09:00"), first.at("10:00"), minutes(30), 1)},
-                                   "test"));
+        first.fleet().add_tasks({task("Big", "Office", first.at("09:00"), first.at("10:00"), minutes(50), 5),
+                                 task("Small", "Kitchen", first.at("09:00"), first.at("10:00"), minutes(30), 1)},
+                                "test"));
     first.run_until("08:30");
   }
   const Resume r = resume_point(db);
   Life second(db, r.at, r.node);
-  ASSERT_TRUE(second.executor().restore());
-  second.executor().start();
+  ASSERT_TRUE(second.fleet().restore());
+  second.fleet().start();
   second.run_until("11:00");
   EXPECT_EQ(second.state("Big"), "succeeded");
   EXPECT_EQ(second.state("Small"), "dropped");
@@ -259,16 +260,16 @@ TEST(ExecutorRestore, RoutineTasksAlreadyStoredAreNotMadeAgain) {
   patrol.window_end = hours(11);
   {
     Life first(db, start);
-    first.executor().add_routines({patrol});
-    first.executor().start();
+    first.fleet().add_routines({patrol});
+    first.fleet().start();
     first.run_until("09:05");
     ASSERT_EQ(first.executor().tasks().size(), 1u);
   }
   const Resume r = resume_point(db);
   Life second(db, r.at, r.node);
-  second.executor().add_routines({patrol});
-  ASSERT_TRUE(second.executor().restore());
-  second.executor().start();                    // makes today's routine tasks: the stored one is not made again
+  second.fleet().add_routines({patrol});
+  ASSERT_TRUE(second.fleet().restore());
+  second.fleet().start();                       // makes today's routine tasks: the stored one is not made again
   second.clock().run_until(start + hours(30));  // and tomorrow's, at midnight
   EXPECT_TRUE(second.executor().write_errors().empty());
   const auto tasks = store::list_tasks(second.store()).value();
@@ -289,22 +290,22 @@ TEST(ExecutorRestore, FinalTasksComeBackFinalAndAQueuedOnDemandTaskRunsFirst) {
   const Time start = TimeZone::named("Europe/London").value().parse_time("2026-11-23T08:00").value();
   {
     Life first(db, start);
-    first.executor().start();
+    first.fleet().start();
     ASSERT_TRUE(
-        first.executor().add_task(task("Early", "Office", first.at("08:05"), first.at("08:30"), minutes(5)), "test"));
-    ASSERT_TRUE(first.executor().add_task(task("Late", "Office", first.at("09:00"), first.at("12:00"), minutes(30), 1,
-                                               /*interruptible=*/false),
-                                          "test"));
+        first.fleet().add_task(task("Early", "Office", first.at("08:05"), first.at("08:30"), minutes(5)), "test"));
+    ASSERT_TRUE(first.fleet().add_task(task("Late", "Office", first.at("09:00"), first.at("12:00"), minutes(30), 1,
+                                            /*interruptible=*/false),
+                                       "test"));
     first.run_until("09:10");
     ASSERT_EQ(first.state("Early"), "succeeded");
     ASSERT_EQ(first.state("Late"), "acting");
-    ASSERT_TRUE(first.executor().add_task(on_demand("Ask", "Kitchen", minutes(5)), "test"));
+    ASSERT_TRUE(first.fleet().add_task(on_demand("Ask", "Kitchen", minutes(5)), "test"));
     first.run_until("09:11");
     ASSERT_EQ(first.state("Ask"), "queued");  // waits for the task that cannot be interrupted
   }
   const Resume r = resume_point(db);
   Life second(db, r.at, r.node);
-  ASSERT_TRUE(second.executor().restore());
+  ASSERT_TRUE(second.fleet().restore());
   const TaskRecord& early = second.executor().tasks().at("Early");
   EXPECT_EQ(early.state, TaskState::kSucceeded);
   EXPECT_EQ(early.outcome, Outcome::kDone);
@@ -312,7 +313,7 @@ TEST(ExecutorRestore, FinalTasksComeBackFinalAndAQueuedOnDemandTaskRunsFirst) {
   EXPECT_EQ(early.source, "test");
   EXPECT_TRUE(early.ended.has_value());
   EXPECT_EQ(second.executor().task_order(), (std::vector<TaskId>{"Early", "Late", "Ask"}));
-  second.executor().start();
+  second.fleet().start();
   second.run_until("12:00");
   EXPECT_EQ(second.state("Ask"), "succeeded");
   EXPECT_EQ(second.state("Late"), "succeeded");
@@ -329,8 +330,8 @@ TEST(ExecutorRestore, RestoreRunsOnlyBeforeStartAndOnAnEmptyBook) {
   const auto db = fresh_db_path();
   const Time start = TimeZone::named("Europe/London").value().parse_time("2026-11-23T08:00").value();
   Life life(db, start);
-  life.executor().start();
-  const Status late = life.executor().restore();
+  life.fleet().start();
+  const Status late = life.fleet().restore();
   ASSERT_FALSE(late.ok());
   EXPECT_EQ(late.error().code, ErrorCode::kInternal);
 }
@@ -351,8 +352,8 @@ TEST(ExecutorRestore, AStoredTaskOnANodeThatIsGoneEndsNoLongerValid) {
     ASSERT_TRUE(store::add_tasks(store, rows, "accepted", "added").ok());
   }
   Life next(db, start);
-  ASSERT_TRUE(next.executor().restore().ok());
-  next.executor().start();
+  ASSERT_TRUE(next.fleet().restore().ok());
+  next.fleet().start();
   EXPECT_EQ(next.state("Gone"), "failed");
   EXPECT_EQ(next.executor().tasks().at("Gone").outcome, Outcome::kNoLongerValid);
   EXPECT_THAT(next.executor().tasks().at("Gone").reason, HasSubstr("'Attic' is not on the map"));
@@ -366,8 +367,8 @@ TEST(ExecutorRestore, AStoredTaskOnANodeThatIsGoneEndsNoLongerValid) {
 struct BatteryLife : ScriptedExecutor {
   BatteryLife() {
     for (const char* id : {"A", "B", "C"})
-      EXPECT_TRUE(executor().add_task(task(id, "Office", at("08:00"), at("12:00"), minutes(1)), "test").ok());
-    executor().start();
+      EXPECT_TRUE(fleet().add_task(task(id, "Office", at("08:00"), at("12:00"), minutes(1)), "test").ok());
+    fleet().start();
     for (int guard = 0; guard < 500; ++guard) {
       settle();
       if (state("C") == "succeeded") break;  // killed at the end of the last task

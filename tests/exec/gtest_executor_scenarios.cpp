@@ -32,14 +32,13 @@ std::size_t position(const std::vector<std::string>& order, const std::string& i
 // A (30 min at the Office, must go first) and B (40 min at the Kitchen); at 08:10, while A is
 // acting, someone asks for OD (5 min at the Lab). Runs until 12:00.
 void on_demand_while_a_acts(Scenario& s, bool a_interruptible) {
-  s.executor().start();
-  ASSERT_TRUE(s.executor().add_tasks(
-      {task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(30), 1, a_interruptible),
-       task("B", "Kitchen", s.at("08:00"), s.at("11:00"), minutes(40))},
-      "test"));
+  s.fleet().start();
+  ASSERT_TRUE(s.fleet().add_tasks({task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(30), 1, a_interruptible),
+                                   task("B", "Kitchen", s.at("08:00"), s.at("11:00"), minutes(40))},
+                                  "test"));
   s.run_until("08:10");
   ASSERT_EQ(s.final_state("A"), "acting");
-  ASSERT_TRUE(s.executor().add_task(on_demand("OD", "Lab", minutes(5)), "request"));
+  ASSERT_TRUE(s.fleet().add_task(on_demand("OD", "Lab", minutes(5)), "request"));
   s.run_until("12:00");
 }
 
@@ -47,15 +46,15 @@ void on_demand_while_a_acts(Scenario& s, bool a_interruptible) {
 // own robot and refuses it, saying so, when it names another; the store records the robot.
 TEST(ExecutorScenario, ATaskNamingAnotherRobotIsRefusedAndOneNamingThisRobotIsTaken) {
   Scenario s(kCalmWorld);
-  s.executor().start();
+  s.fleet().start();
   Task elsewhere = task("R2", "Office", s.at("09:00"), s.at("10:00"), minutes(5));
   elsewhere.robot = "r2";
-  const Status refused = s.executor().add_task(elsewhere, "test");
+  const Status refused = s.fleet().add_task(elsewhere, "test");
   ASSERT_FALSE(refused);
   EXPECT_THAT(refused.error().message, HasSubstr("robot 'r2' is not in this deployment (its robot is 'robot')"));
   Task here = task("Mine", "Office", s.at("09:00"), s.at("10:00"), minutes(5));
   here.robot = "robot";
-  ASSERT_TRUE(s.executor().add_task(here, "test"));
+  ASSERT_TRUE(s.fleet().add_task(here, "test"));
   s.clock().run_until(s.at("11:00"));
   EXPECT_EQ(s.final_state("Mine"), "succeeded");
   EXPECT_EQ(store::get_task(s.store(), "Mine").value().robot, "robot");
@@ -108,8 +107,8 @@ effects:
 }
 
 void run_a_to_the_slow_office(Scenario& s) {
-  s.executor().start();
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(5)), "test"));
+  s.fleet().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(5)), "test"));
   s.run_until("10:00");
 }
 
@@ -156,7 +155,7 @@ TEST(ExecutorScenario, UnderRiskAlphaAStoppedAttemptRaisesTheNextDaysLimit) {
   ASSERT_EQ(store::find_observations(s.store(), {.what = kStoppedAttempt}).value().size(), 1u);
 
   const Time next_day = s.at("08:00") + hours(24);
-  ASSERT_TRUE(s.executor().add_task(task("B", "Office", next_day, next_day + hours(2), minutes(5)), "test"));
+  ASSERT_TRUE(s.fleet().add_task(task("B", "Office", next_day, next_day + hours(2), minutes(5)), "test"));
   s.clock().run_until(next_day + hours(2));
   EXPECT_EQ(s.final_state("B"), "succeeded");
   EXPECT_EQ(store::find_traversals(s.store(), {.edge_id = "Hall_Office"}).value().size(), 1u);
@@ -187,8 +186,8 @@ TEST(ExecutorScenario, UnderRiskAlphaAJourneyPastItsLimitGoesOnWhileTheWindowIsO
 // runs to the latest start exactly.
 TEST(ExecutorScenario, TheWindowWatchStopsAJourneyWhenItsTaskCanNoLongerStartInTime) {
   Scenario s(slow_office_world(), {.navigation_slack = Duration{0}, .risk_alpha = 0.1});
-  s.executor().start();
-  ASSERT_TRUE(s.executor().add_task(task("B", "Office", s.at("08:00"), s.at("08:07"), minutes(5)), "test"));
+  s.fleet().start();
+  ASSERT_TRUE(s.fleet().add_task(task("B", "Office", s.at("08:00"), s.at("08:07"), minutes(5)), "test"));
   s.run_until("09:00");
 
   EXPECT_EQ(s.final_state("B"), "failed");
@@ -206,8 +205,8 @@ TEST(ExecutorScenario, AnActionOverrunIsPreemptedAndTheTaskFailsWithThatReason) 
              {.action_slack = Duration{0}});
   Task a = task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(10));
   a.actions = {Action{.name = "slow", .args = {}}};
-  s.executor().start();
-  ASSERT_TRUE(s.executor().add_task(a, "test"));
+  s.fleet().start();
+  ASSERT_TRUE(s.fleet().add_task(a, "test"));
   s.run_until("10:00");
 
   EXPECT_EQ(s.final_state("A"), "failed");
@@ -218,8 +217,8 @@ TEST(ExecutorScenario, AnActionOverrunIsPreemptedAndTheTaskFailsWithThatReason) 
 
 TEST(ExecutorScenario, AnEarlyTaskWaitsForItsWindow) {
   Scenario s(kCalmWorld);
-  s.executor().start();
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:05"), s.at("09:00"), minutes(5)), "test"));
+  s.fleet().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:05"), s.at("09:00"), minutes(5)), "test"));
   s.run_until("09:00");
 
   EXPECT_EQ(s.final_state("A"), "succeeded");
@@ -237,18 +236,18 @@ TEST(ExecutorScenario, ABatchTheStoreRefusesLeavesNoTaskBehind) {
   ASSERT_TRUE(store::add_task(
       s.store(),
       {.id = "B", .task = Json::object(), .state = "queued", .created = s.at("07:00"), .updated = s.at("07:00")}));
-  s.executor().start();
+  s.fleet().start();
   auto a = task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(5));
   auto c = task("C", "Kitchen", s.at("08:00"), s.at("10:00"), minutes(5));
   const Status refused =
-      s.executor().add_tasks({a, task("B", "Lab", s.at("08:00"), s.at("10:00"), minutes(5)), c}, "test");
+      s.fleet().add_tasks({a, task("B", "Lab", s.at("08:00"), s.at("10:00"), minutes(5)), c}, "test");
   ASSERT_FALSE(refused);
   EXPECT_THAT(refused.error().message, HasSubstr("'B' is already stored"));
   EXPECT_TRUE(s.executor().tasks().empty());
   EXPECT_TRUE(s.events_of("A").empty());
   EXPECT_TRUE(s.events_of("C").empty());
 
-  ASSERT_TRUE(s.executor().add_tasks({a, c}, "test"));
+  ASSERT_TRUE(s.fleet().add_tasks({a, c}, "test"));
   s.run_until("10:00");
   EXPECT_EQ(s.final_state("A"), "succeeded");
   EXPECT_EQ(s.final_state("C"), "succeeded");
@@ -260,10 +259,10 @@ TEST(ExecutorScenario, ALateTaskFailsAndTheRestIsRescheduled) {
 )");
   Task a = task("A", "Office", s.at("08:00"), s.at("08:21"), minutes(20));
   a.actions = {Action{.name = "slow", .args = {}}};  // takes 28 min: inside the 30.5-min limit
-  s.executor().start();
-  ASSERT_TRUE(s.executor().add_tasks({a, task("B", "Kitchen", s.at("08:00"), s.at("08:26"), minutes(3)),
-                                      task("C", "Lab", s.at("08:00"), s.at("12:00"), minutes(10))},
-                                     "test"));
+  s.fleet().start();
+  ASSERT_TRUE(s.fleet().add_tasks({a, task("B", "Kitchen", s.at("08:00"), s.at("08:26"), minutes(3)),
+                                   task("C", "Lab", s.at("08:00"), s.at("12:00"), minutes(10))},
+                                  "test"));
   s.run_until("12:00");
 
   EXPECT_EQ(s.final_state("A"), "succeeded");
@@ -275,11 +274,11 @@ TEST(ExecutorScenario, ALateTaskFailsAndTheRestIsRescheduled) {
 
 TEST(ExecutorScenario, AnOversubscribedDayDropsTheLowestPrioritiesFirst) {
   Scenario s(kCalmWorld);
-  s.executor().start();
+  s.fleet().start();
   std::vector<Task> tasks;
   for (int p = 1; p <= 5; ++p)
     tasks.push_back(task("P" + std::to_string(p), "Office", s.at("09:00"), s.at("10:00"), minutes(20), p));
-  ASSERT_TRUE(s.executor().add_tasks(tasks, "test"));
+  ASSERT_TRUE(s.fleet().add_tasks(tasks, "test"));
   s.run_until("11:00");
 
   // Dropped for now first, offered again while their windows can be met, then dropped for good.
@@ -297,12 +296,12 @@ TEST(ExecutorScenario, AnOversubscribedDayDropsTheLowestPrioritiesFirst) {
 TEST(ExecutorScenario, HigherPriorityTasksThatDoNotFitPreemptAnInterruptibleRunningTask) {
   for (const bool interruptible : {true, false}) {
     Scenario s(kCalmWorld);
-    s.executor().start();
-    ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(40), 1, interruptible),
-                                      "test"));
+    s.fleet().start();
+    ASSERT_TRUE(
+        s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(40), 1, interruptible), "test"));
     s.run_until("08:10");
     ASSERT_EQ(s.final_state("A"), "acting");
-    ASSERT_TRUE(s.executor().add_task(task("H", "Kitchen", s.at("08:10"), s.at("08:20"), minutes(5), 5), "test"));
+    ASSERT_TRUE(s.fleet().add_task(task("H", "Kitchen", s.at("08:10"), s.at("08:20"), minutes(5), 5), "test"));
     s.run_until("10:00");
     if (interruptible) {
       EXPECT_EQ(s.code_of("A", "queued"), "outranked");
@@ -320,8 +319,8 @@ TEST(ExecutorScenario, HigherPriorityTasksThatDoNotFitPreemptAnInterruptibleRunn
 // an event and not learning data, and when the robot is ready the task goes on and completes.
 TEST(ExecutorScenario, ARobotFaultMidEdgePausesDispatchAndLearnsNoEdgeFailure) {
   Scenario s(kCalmWorld, {.navigation_overrun = 2.0, .navigation_slack = seconds(10)});  // limit 90 s
-  ASSERT_TRUE(s.executor().add_task(task("a", "Office", s.at("08:00"), s.at("10:00"), minutes(2)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("a", "Office", s.at("08:00"), s.at("10:00"), minutes(2)), "test").ok());
+  s.fleet().start();
   s.run_until("08:00:10");  // half-way along Dock_Hall (20 s)
   s.robot().inject_fault({.kind = RobotFault::Kind::kError, .message = "bumper pressed"});
   s.run_until("08:30");  // far past the navigation monitor's limit: it stands still
@@ -371,8 +370,8 @@ actions:
     r.every = hours(1);
     routines.push_back(r);
   }
-  s.executor().add_routines(routines);
-  s.executor().start();
+  s.fleet().add_routines(routines);
+  s.fleet().start();
   s.clock().run_until(s.at("00:00") + hours(24 * 21));
 
   const Time start = s.at("00:00");
@@ -395,7 +394,7 @@ actions:
   // the navigation monitor (`gave up`), so the robot starts more tasks away from the dock.
   EXPECT_LT(week3, 0.9 * week1) << "week 1: " << week1 << ", week 3: " << week3;
   EXPECT_LT(week3, 0.36);
-  EXPECT_GE(s.executor().stats().refits, 20);
+  EXPECT_GE(s.fleet().refits(), 20);
 }
 
 
@@ -405,10 +404,10 @@ const std::string kChatWorld =
 
 TEST(ExecutorCancel, AQueuedTaskEndsCancelledAndTheRestIsRescheduled) {
   Scenario s(kCalmWorld);
-  s.executor().start();
-  ASSERT_TRUE(s.executor().add_tasks({task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(20)),
-                                      task("B", "Kitchen", s.at("08:00"), s.at("10:00"), minutes(20))},
-                                     "test"));
+  s.fleet().start();
+  ASSERT_TRUE(s.fleet().add_tasks({task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(20)),
+                                   task("B", "Kitchen", s.at("08:00"), s.at("10:00"), minutes(20))},
+                                  "test"));
   s.run_until("08:05");
   const TaskId queued = s.final_state("A") == "queued" ? "A" : "B";
   ASSERT_EQ(s.final_state(queued), "queued");
@@ -426,8 +425,8 @@ TEST(ExecutorCancel, AQueuedTaskEndsCancelledAndTheRestIsRescheduled) {
 
 TEST(ExecutorCancel, ARunningInterruptibleTaskIsStoppedThroughTheRobot) {
   Scenario s(kCalmWorld);
-  s.executor().start();
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(20)), "test"));
+  s.fleet().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(20)), "test"));
   s.run_until("08:00:10");  // on its way
   ASSERT_EQ(s.final_state("A"), "navigating");
   ASSERT_TRUE(s.executor().cancel_task("A", "changed my mind").ok());
@@ -442,10 +441,10 @@ TEST(ExecutorCancel, ARunningInterruptibleTaskIsStoppedThroughTheRobot) {
 
 TEST(ExecutorCancel, ATaskThatCannotBeInterruptedNowIsCancelledAtItsNextInterruptibleMoment) {
   Scenario s(kChatWorld);
-  s.executor().start();
+  s.fleet().start();
   Task a = task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(20));
   a.actions = {Action{.name = "chat", .args = {}}};
-  ASSERT_TRUE(s.executor().add_task(a, "test"));
+  ASSERT_TRUE(s.fleet().add_task(a, "test"));
   s.run_until("08:02");  // arrived at 08:00:40, chatting: not interruptible until 08:10:40
   ASSERT_EQ(s.final_state("A"), "acting");
   ASSERT_TRUE(s.executor().cancel_task("A", "the visitor left").ok());
@@ -459,10 +458,10 @@ TEST(ExecutorCancel, ATaskThatCannotBeInterruptedNowIsCancelledAtItsNextInterrup
 // A task dropped when the day is full comes back when a cancellation frees its window, and is done.
 TEST(ExecutorCancel, ADroppedTaskComesBackWhenACancellationFreesItsWindow) {
   Scenario s(kCalmWorld);
-  s.executor().start();
-  ASSERT_TRUE(s.executor().add_tasks({task("Big", "Office", s.at("09:00"), s.at("10:00"), minutes(50), 5),
-                                      task("Small", "Kitchen", s.at("09:00"), s.at("10:00"), minutes(30), 1)},
-                                     "test"));
+  s.fleet().start();
+  ASSERT_TRUE(s.fleet().add_tasks({task("Big", "Office", s.at("09:00"), s.at("10:00"), minutes(50), 5),
+                                   task("Small", "Kitchen", s.at("09:00"), s.at("10:00"), minutes(30), 1)},
+                                  "test"));
   s.run_until("08:30");
   ASSERT_EQ(s.code_of("Small", "dropped for now"), "dropped for higher priority");
   ASSERT_EQ(s.final_state("Small"), "queued");
@@ -477,8 +476,8 @@ TEST(ExecutorCancel, ADroppedTaskComesBackWhenACancellationFreesItsWindow) {
 // A request the executor refuses is written to the event log, with what was wrong.
 TEST(ExecutorCancel, ARejectedRequestIsAnEvent) {
   Scenario s(kCalmWorld);
-  s.executor().start();
-  EXPECT_FALSE(s.executor().add_task(task("X", "Cellar", s.at("09:00"), s.at("10:00"), minutes(5)), "api").ok());
+  s.fleet().start();
+  EXPECT_FALSE(s.fleet().add_task(task("X", "Cellar", s.at("09:00"), s.at("10:00"), minutes(5)), "api").ok());
   const auto events = s.all_events();
   ASSERT_FALSE(events.empty());
   EXPECT_EQ(events.back().subject, store::Subject::kRequest);

@@ -24,8 +24,8 @@ ExecutorOptions forgetting(bool on = true) {
 
 // One task at the Office, done by the scripted robot.
 void do_one(ScriptedExecutor& s, const std::string& id) {
-  ASSERT_TRUE(s.executor().add_task(task(id, "Office", s.at("08:00"), s.at("12:00"), minutes(2)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task(id, "Office", s.at("08:00"), s.at("12:00"), minutes(2)), "test").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
   s.settle();
   ASSERT_TRUE(s.robot().acting());
@@ -55,7 +55,7 @@ TEST(ForgetFinished, AFinishedTaskStillHoldsItsIdAndCannotBeCancelledOrChanged) 
   ScriptedExecutor s(forgetting());
   ASSERT_NO_FATAL_FAILURE(do_one(s, "a"));
   ASSERT_FALSE(s.executor().tasks().contains("a"));
-  const Status again = s.executor().add_task(task("a", "Lab", s.at("09:00"), s.at("12:00"), minutes(2)), "test");
+  const Status again = s.fleet().add_task(task("a", "Lab", s.at("09:00"), s.at("12:00"), minutes(2)), "test");
   ASSERT_FALSE(again.ok());
   EXPECT_EQ(again.error().code, ErrorCode::kInvalidInput);
   EXPECT_THAT(again.error().message, HasSubstr("'a' is already stored"));  // the store refuses it
@@ -71,28 +71,28 @@ TEST(ForgetFinished, AFinishedTaskStillHoldsItsIdAndCannotBeCancelledOrChanged) 
 TEST(ForgetFinished, AfterARestartTheFinishedTasksLeaveMemoryAgain) {
   ScriptedExecutor s(forgetting());
   ASSERT_NO_FATAL_FAILURE(do_one(s, "a"));
-  ASSERT_TRUE(s.executor().add_task(task("b", "Lab", s.at("10:00"), s.at("12:00"), minutes(2)), "test").ok());
+  ASSERT_TRUE(s.fleet().add_task(task("b", "Lab", s.at("10:00"), s.at("12:00"), minutes(2)), "test").ok());
   ASSERT_NO_FATAL_FAILURE(s.kill_and_restart());
   s.settle();
   EXPECT_FALSE(s.executor().tasks().contains("a"));
   EXPECT_TRUE(s.executor().tasks().contains("b"));
   EXPECT_EQ(s.state("a"), "succeeded");
-  EXPECT_FALSE(s.executor().add_task(task("a", "Lab", s.at("09:00"), s.at("12:00"), minutes(2)), "test").ok());
+  EXPECT_FALSE(s.fleet().add_task(task("a", "Lab", s.at("09:00"), s.at("12:00"), minutes(2)), "test").ok());
 }
 
 // The event log of a day of the calm world (a preemption by an on-demand task, tasks failing and
 // succeeding), as text.
 std::vector<std::string> day_log(bool forget) {
   Scenario s(kCalmWorld, forgetting(forget));
-  s.executor().start();
-  EXPECT_TRUE(s.executor().add_tasks({task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(30)),
-                                      task("B", "Kitchen", s.at("08:00"), s.at("11:00"), minutes(40)),
-                                      task("C", "Lab", s.at("08:00"), s.at("08:45"), minutes(30))},
-                                     "test"));
+  s.fleet().start();
+  EXPECT_TRUE(s.fleet().add_tasks({task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(30)),
+                                   task("B", "Kitchen", s.at("08:00"), s.at("11:00"), minutes(40)),
+                                   task("C", "Lab", s.at("08:00"), s.at("08:45"), minutes(30))},
+                                  "test"));
   s.run_until("08:10");
-  EXPECT_TRUE(s.executor().add_task(on_demand("OD", "Lab", minutes(5)), "request"));
+  EXPECT_TRUE(s.fleet().add_task(on_demand("OD", "Lab", minutes(5)), "request"));
   s.run_until("09:30");
-  EXPECT_TRUE(s.executor().add_task(task("D", "Office", s.at("09:30"), s.at("12:00"), minutes(10)), "test"));
+  EXPECT_TRUE(s.fleet().add_task(task("D", "Office", s.at("09:30"), s.at("12:00"), minutes(10)), "test"));
   s.run_until("12:00");
   EXPECT_EQ(s.executor().tasks().empty(), forget) << "every task here is final by noon";
   std::vector<std::string> log;

@@ -71,8 +71,8 @@ struct HomeBlocked : ScriptedExecutor {
   }
   // A task at the Office from 10:00: the robot is there, and idle, inside the closure.
   void work_at_the_office_then_go_home() {
-    ASSERT_TRUE(executor().add_task(task("A", "Office", at("10:00"), at("10:30"), minutes(1)), "test").ok());
-    executor().start();
+    ASSERT_TRUE(fleet().add_task(task("A", "Office", at("10:00"), at("10:30"), minutes(1)), "test").ok());
+    fleet().start();
     answer_until("10:45");
     ASSERT_EQ(state("A"), "succeeded");
   }
@@ -129,8 +129,8 @@ TEST(Journeys, UnderRetryAnIdleJourneyHomeStopsAtTheFailedEdgeLimit) {
 
 TEST(Journeys, AnOwnJourneyIsWatchedByTheNavigationMonitor) {
   ScriptedExecutor s;
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(1)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(1)), "test").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
   s.settle();
   ASSERT_TRUE(s.robot().acting());
@@ -151,14 +151,14 @@ TEST(Journeys, AnOwnJourneyIsWatchedByTheNavigationMonitor) {
 
 TEST(Journeys, AJourneyHomeStoppedForATaskSaysSo) {
   ScriptedExecutor s;
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(1)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(1)), "test").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
   s.settle();
   s.robot().finish_action(ActionOutcome::kSucceeded, "");
   s.settle();
   ASSERT_TRUE(s.robot().driving());
-  ASSERT_TRUE(s.executor().add_task(on_demand("B", "Kitchen", minutes(1)), "test").ok());
+  ASSERT_TRUE(s.fleet().add_task(on_demand("B", "Kitchen", minutes(1)), "test").ok());
   s.settle();
   EXPECT_TRUE(s.robot().asked("cancel"));
   ASSERT_EQ(robot_events(s.store(), "stopped").size(), 1u);
@@ -186,8 +186,8 @@ effects:
 
 TEST(Journeys, OnTheSimulatedBuildingTheIdleRobotDoesNotHammerTheClosedWayHome) {
   Scenario s(kDockClosedWorld);
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("10:00"), s.at("10:20"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("10:00"), s.at("10:20"), minutes(5)), "test").ok());
+  s.fleet().start();
   s.run_until("13:00");
   EXPECT_EQ(s.final_state("A"), "succeeded");
   std::vector<Traversal> log = store::find_traversals(s.store()).value();

@@ -22,9 +22,9 @@ Task two_actions(const std::string& id, const std::string& node, Time release, T
 
 TEST(OutOfService, AHaltedTaskGoesBackWithItsProgressNothingStartsAndTheRobotDocks) {
   Scripted s;
-  ASSERT_TRUE(s.executor().add_task(two_actions("A", "Office", s.at("08:00"), s.at("12:00")), "test").ok());
-  ASSERT_TRUE(s.executor().add_task(task("B", "Lab", s.at("08:40"), s.at("12:00"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(two_actions("A", "Office", s.at("08:00"), s.at("12:00")), "test").ok());
+  ASSERT_TRUE(s.fleet().add_task(task("B", "Lab", s.at("08:40"), s.at("12:00"), minutes(5)), "test").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
   s.robot().finish_action(ActionOutcome::kSucceeded);
   s.settle();
@@ -51,9 +51,9 @@ TEST(OutOfService, AHaltedTaskGoesBackWithItsProgressNothingStartsAndTheRobotDoc
 
 TEST(OutOfService, WithoutHaltTheRunningTaskFinishesAndNothingStartsAfterIt) {
   Scripted s;
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("12:00"), minutes(5)), "test").ok());
-  ASSERT_TRUE(s.executor().add_task(task("B", "Lab", s.at("08:00"), s.at("12:00"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("12:00"), minutes(5)), "test").ok());
+  ASSERT_TRUE(s.fleet().add_task(task("B", "Lab", s.at("08:00"), s.at("12:00"), minutes(5)), "test").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
   s.executor().set_out_of_service(true, /*halt=*/false, "");
   s.settle();

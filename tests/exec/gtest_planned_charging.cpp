@@ -46,8 +46,8 @@ TEST(PlannedCharging, AChargeIsInsertedBeforeTheTaskThatWouldRunTheBatteryBelowT
   s.robot().battery_level = 0.45;
   s.robot().on_charger = true;
   // Three hours of work drain about 0.3 (0.1 an hour acting): from 0.45 that ends below 0.2.
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("18:00"), hours(3)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("18:00"), hours(3)), "test").ok());
+  s.fleet().start();
   s.settle();
   EXPECT_FALSE(s.robot().busy());  // on the charger first
   EXPECT_NE(last_reason(s, store::Subject::kSchedule, "charge planned").find("before task A"), std::string::npos)
@@ -68,10 +68,9 @@ TEST(PlannedCharging, ATaskNoChargeCanSaveIsRefusedForTheBattery) {
   s.robot().on_charger = true;
   // It must start at once and drains 0.2 in two hours: from 0.3 below the reserve, and there is
   // no time to charge first.
-  ASSERT_TRUE(
-      s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("10:02"), hours(2)), "test").ok());
-  ASSERT_TRUE(s.executor().add_task(task("B", "Kitchen", s.at("08:00"), s.at("18:00"), minutes(10)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("10:02"), hours(2)), "test").ok());
+  ASSERT_TRUE(s.fleet().add_task(task("B", "Kitchen", s.at("08:00"), s.at("18:00"), minutes(10)), "test").ok());
+  s.fleet().start();
   s.settle();
   EXPECT_EQ(s.code_of("A", "dropped for now"), "charging");
   // The charge it would need first leaves no room for it (or no charge fits: "the battery would fall to").
@@ -86,8 +85,8 @@ TEST(PlannedCharging, ATaskNoChargeCanSaveIsRefusedForTheBattery) {
 TEST(PlannedCharging, TheRobotGoesHomeWhenTheWayToTheChargerIsAllThatIsLeftAboveTheReserve) {
   ScriptedExecutor s(planned_options());
   s.robot().battery_level = 0.6;
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("18:00"), hours(1)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("18:00"), hours(1)), "test").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
   ASSERT_TRUE(s.robot().acting());
   // Above the hard threshold, but at the reserve: the way back would take it below.
@@ -105,10 +104,10 @@ TEST(PlannedCharging, AnOnDemandTaskTheBatteryCannotAffordRunsAfterACharge) {
   ScriptedExecutor s(planned_options());
   s.robot().battery_level = 0.3;
   s.robot().on_charger = true;
-  s.executor().start();
+  s.fleet().start();
   s.settle();
   // Two hours of talking (0.2 at 0.1 an hour) from 0.3 would end below the reserve.
-  ASSERT_TRUE(s.executor().add_task(on_demand("R", "Office", hours(2)), "test").ok());
+  ASSERT_TRUE(s.fleet().add_task(on_demand("R", "Office", hours(2)), "test").ok());
   s.settle();
   EXPECT_FALSE(s.robot().busy());
   EXPECT_EQ(s.state("R"), "queued");
@@ -125,8 +124,8 @@ TEST(PlannedCharging, APlannedTaskTheBatteryNoLongerAffordsWhenItIsDueRunsAfterA
   s.robot().battery_level = 0.6;
   s.robot().on_charger = true;
   // An hour of work from 09:00 (0.1): planned without a charge.
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("09:00"), s.at("18:00"), hours(1)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("09:00"), s.at("18:00"), hours(1)), "test").ok());
+  s.fleet().start();
   s.settle();
   EXPECT_EQ(s.code_of("A", "scheduled"), "scheduled");
   EXPECT_EQ(last_reason(s, store::Subject::kSchedule, "charge planned"), "");
@@ -171,8 +170,8 @@ TEST(PlannedCharging, AWayHomeFoundClosedIsTriedAgainLessAndLessOften) {
                      {.models = models_where_edge_stays_closed(map, TimeZone::named("Europe/London").value(),
                                                                "Hall_Dock", 10)});
   s.robot().battery_level = 0.8;
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("09:50"), s.at("18:00"), minutes(10)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("09:50"), s.at("18:00"), minutes(10)), "test").ok());
+  s.fleet().start();
   for (int minute = 40; minute < 60 && !s.robot().driving(); ++minute) s.run_until(fmt::format("09:{:02}", minute));
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
   s.run_until("10:05");

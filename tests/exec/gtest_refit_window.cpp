@@ -27,9 +27,9 @@ int refitted_attempts(std::optional<Duration> window) {
   options.refit_window = window;
   Scenario s(kCalmWorld, options);
   old_and_recent_traversals(s);
-  s.executor().start();
+  s.fleet().start();
   s.clock().run_until(s.at("00:00") + hours(24 + 3));  // past the refit at 02:00
-  EXPECT_EQ(s.executor().stats().refits, 1);
+  EXPECT_EQ(s.fleet().refits(), 1);
   const auto& models = s.executor().models().models();
   if (!models) return -1;
   return models->attempts(*models->index_of("Dock_Hall"));
@@ -43,7 +43,7 @@ TEST(RefitWindow, TheRefitReadsOnlyTheWindow) {
 TEST(RefitWindow, TheOnlineModelLearnsFromAFailedAttemptAtOnce) {
   Scenario s(kCalmWorld);
   old_and_recent_traversals(s);
-  s.executor().start();
+  s.fleet().start();
   s.clock().run_until(s.at("00:00") + hours(24 + 3));
   const plan::LearnedEdgeModels& models = s.executor().models();
   ASSERT_EQ(models.reading(), plan::LearnedEdgeModels::Reading::kOnline);

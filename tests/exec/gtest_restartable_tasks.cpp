@@ -25,8 +25,8 @@ Task three_actions(ScriptedExecutor& s) {
 
 TEST(RestartableTasks, AHalfRunActionSequenceResumesAfterItsLastFinishedAction) {
   ScriptedExecutor s;
-  ASSERT_TRUE(s.executor().add_task(three_actions(s), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(three_actions(s), "test").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
   ASSERT_EQ(s.robot().calls.back(), "act one");
   s.robot().finish_action(ActionOutcome::kSucceeded);
@@ -53,8 +53,8 @@ TEST(RestartableTasks, AHalfRunActionSequenceResumesAfterItsLastFinishedAction) 
 
 TEST(RestartableTasks, ATaskWithEveryActionDoneIsNotRunAgainAfterARestart) {
   ScriptedExecutor s;
-  ASSERT_TRUE(s.executor().add_task(three_actions(s), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(three_actions(s), "test").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
   for (int i = 0; i < 2; ++i) {
     s.robot().finish_action(ActionOutcome::kSucceeded);

@@ -10,8 +10,8 @@ namespace {
 TEST(Route, TheRunningNavigationsRouteEndsAtItsTargetAndShrinksAsTheRobotGoes) {
   ScriptedExecutor s;
   EXPECT_TRUE(s.executor().route().empty());  // nothing to do yet
-  ASSERT_TRUE(s.executor().add_task(task("t", "Office", s.at("08:00"), s.at("12:00"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("t", "Office", s.at("08:00"), s.at("12:00"), minutes(5)), "test").ok());
+  s.fleet().start();
   s.settle();
   ASSERT_TRUE(s.robot().driving());
   const std::vector<map::EdgeIndex> before = s.executor().route();

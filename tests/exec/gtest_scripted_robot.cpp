@@ -23,8 +23,8 @@ using Scripted = ScriptedExecutor;
 
 TEST(ScriptedRobot, ARouteIsHandedOverWithItsHorizonAndTheRobotIsActivated) {
   Scripted s;
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.fleet().start();
   s.settle();
   ASSERT_GE(s.robot().calls.size(), 2u);
   EXPECT_EQ(s.robot().calls[0], "activate");
@@ -33,8 +33,8 @@ TEST(ScriptedRobot, ARouteIsHandedOverWithItsHorizonAndTheRobotIsActivated) {
 
 TEST(ScriptedRobot, AMonitorHeldWhileTheTaskCannotBeInterruptedFiresWhenItCan) {
   Scripted s;  // action monitor: 1.5 x 5 min + 30 s = 8 min
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
   ASSERT_TRUE(s.robot().acting());
   s.robot().set_interruptible(false);
@@ -54,8 +54,8 @@ TEST(ScriptedRobot, AMonitorHeldWhileTheTaskCannotBeInterruptedFiresWhenItCan) {
 // model did not expect: SharedBlockedEdge in gtest_blocked_edge.cpp).
 TEST(ScriptedRobot, NavigationGivesUpAfterMaxFailedEdges) {
   Scripted s({.max_failed_edges = 3, .blocked_edge = ExecutorOptions::BlockedEdge::kRetry});
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.fleet().start();
   for (int i = 0; i < 3; ++i) {
     s.settle();
     ASSERT_TRUE(s.robot().driving()) << i;
@@ -86,8 +86,8 @@ map::TopoMap map_with_a_pit() {
 
 TEST(ScriptedRobot, NoRouteLeftFromWhereTheRobotEndedUpFailsTheTask) {
   Scripted s({}, map_with_a_pit());
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.fleet().start();
   s.settle();
   ASSERT_EQ(s.robot().calls.back(), "drive Dock_Hall +1");
   s.robot().move_to(*map_with_a_pit().find_node("Pit"));  // the vehicle slid down the ramp
@@ -100,8 +100,8 @@ TEST(ScriptedRobot, NoRouteLeftFromWhereTheRobotEndedUpFailsTheTask) {
 
 TEST(ScriptedRobot, AnOnDemandTaskWithNoRouteFailsAtOnce) {
   Scripted s({}, map_with_a_pit());
-  s.executor().start();
-  ASSERT_TRUE(s.executor().add_task(on_demand("OD", "Island", minutes(2)), "request").ok());
+  s.fleet().start();
+  ASSERT_TRUE(s.fleet().add_task(on_demand("OD", "Island", minutes(2)), "request").ok());
   s.settle();
   EXPECT_EQ(s.state("OD"), "failed");
   EXPECT_EQ(s.code_of("OD", "failed"), "no route");
@@ -110,8 +110,8 @@ TEST(ScriptedRobot, AnOnDemandTaskWithNoRouteFailsAtOnce) {
 
 TEST(ScriptedRobot, ALongWaitIsSpentOnTheDockWithoutMoving) {
   Scripted s;  // dock_when_waiting_over: 15 min
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("10:00"), s.at("11:00"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("10:00"), s.at("11:00"), minutes(5)), "test").ok());
+  s.fleet().start();
   s.run_until("09:50");
   EXPECT_EQ(s.robot().calls, (std::vector<std::string>{"activate"}));  // nothing asked while it waits
   EXPECT_EQ(s.state("A"), "queued");
@@ -121,15 +121,15 @@ TEST(ScriptedRobot, ALongWaitIsSpentOnTheDockWithoutMoving) {
 
 TEST(ScriptedRobot, ATripToTheDockIsCancelledForANewTask) {
   Scripted s;
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
   s.robot().finish_action(ActionOutcome::kSucceeded);
   s.settle();
   ASSERT_EQ(s.state("A"), "succeeded");
   ASSERT_EQ(s.robot().calls.back(), "drive Office_Hall +1");  // home to the dock
   const std::size_t before = s.robot().calls.size();
-  ASSERT_TRUE(s.executor().add_task(on_demand("OD", "Kitchen", minutes(2)), "request").ok());
+  ASSERT_TRUE(s.fleet().add_task(on_demand("OD", "Kitchen", minutes(2)), "request").ok());
   s.settle();
   ASSERT_TRUE(s.robot().driving());
   // The trip home is cancelled, then the robot sets off for the kitchen from where it stopped.
@@ -142,8 +142,8 @@ TEST(ScriptedRobot, ATripToTheDockIsCancelledForANewTask) {
 
 TEST(ScriptedRobot, AnActionTheRobotStopsByItselfFailsTheTask) {
   Scripted s;
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
   s.robot().finish_action(ActionOutcome::kCancelled, "emergency stop pressed");
   s.settle();
@@ -154,8 +154,8 @@ TEST(ScriptedRobot, AnActionTheRobotStopsByItselfFailsTheTask) {
 
 TEST(ScriptedRobot, AFaultInTheMiddleOfAnEdgePausesUntilTheRobotIsReady) {
   Scripted s;
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.fleet().start();
   s.settle();
   s.run_until("08:00:05");
   s.robot().report_fault("lost connection");
@@ -177,8 +177,8 @@ TEST(ScriptedRobot, AFaultInTheMiddleOfAnEdgePausesUntilTheRobotIsReady) {
 
 TEST(ScriptedRobot, CancellingARunningTaskThatCannotBeInterruptedWaitsForTheRobot) {
   Scripted s;
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5)), "test").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
   s.robot().set_interruptible(false);
   s.settle();
@@ -196,8 +196,8 @@ TEST(ScriptedRobot, ATaskThatEndsElsewhereIsDrivenThereAfterItsActions) {
   Scripted s;
   Task a = task("A", "Office", s.at("08:00"), s.at("09:00"), minutes(5));
   a.end_node = "Kitchen";
-  ASSERT_TRUE(s.executor().add_task(a, "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(a, "test").ok());
+  s.fleet().start();
   EXPECT_EQ(s.executor().phase(), ExecutorPhase::kIdle);
   s.settle();
   EXPECT_EQ(s.executor().phase(), ExecutorPhase::kNavigating);
@@ -234,9 +234,9 @@ TEST(ScriptedRobot, TheSchedulerAndTheModelsAreInjected) {
   const map::TopoMap map = scenario_map();
   auto models = std::make_shared<plan::LearnedEdgeModels>(map, nullptr);
   Scripted s({}, map, ExecutorParts{.models = models, .scheduler = std::make_unique<CountingScheduler>(calls)});
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:30"), s.at("09:00"), minutes(5)), "test").ok());
-  ASSERT_TRUE(s.executor().add_task(task("B", "Lab", s.at("08:00"), s.at("10:00"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:30"), s.at("09:00"), minutes(5)), "test").ok());
+  ASSERT_TRUE(s.fleet().add_task(task("B", "Lab", s.at("08:00"), s.at("10:00"), minutes(5)), "test").ok());
+  s.fleet().start();
   EXPECT_GE(calls, 1);
   EXPECT_EQ(&s.executor().models(), models.get());
   EXPECT_EQ(s.executor().stats().schedules, calls);
@@ -246,15 +246,15 @@ TEST(ScriptedRobot, APreemptedTaskKeepsItsProgressAndGoesOnAfterTheActionsItDid)
   Scripted s;
   Task a = task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(6));
   a.actions = {Action{.name = "one", .args = {}}, Action{.name = "two", .args = {}}, Action{.name = "three", .args = {}}};
-  ASSERT_TRUE(s.executor().add_task(a, "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(a, "test").ok());
+  s.fleet().start();
   ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
   EXPECT_EQ(s.robot().calls.back(), "act one");
   s.robot().finish_action(ActionOutcome::kSucceeded);
   s.settle();
   EXPECT_EQ(s.robot().calls.back(), "act two");
   EXPECT_EQ(store::get_task(s.store(), "A").value().progress, (Json{{"actions_done", 1}}));
-  ASSERT_TRUE(s.executor().add_task(on_demand("OD", "Lab", minutes(5)), "request").ok());
+  ASSERT_TRUE(s.fleet().add_task(on_demand("OD", "Lab", minutes(5)), "request").ok());
   s.settle();  // the robot answers the preemption's cancel
   EXPECT_TRUE(s.robot().asked("cancel"));
   EXPECT_EQ(s.state("A"), "queued");

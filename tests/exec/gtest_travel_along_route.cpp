@@ -168,8 +168,8 @@ TEST(TravelAlongTheRoute, TheDefaultSchedulerAndBruteForceAgree) {
 TEST(TravelAlongTheRoute, TheExecutorsOptionReachesItsTravel) {
   for (const std::optional<Duration> threshold : {std::optional<Duration>{}, std::optional<Duration>{seconds(30)}}) {
     testing::Scenario s(testing::kCalmWorld, ExecutorOptions{.route_threshold = threshold});
-    s.executor().start();
-    ASSERT_TRUE(s.executor().add_task(testing::task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(5)), "test"));
+    s.fleet().start();
+    ASSERT_TRUE(s.fleet().add_task(testing::task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(5)), "test"));
     s.run_until("09:00");
     EXPECT_EQ(s.final_state("A"), "succeeded");
     EXPECT_EQ(s.executor().travel_cache().route_threshold(), threshold);

@@ -33,8 +33,8 @@ std::shared_ptr<plan::LearnedEdgeModels> models_with(const map::TopoMap& map, pl
 // A to the Office (08:00 to 10:00, 5 minutes): the robot crosses Dock_Hall in 20 s and then stays
 // on Hall_Office, unanswered, until 08:10, far past the journey's monitor limit.
 void hold_the_last_edge(ScriptedExecutor& s) {
-  ASSERT_TRUE(s.executor().add_task(task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(5)), "test").ok());
-  s.executor().start();
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(5)), "test").ok());
+  s.fleet().start();
   s.settle();
   ASSERT_TRUE(s.robot().driving());
   s.clock().run_until(s.clock().now() + seconds(20));

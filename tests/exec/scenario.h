@@ -1,8 +1,9 @@
-// A small simulated deployment for the executor's scenario tests: the real Executor driving the
-// real SimRobot on a SimClock, in a parametric world given as YAML, with a store in a fresh file.
+// A small simulated deployment for the executor's scenario tests: a fleet of one, the real Executor
+// driving the real SimRobot on a SimClock, in a parametric world given as YAML, with a store in a
+// fresh file.
 //
 //   Scenario s(kCalmWorld);
-//   s.executor().add_task(task("a", "Office", s.at("09:00"), s.at("10:00"), minutes(5)), "test");
+//   s.fleet().add_task(task("a", "Office", s.at("09:00"), s.at("10:00"), minutes(5)), "test");
 //   s.run_until("12:00");
 //   EXPECT_EQ(s.final_state("a"), "succeeded");
 //
@@ -27,11 +28,12 @@
 #include "rondo/core/timezone.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
+#include "rondo/fleet/fleet.h"
 #include "rondo/map/topo_map.h"
 #include "rondo/sim/sim_robot.h"
 #include "rondo/sim/sim_world.h"
-#include "rondo/store/store.h"
 #include "rondo/store/events.h"
+#include "rondo/store/store.h"
 #include "test_files.h"
 
 namespace rondo::exec::testing {
@@ -99,16 +101,18 @@ class Scenario {
     const map::NodeIndex dock = *map_.find_node("Dock");
     robot_ = std::make_unique<sim::SimRobot>(clock_, map_, *world_, sim::SimRobotOptions{.start = dock, .dock = dock});
     options.dock = dock;
-    executor_ = std::make_unique<Executor>(clock_, *robot_, map_, store_, zone_, options);
+    fleet_ = std::make_unique<fleet::Fleet>(clock_, map_, store_, zone_, options);
+    executor_ = &fleet_->add_robot(*robot_, options);
   }
   ~Scenario() {
-    executor_.reset();
+    fleet_.reset();
     robot_.reset();
     std::error_code ec;
     if (!std::getenv("RONDO_KEEP_TEST_DB")) std::filesystem::remove(db_, ec);
   }
 
-  Executor& executor() { return *executor_; }
+  fleet::Fleet& fleet() { return *fleet_; }
+  Executor& executor() { return *executor_; }  // the fleet's one robot
   sim::SimRobot& robot() { return *robot_; }
   SimClock& clock() { return clock_; }
   const map::TopoMap& map() const { return map_; }
@@ -147,7 +151,8 @@ class Scenario {
   store::Store store_;
   std::unique_ptr<sim::SimWorld> world_;
   std::unique_ptr<sim::SimRobot> robot_;
-  std::unique_ptr<Executor> executor_;
+  std::unique_ptr<fleet::Fleet> fleet_;
+  Executor* executor_ = nullptr;
 };
 
 inline Task task(const std::string& id, const std::string& node, Time release, Time deadline, Duration duration,

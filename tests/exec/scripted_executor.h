@@ -1,5 +1,5 @@
-// The executor on a ScriptedRobot (scripted_robot.h) on the scenario map, at the dock, at 08:00
-// on a Monday: the fixture of the scripted-robot tests.
+// A fleet of one: the executor on a ScriptedRobot (scripted_robot.h) on the scenario map, at the
+// dock, at 08:00 on a Monday: the fixture of the scripted-robot tests.
 #pragma once
 
 #include <filesystem>
@@ -7,6 +7,7 @@
 #include <string>
 
 #include "rondo/exec/executor.h"
+#include "rondo/fleet/fleet.h"
 #include "scenario.h"
 #include "scripted_robot.h"
 
@@ -27,27 +28,30 @@ class ScriptedExecutor {
     options.dock = *map_.find_node(dock);
     options.refit_at.reset();
     options_ = options;
-    executor_ = std::make_unique<Executor>(clock_, robot_, map_, store_, zone_, options, std::move(parts));
+    fleet_ = std::make_unique<fleet::Fleet>(clock_, map_, store_, zone_, options, std::move(parts.models));
+    executor_ = &fleet_->add_robot(robot_, options, std::move(parts.scheduler));
   }
-  // The executive is killed and started again on the same store (Executor::restore): the robot
+  // The executive is killed and started again on the same store (Fleet::restore): the robot
   // stops what the dead executive asked of it and stays where it is; the clock keeps its time but
   // none of the dead executive's timers.
   void kill_and_restart() {
-    executor_.reset();
+    fleet_.reset();
     if (robot_.driving()) robot_.finish_edge(EdgeOutcome::kCancelled, seconds(1));
     if (robot_.acting()) robot_.finish_action(ActionOutcome::kCancelled, "the executive died");
     settle();
     clock_.clear();  // the dead executive's timers die with it
-    executor_ = std::make_unique<Executor>(clock_, robot_, map_, store_, zone_, options_);
-    ASSERT_TRUE(executor_->restore().ok());
-    executor_->start();
+    fleet_ = std::make_unique<fleet::Fleet>(clock_, map_, store_, zone_, options_);
+    executor_ = &fleet_->add_robot(robot_, options_);
+    ASSERT_TRUE(fleet_->restore().ok());
+    fleet_->start();
   }
   ~ScriptedExecutor() {
-    executor_.reset();
+    fleet_.reset();
     std::error_code ec;
     std::filesystem::remove(db_, ec);
   }
-  Executor& executor() { return *executor_; }
+  fleet::Fleet& fleet() { return *fleet_; }
+  Executor& executor() { return *executor_; }  // the fleet's one robot
   ScriptedRobot& robot() { return robot_; }
   store::Store& store() { return store_; }
   SimClock& clock() { return clock_; }
@@ -83,7 +87,8 @@ class ScriptedExecutor {
   store::Store store_;
   ScriptedRobot robot_;
   ExecutorOptions options_;
-  std::unique_ptr<Executor> executor_;
+  std::unique_ptr<fleet::Fleet> fleet_;
+  Executor* executor_ = nullptr;
 };
 
 }  // namespace rondo::exec::testing

@@ -63,10 +63,12 @@ class ScriptedRobot final : public Robot {
   }
   double battery() const override { return battery_level; }
   bool charging() const override { return on_charger; }
+  std::optional<ActionSupport> supported_actions() const override { return actions; }
   std::optional<RobotFault> fault() const override { return fault_; }
 
   // --- the test's side ---
   double battery_level = 0.9;  // what battery() reads
+  std::optional<ActionSupport> actions;  // what supported_actions() says (nothing: any action)
   bool on_charger = false;     // what charging() reads
   bool driving() const { return edge_.has_value(); }
   // A real vehicle may end an attempt anywhere: the next answer leaves the robot at `node`.

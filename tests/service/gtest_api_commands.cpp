@@ -137,7 +137,7 @@ TEST(ApiCommands, ATaskWithAnActionTheRobotCannotRunIsRefusedWhenSubmitted) {
     ASSERT_TRUE(store::queue_request(s.store(), {.queued = s.clock().now(), .source = "words", .sentence = "check",
                                                  .body = body})
                     .ok());
-    app::RequestIntake intake(s.clock(), s.executor(), s.store());
+    app::RequestIntake intake(s.clock(), s.fleet(), s.store());
     ASSERT_TRUE(intake.take_waiting().ok());
     rows = store::list_requests(s.store()).value();
   });

@@ -8,6 +8,7 @@
 #include "deployment_parts.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
+#include "rondo/fleet/fleet.h"
 #include "rondo/sim/sim_robot.h"
 #include "rondo/store/store.h"
 #include "serve_session.h"
@@ -31,10 +32,11 @@ TEST(ServePeople, RequestsArriveWhenDueEveryDay) {
   sim::SimRobot robot(clock, parts->map, *parts->world, {.start = parts->dock, .dock = parts->dock, .seed = 1});
   exec::ExecutorOptions options = d->executor;
   options.dock = parts->dock;
-  exec::Executor executor(clock, robot, parts->map, *db, d->zone, options);
-  executor.start();
+  fleet::Fleet fleet(clock, parts->map, *db, d->zone, options);
+  exec::Executor& executor = fleet.add_robot(robot, options);
+  fleet.start();
   sim::Rng rng(5);
-  app::schedule_people(clock, executor, *parts->people, rng, d->zone, clock.now());
+  app::schedule_people(clock, fleet, *parts->people, rng, d->zone, clock.now());
 
   const auto requests_added_before = [&](Time t) {
     int n = 0;

@@ -74,24 +74,28 @@ LiveService::LiveService(const std::filesystem::path& data, LiveOptions o)
   exec::ExecutorOptions eo;
   eo.dock = parts_.dock;
   eo.forget_finished = true;  // as rondo serve: finished tasks are read from the store
-  executor_ = std::make_unique<exec::Executor>(clock_, *robot_, parts_.map, store_, TimeZone::utc(), eo);
-  executor_->start();
-  server_ = std::make_unique<service::Server>(service::ServiceContext{.clock = clock_,
-                                                                      .executor = *executor_,
-                                                                      .robot = *robot_,
-                                                                      .store = store_,
-                                                                      .map = parts_.map,
-                                                                      .zone = TimeZone::utc(),
-                                                                      .deployment = "g4s",
-                                                                      .places = parts_.places ? &*parts_.places : nullptr},
-                                              service::ServerOptions{.host = "127.0.0.1",
-                                                                     .port = 0,
-                                                                     .token = o.token,
-                                                                     .body_limit = o.body_limit,
-                                                                     .read_timeout = o.read_timeout, .answer_timeout = o.answer_timeout,
-                                                                     .stream_poll = std::chrono::milliseconds(20),
-                                                                     .stream_keepalive = seconds(1),
-                                                                     .threads = o.threads});
+  fleet_ = std::make_unique<fleet::Fleet>(clock_, parts_.map, store_, TimeZone::utc(), eo);
+  executor_ = &fleet_->add_robot(*robot_, eo);
+  fleet_->start();
+  server_ =
+      std::make_unique<service::Server>(service::ServiceContext{.clock = clock_,
+                                                                .fleet = *fleet_,
+                                                                .executor = *executor_,
+                                                                .robot = *robot_,
+                                                                .store = store_,
+                                                                .map = parts_.map,
+                                                                .zone = TimeZone::utc(),
+                                                                .deployment = "g4s",
+                                                                .places = parts_.places ? &*parts_.places : nullptr},
+                                        service::ServerOptions{.host = "127.0.0.1",
+                                                               .port = 0,
+                                                               .token = o.token,
+                                                               .body_limit = o.body_limit,
+                                                               .read_timeout = o.read_timeout,
+                                                               .answer_timeout = o.answer_timeout,
+                                                               .stream_poll = std::chrono::milliseconds(20),
+                                                               .stream_keepalive = seconds(1),
+                                                               .threads = o.threads});
   auto port = server_->bind();
   if (!port) throw std::runtime_error(port.error().message);
   port_ = *port;

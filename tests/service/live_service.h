@@ -20,6 +20,7 @@
 #include "rondo/core/document.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
+#include "rondo/fleet/fleet.h"
 #include "rondo/service/server.h"
 #include "rondo/sim/sim_robot.h"
 #include "rondo/store/store.h"
@@ -55,6 +56,7 @@ class LiveService {
   const map::TopoMap& map() const { return parts_.map; }
   service::Server& server() { return *server_; }
   store::Store& store() { return store_; }  // use it only on the clock's thread (on_clock)
+  fleet::Fleet& fleet() { return *fleet_; }          // read it only on the clock's thread (on_clock)
   exec::Executor& executor() { return *executor_; }  // read it only on the clock's thread (on_clock)
   // Runs `f` on the clock's thread and waits (for reading the executor in a test).
   void on_clock(const std::function<void()>& f);
@@ -70,7 +72,8 @@ class LiveService {
   std::unique_ptr<sim::SimRobot> sim_;
   std::unique_ptr<exec::Robot> with_actions_;  // LiveOptions::robot_actions: the simulated robot saying so
   exec::Robot* robot_ = nullptr;               // the one the executor drives
-  std::unique_ptr<exec::Executor> executor_;
+  std::unique_ptr<fleet::Fleet> fleet_;
+  exec::Executor* executor_ = nullptr;
   std::unique_ptr<service::Server> server_;
   std::optional<std::string> token_;
   int port_ = 0;

@@ -12,6 +12,7 @@
 
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
+#include "rondo/fleet/fleet.h"
 #include "rondo/map/map_loader.h"
 #include "rondo/store/store.h"
 #include "rondo/vda5050/mqtt_client.h"
@@ -106,7 +107,8 @@ TEST(Vda5050Factsheet, ATaskWithAnActionTheVehicleDoesNotListIsRefusedWhenSubmit
   ASSERT_TRUE(robot.ok()) << robot.error().message;
   auto db = store::Store::open(dir / "rondo.sqlite", {.sync_commits = false});
   ASSERT_TRUE(db.ok()) << db.error().message;
-  exec::Executor executor(clock, **robot, *map, *db, TimeZone::utc(), {.dock = dock});
+  fleet::Fleet executor(clock, *map, *db, TimeZone::utc(), {.dock = dock});
+  executor.add_robot(**robot, {.dock = dock});
 
   // Nothing known yet: every action is taken, as before.
   EXPECT_FALSE((*robot)->supported_actions().has_value());

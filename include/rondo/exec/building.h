@@ -65,9 +65,9 @@ class Building {
   plan::TravelPlanner offline_planner;
   TravelCache offline_travel;
   TaskBook book;
-  std::unique_ptr<LoadingTimes> loading;            // loading and unloading times, per action and place
-  std::unique_ptr<FoundBlocked> found_blocked;      // failures in a row, edges held blocked
-  std::unique_ptr<DoorModels> door_models;          // when doors are open, learned
+  std::unique_ptr<LoadingTimes> loading;               // loading and unloading times, per action and place
+  std::unique_ptr<FoundBlocked> found_blocked;         // failures in a row, edges held blocked
+  std::unique_ptr<DoorModels> door_models;             // when doors are open, learned
   std::unique_ptr<learn::WeeklyMemory> weekly_memory;  // null until the first refit
 
  private:

@@ -1,13 +1,15 @@
-// The executor (MISSION.md §3): keeps the tasks, schedules them, runs them through the robot,
-// watches them and reacts. Event-driven on an injected Clock: it never sleeps and never reads the
-// wall clock, so the same code runs a simulated robot for weeks in seconds and a real one in real
-// time.
+// One robot's executor (MISSION.md §3): schedules the tasks the fleet gave it, runs them through
+// its robot, watches them and reacts. Event-driven on an injected Clock: it never sleeps and never
+// reads the wall clock, so the same code runs a simulated robot for weeks in seconds and a real one
+// in real time. What belongs to the building (the task book, the learned models, the routines, the
+// allocation of tasks to robots) is fleet::Fleet's and exec::Building's; a deployment of one robot
+// is a fleet of one.
 //
-//   Executor ex(clock, robot, map, store, zone, {.dock = *map.find_node("ChargingPoint")});
-//   ex.add_routines(routines);                 // tasks for every day, created ahead of their windows
-//   ex.start();                                // posts the day's first events
-//   ex.add_task(task, "api");                  // standard: trySchedule; on-demand: runs at once
-//   clock.run_until(end);
+//   fleet::Fleet fleet(clock, map, store, zone, options);
+//   exec::Executor& ex = fleet.add_robot(robot, {.dock = *map.find_node("ChargingPoint")});
+//   fleet.start();                             // every robot's start(), and the day's first events
+//   fleet.add_task(task, "api");               // allocated; then its robot's take(): standard ones
+//   clock.run_until(end);                      //   trySchedule, on-demand ones run at once
 //
 // Its parts (docs/executor.md): the task book (records, state changes, the event log), the
 // dispatcher (what runs next, and the queues), the task run (one task as its steps: wait, navigate,
@@ -32,9 +34,10 @@
 //   action monitor past `action_overrun` x the processing time; a task that is not interruptible
 //   (its flag, or the robot saying so at run time) is never preempted: the monitor waits.
 // - idle: back to the dock, by the same NavigateStep as a task's journey (monitor, failed-edge limit,
-//   blocked-edge policy), with robot events `departed`, `arrived`, `waits`, `gave up`. Nightly (at `refit_at`, local time) the edge models are refitted
-//   from the traversal log of the last `refit_window`; between refits every edge attempt updates
-//   the online model of its edge (`online_model`), so travel estimates and schedules adapt at once.
+//   blocked-edge policy), with robot events `departed`, `arrived`, `waits`, `gave up`.
+// - learning: every edge attempt updates the online model of its edge (`online_model`), shared by
+//   every robot of the building, so travel estimates and schedules adapt at once; the fleet refits
+//   the models nightly (at `refit_at`, local time) from the traversal log of the last `refit_window`.
 #pragma once
 
 #include <cstdint>
@@ -103,24 +106,35 @@ class Executor final : public RobotListener {
   // and robot outlive the executor. Empty `scheduler`: schedule::DefaultScheduler.
   Executor(Building& building, Robot& robot, ExecutorOptions options,
            std::unique_ptr<schedule::Scheduler> scheduler = {});
-  // A deployment of one robot, with a building of its own. Precondition: `dock` is a node of `map`;
-  // clock, robot, map and store outlive the executor.
-  Executor(Clock& clock, Robot& robot, const map::TopoMap& map, store::Store& store, const TimeZone& zone,
-           ExecutorOptions options, ExecutorParts parts = {});
   ~Executor() override;
   Executor(const Executor&) = delete;
   Executor& operator=(const Executor&) = delete;
 
-  // Accepts tasks (committed to the store before this returns), then schedules them together.
-  // kInvalidInput for a task that cannot be run here (unknown node, no window, duplicate id, an
-  // id the store already holds), kStorage when the store cannot write; either way nothing is added.
-  // With `taken` (a request of the store's queue, store/requests.h), the request is marked taken
-  // in the transaction that stores the tasks, or in the one of its `rejected` event.
-  Status add_tasks(std::vector<Task> tasks, std::string_view source, const store::RequestTaken* taken = nullptr);
-  Status add_task(Task task, std::string_view source) { return add_tasks({std::move(task)}, source); }
-  // Refuses a queued request that cannot be carried out: a `rejected` request event (code
-  // `invalid request`, about "request N") and the request marked taken, in one transaction.
-  void reject_request(const store::RequestTaken& taken, const std::string& reason);
+  // --- What the fleet asks of its robot (fleet::Fleet) ---
+  const std::string& name() const { return options_.robot_name; }
+  // Why the robot cannot run one of these actions (it says so: Robot::supported_actions), or nothing.
+  std::optional<std::string> cannot_run(const std::vector<Action>& actions) const;
+  // Tasks the fleet recorded in the book and allocated to this robot: on-demand ones queue (and
+  // preempt the running task when they may), standard ones are scheduled with the rest of its work
+  // (trySchedule; from start() on).
+  void take(std::vector<TaskId> ids);
+  // Where and when the robot is next free: after its running task and its on-demand queue.
+  std::pair<map::NodeIndex, Time> free_at() const;
+  // After a restart (fleet_restore.cpp): a task of this robot read back (what is on board follows
+  // from them), the battery's learned costs, and an unfinished task back in its queues (an on-demand
+  // one in the on-demand queue, one blocked by a door waiting for it, a drop for now deferred; a
+  // queued standard one waits for schedule_restored()). The robot is wherever it reports (the
+  // caller starts a simulated one at the stored robot_state).
+  void restored(const TaskRecord& record);
+  void restore_battery();
+  void restore_task(const TaskId& id);
+  // Starting (Fleet::start()): the robot is activated and its battery read; then, once the fleet
+  // has added today's routine tasks, the queued standard tasks restored or added before are
+  // scheduled; kick_soon() posts the first look at the queues. reconsider(): a look now.
+  void start();
+  void schedule_restored();
+  void kick_soon();
+  void reconsider() { kick(); }
   // Cancels a task: a queued (or waiting, or dropped-for-now) one ends `cancelled` at once; a
   // running one is stopped through the robot's cancel() when it is interruptible now, else at its
   // next interruptible moment (a `cancel pending` event says so). kNotFound for an unknown task,
@@ -131,18 +145,6 @@ class Executor final : public RobotListener {
   // or real person's own confirmation. A "confirmed" event. kNotFound for an unknown task,
   // kConflict when it is not loading or unloading now (executor_confirm.cpp).
   Status confirm_action(const TaskId& id, const std::string& by);
-  // Routines become tasks every day at local midnight (and at start() for the current day).
-  void add_routines(std::vector<Routine> routines);
-  // Rebuilds the book from the store after a restart (executor_restore.cpp): call it after
-  // construction and add_routines(), before start() and before any add_tasks(). Final tasks come
-  // back final; queued ones queued (on-demand ones in the on-demand queue, drops for now deferred);
-  // a task that was running comes back `queued` with an `interrupted` event (or `failed` when its
-  // window no longer allows it). The robot is wherever it reports (the caller starts a simulated
-  // one at the stored robot_state). Errors: kStorage (a store that cannot be read back; nothing is
-  // restored), kInternal (called late).
-  Status restore();
-  // Posts the first events: today's routine tasks, the nightly refit, and the first dispatch.
-  void start();
 
   const std::map<TaskId, TaskRecord>& tasks() const { return book_.records(); }
   const std::vector<TaskId>& task_order() const { return book_.order(); }  // in the order added
@@ -201,20 +203,6 @@ class Executor final : public RobotListener {
   // for a final or running one, kInvalidInput for a change that cannot be meant (a deadline before
   // the release, a duration longer than the window, a window for an on-demand task).
   Status update_task(const TaskId& id, std::optional<TimeWindow> window, std::optional<int> priority);
-  const std::vector<Routine>& routines() const { return routines_; }
-  // Adds a routine while running: today's instances that can still be met are added at once.
-  // kInvalidInput for a name already taken or a node not on the map.
-  Status add_routine_now(Routine routine);
-  // Adds routines a queued request asks for (store/requests.h), all or none: kInvalidInput for a name
-  // already taken (or twice in `routines`) or a node not on the map, and the request is marked taken
-  // with a `rejected` request event (code `invalid request`) that says why. Otherwise the request
-  // is marked taken (with `taken.meta`: what keeps the routines over a restart) in one transaction
-  // with a request event `routines added` whose reason is `why`, and today's instances that can still
-  // be met are added (before start(), start() adds them). The store's error when the request cannot be
-  // marked (kConflict: taken already); nothing is added then.
-  Status add_routines_now(std::vector<Routine> routines, const store::RequestTaken& taken, const std::string& why);
-  // Forgets a routine: no more instances from the next day on (today's stay). kNotFound if unknown.
-  Status remove_routine(const std::string& name);
   // Out of service (true) or back (false), with a robot event `out of service` / `back in service`.
   // Out of service: nothing new starts and the robot goes to the dock when free; the running task
   // finishes, or with `halt` is stopped now and goes back to the queue keeping its progress (code
@@ -226,12 +214,6 @@ class Executor final : public RobotListener {
 
  private:
   // bookkeeping (executor.cpp)
-  Status accept(const Task& task) const;
-  Status runs_here(const Task& task) const;  // its places are on the map
-  // Validates, stores (all or nothing) and records tasks; returns the standard ones (on-demand ones
-  // are queued).
-  Result<std::vector<TaskId>> insert_tasks(std::vector<Task> tasks, std::string_view source,
-                                           const store::RequestTaken* taken);
   bool interruptible_now() const;
   bool running_standard() const;  // a standard task navigates or acts
   void preempt_for_on_demand(const TaskId& id);
@@ -266,7 +248,6 @@ class Executor final : public RobotListener {
   // of a task and of a charge, and taken back at restore(); a stored value that cannot be read is
   // a warning (the book's write_error) and a fresh estimator.
   void save_battery();
-  void restore_battery();
 
   // running (executor_running.cpp)
   void kick();  // reconsider what to do now
@@ -305,7 +286,6 @@ class Executor final : public RobotListener {
   void apply_schedule(const std::vector<TaskId>& ids, const PlannedAnswer& answer, const std::string& why);
   // The charges of a new schedule, for the dispatcher (noted when they moved).
   void apply_charges(const std::vector<TaskId>& ids, const PlannedAnswer& answer, const std::string& why);
-  std::pair<map::NodeIndex, Time> free_at() const;  // where and when the robot is next free
   // The deferred tasks that can still meet their windows (the others end dropped, for good).
   std::vector<TaskId> reoffer_deferred();
   // reschedule() in two halves: the problem from the book (nothing when there is nothing to
@@ -354,16 +334,6 @@ class Executor final : public RobotListener {
   void place_retry(const TaskId& id, const std::string& door, Time latest, std::uint64_t serial);
   void retry_blocked(const TaskId& id, std::uint64_t serial);
 
-  // daily (executor_daily.cpp)
-  void create_routine_tasks(std::chrono::year_month_day day);
-  void schedule_midnight();
-  void schedule_refit();
-  void refit();  // the building's, counted
-
-  Executor(std::unique_ptr<Building> owned, Building* borrowed, Robot& robot, ExecutorOptions options,
-           std::unique_ptr<schedule::Scheduler> scheduler);
-
-  std::unique_ptr<Building> owned_building_;  // a deployment of one robot keeps its own
   Building& building_;
   // The building's parts, by the names the executor's files use.
   Clock& clock_;
@@ -386,7 +356,6 @@ class Executor final : public RobotListener {
   std::unique_ptr<Dispatcher> dispatcher_;
   std::unique_ptr<Deliveries> deliveries_;
   LoadingTimes& loading_;
-  std::vector<Routine> routines_;
   ExecutorStats stats_;
   std::vector<NavigationRecord> navigations_;
   bool in_fault_ = false;

@@ -132,7 +132,6 @@ struct ExecutorStats {
   Duration acting{0};      // actions
   Duration waiting{0};     // waiting for a window to open
   Duration busy{0};        // a task in progress: its travel, waiting and actions
-  int refits = 0;
   int schedules = 0;       // scheduler calls
   int background_runs = 0;   // reschedules solved on the worker (background_scheduling)
   int background_stale = 0;  //   of which the answer came too late: the book had moved on

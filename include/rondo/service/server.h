@@ -26,17 +26,19 @@
 #include "rondo/exec/clock.h"
 #include "rondo/exec/executor.h"
 #include "rondo/exec/robot.h"
+#include "rondo/fleet/fleet.h"
 #include "rondo/lang/places.h"
 #include "rondo/map/topo_map.h"
 #include "rondo/store/store.h"
 
 namespace rondo::service {
 
-// What the service serves. Precondition: everything outlives the server; the executor, robot and
-// store are used only on the clock's thread.
+// What the service serves. Precondition: everything outlives the server; the fleet, its robots and
+// the store are used only on the clock's thread.
 struct ServiceContext {
   exec::Clock& clock;
-  exec::Executor& executor;
+  fleet::Fleet& fleet;
+  exec::Executor& executor;  // the fleet's robot, for the robot's views
   exec::Robot& robot;
   store::Store& store;  // the executor's connection
   const map::TopoMap& map;
