@@ -43,6 +43,11 @@ std::string joined(const std::vector<TaskId>& ids) {
 
 }  // namespace
 
+// Where a door was seen from, for the event log: the robot's node, or the building's sensor.
+std::string Executor::seen_from(const Observation& seen) const {
+  return seen.source.empty() ? map_.node(robot_.location()).name : seen.source;
+}
+
 bool Executor::blocked(const TaskId& id) const { return opportunities_->blocked(id); }
 
 std::optional<double> Executor::door_open_probability(const std::string& door, Time t) const {
@@ -198,7 +203,7 @@ void Executor::door_seen_closed(const Observation& seen) {
     }
   }
   ++assumption_stats_.broken;
-  const std::string& node = map_.node(robot_.location()).name;
+  const std::string node = seen_from(seen);
   plan_before_break_.clear();
   if (run_ && !run_->waiting()) plan_before_break_.push_back(run_->id());
   for (const TaskId& id : dispatcher_->planned())
@@ -307,7 +312,7 @@ void Executor::door_seen_open(const Observation& seen) {
     waiting.push_back(id);
   }
   if (waiting.empty()) return;
-  const std::string& node = map_.node(robot_.location()).name;
+  const std::string node = seen_from(seen);
   const std::string when = zone_.format_clock(clock_.now());
   const bool interrupt = running_standard() && interruptible_now() && !run_->acting_since();
   // The first waiting task that fits is taken now; the others (a drop behind its pickup, a task

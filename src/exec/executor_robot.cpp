@@ -183,12 +183,20 @@ void Executor::save_robot_state() {
   if (auto ok = store::save_robot_state(store_, st); !ok) book_.write_error(ok.error().message);
 }
 
+void Executor::observe(Observation observation) {
+  if (observation.source.empty()) observation.source = "building";
+  on_observation(observation);
+}
+
 void Executor::on_observation(const Observation& seen) {
+  // The building's observations are stored without a robot, with the sensor named in the text.
+  std::string text = seen.text;
+  if (!seen.source.empty()) text = "from " + seen.source + (text.empty() ? "" : ": " + text);
   const store::Observation o{.what = seen.what, .where = seen.where, .when = seen.when, .value = seen.value,
-                             .text = seen.text.empty() ? std::nullopt : std::optional<std::string>(seen.text),
-                             .robot = options_.robot_name};
+                             .text = text.empty() ? std::nullopt : std::optional<std::string>(text),
+                             .robot = seen.source.empty() ? options_.robot_name : std::string()};
   if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
-  if (!started_ || seen.what != "door_open") return;
+  if (!started_ || seen.what != Observation::kDoorOpen) return;
   ++assumption_stats_.door_observations;
   if (seen.value < 0.5)
     door_seen_closed(seen);  // executor_observations.cpp

@@ -19,6 +19,7 @@
 #include "rondo/lang/command.h"
 #include "rondo/lang/places.h"
 #include "rondo/map/map_loader.h"
+#include "rondo/store/observations.h"
 #include "scripted_executor.h"
 
 namespace rondo::exec::testing {
@@ -175,6 +176,38 @@ TEST(CourierStory, TheDoorClosesTheLetterWaitsAndIsDeliveredWhenTheDoorIsSeenOpe
   EXPECT_EQ(s.executor().assumption_stats().broken, 1);
   EXPECT_EQ(s.executor().assumption_stats().reschedules, 1);
   EXPECT_EQ(s.executor().assumption_stats().opportunities_taken, 1);
+}
+
+// The building's sensor (Executor::observe, as POST /api/v1/observations calls it) sees the door
+// instead of the robot: the same break, reschedule and opportunity, the sensor named in the log,
+// and the observations stored without a robot.
+TEST(CourierStory, TheBuildingsSensorSeesTheDoorAsTheRobotWould) {
+  Story s;
+  const Started ids = pick_up_both_and_reach_a120(s);
+  ASSERT_FALSE(ids.letter_drop.empty());
+  ASSERT_FALSE(HasFailure());
+  const auto building = [&s](double value) {
+    s.executor().observe({.what = std::string(Observation::kDoorOpen), .where = "A-120-door",
+                          .when = s.clock().now(), .value = value, .source = "door-sensor-7"});
+    s.settle();
+  };
+  building(0);
+  EXPECT_EQ(s.code_of(ids.letter_drop, "blocked"), "assumption broken");
+  EXPECT_THAT(s.reason_of(ids.letter_drop, "blocked"), HasSubstr("A-120-door seen closed from door-sensor-7"));
+  EXPECT_EQ(s.state(ids.letter_drop), "queued");
+  EXPECT_EQ(s.executor().assumption_stats().reschedules, 1);
+  s.step();
+  building(1);
+  EXPECT_EQ(s.code_of(ids.letter_drop, "opportunity"), "opportunity taken");
+  EXPECT_THAT(s.reason_of(ids.letter_drop, "opportunity"), HasSubstr("seen open from door-sensor-7"));
+  ASSERT_NO_FATAL_FAILURE(s.serve("A-120-Desk"));
+  EXPECT_EQ(s.state(ids.letter_drop), "succeeded");
+  const auto seen = store::find_observations(s.store(), {.what = "door_open", .where = "A-120-door"}).value();
+  ASSERT_EQ(seen.size(), 2u);
+  for (const store::Observation& o : seen) {
+    EXPECT_EQ(o.robot, "") << "the building's, not the robot's";
+    EXPECT_EQ(o.text, "from door-sensor-7");
+  }
 }
 
 TEST(CourierStory, TheDoorNeverReopensTheLetterFailsAtItsDeadlineAndTheBookIsDelivered) {

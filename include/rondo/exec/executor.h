@@ -180,6 +180,11 @@ class Executor final : public RobotListener {
   // Below the hard threshold and not yet charged back to the resume level: nothing new starts.
   bool charging_for_battery() const;
 
+  // An observation from outside the robot (a building sensor; POST /api/v1/observations): stored
+  // without a robot and acted on exactly as the robot's own (on_observation). An empty `source`
+  // becomes "building". Called on the clock's thread.
+  void observe(Observation observation);
+
   // RobotListener
   void on_edge_finished(const EdgeAttempt& attempt) override;
   void on_action_finished(const ActionResult& result) override;
@@ -322,6 +327,7 @@ class Executor final : public RobotListener {
   // Blocks the task until `wait.door` is seen open (stored; timers for its retry and its end).
   void wait_for_door(const TaskId& id, const DoorWait& wait);
   void unblock(const TaskId& id);
+  std::string seen_from(const Observation& seen) const;  // the robot's node, or the sensor
   void door_seen_closed(const Observation& seen);
   void door_seen_open(const Observation& seen);
   // Whether running `id` now (interrupting the running task) or right after the running task

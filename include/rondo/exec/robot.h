@@ -36,6 +36,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rondo/core/result.h"
@@ -85,13 +86,20 @@ struct ActionResult {
   std::string message{};  // why it failed, for the event log; may be empty
 };
 
-// Something the robot saw on its way: a door open or closed, a person present.
+// Something seen of the building: by the robot on its way (RobotListener::on_observation), or by
+// the building's own sensors (Executor::observe): a door open or closed, a person present.
 struct Observation {
+  // The kinds the executor knows; any other kind is stored and not acted on.
+  static constexpr std::string_view kDoorOpen = "door_open";            // where: a door (Edge::door); 1 open, 0 closed
+  static constexpr std::string_view kEdgeBlocked = "edge_blocked";      // where: an edge id; 1 blocked, 0 passable
+  static constexpr std::string_view kPersonPresent = "person_present";  // where: a node; 1 someone there, 0 nobody
+
   std::string what;   // the kind, e.g. "door_open", "person_present"
   std::string where;  // a node, edge or door id
   Time when{};
   double value = 0;   // 1/0 for binary observations, a measurement otherwise
   std::string text{};  // anything else worth keeping, for people; may be empty
+  std::string source{};  // who saw it when not the robot: a building sensor's name; empty: the robot
 };
 
 // A robot-level error or a lost connection, until on_ready().
