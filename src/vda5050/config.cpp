@@ -31,7 +31,7 @@ Result<std::string> topic_level(const Field& robot, std::string_view key) {
 
 Result<Vda5050Config> parse_vda5050_config(const Field& robot) {
   RONDO_RETURN_IF_ERROR(robot.expect_keys({"kind", "broker", "interface_name", "manufacturer", "serial_number",
-                                           "map_id", "offline_after", "compatibility"}));
+                                           "map_id", "offline_after", "compatibility", "information"}));
   RONDO_ASSIGN_OR_RETURN(std::string kind, required_text(robot, "kind"));
   if (kind != "vda5050") return robot.error_at("kind", "is '" + kind + "', not vda5050");
   Vda5050Config c;
@@ -51,6 +51,9 @@ Result<Vda5050Config> parse_vda5050_config(const Field& robot) {
       return f->error("'" + mode + "' is not a known compatibility mode (only vda5050-lib-1.4)");
     }
     c.compat.vda5050_lib_1_4 = true;
+  }
+  if (auto f = robot.optional("information")) {
+    RONDO_ASSIGN_OR_RETURN(c.information, parse_information_rules(*f));
   }
   return c;
 }

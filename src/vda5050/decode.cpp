@@ -123,6 +123,39 @@ Result<std::vector<ActionState>> decode_action_states(const Field& root) {
   return out;
 }
 
+// A referenceValue: a string in the schema; some vehicles send numbers: keep their text.
+Result<ErrorReference> decode_reference(const Field& r) {
+  ErrorReference ref;
+  RONDO_ASSIGN_OR_RETURN(ref.reference_key, req_string(r, "referenceKey"));
+  RONDO_ASSIGN_OR_RETURN(Field value, r.required("referenceValue"));
+  if (value.is_string()) {
+    ref.reference_value = value.json().get<std::string>();
+  } else if (value.json().is_primitive() && !value.is_null()) {
+    ref.reference_value = value.json().dump();
+  } else {
+    return value.error("must be a string");
+  }
+  return ref;
+}
+
+Result<std::vector<Information>> decode_information(const Field& root) {
+  RONDO_ASSIGN_OR_RETURN(auto items, opt_items(root, "information"));
+  std::vector<Information> out;
+  for (const Field& i : items) {
+    Information info;
+    RONDO_ASSIGN_OR_RETURN(info.info_type, req_string(i, "infoType"));
+    RONDO_ASSIGN_OR_RETURN(auto refs, opt_items(i, "infoReferences"));
+    for (const Field& r : refs) {
+      RONDO_ASSIGN_OR_RETURN(ErrorReference ref, decode_reference(r));
+      info.info_references.push_back(std::move(ref));
+    }
+    RONDO_ASSIGN_OR_RETURN(info.info_description, opt_string(i, "infoDescription"));
+    RONDO_ASSIGN_OR_RETURN(info.info_level, opt_string(i, "infoLevel"));
+    out.push_back(std::move(info));
+  }
+  return out;
+}
+
 Result<std::vector<VehicleError>> decode_errors(const Field& root) {
   RONDO_ASSIGN_OR_RETURN(Field list, root.required("errors"));
   RONDO_ASSIGN_OR_RETURN(auto items, list.items());
@@ -136,17 +169,7 @@ Result<std::vector<VehicleError>> decode_errors(const Field& root) {
     RONDO_ASSIGN_OR_RETURN(v.error_description, opt_string(e, "errorDescription"));
     RONDO_ASSIGN_OR_RETURN(auto refs, opt_items(e, "errorReferences"));
     for (const Field& r : refs) {
-      ErrorReference ref;
-      RONDO_ASSIGN_OR_RETURN(ref.reference_key, req_string(r, "referenceKey"));
-      // The value is a string in the schema; some vehicles send numbers: keep their text.
-      RONDO_ASSIGN_OR_RETURN(Field value, r.required("referenceValue"));
-      if (value.is_string()) {
-        ref.reference_value = value.json().get<std::string>();
-      } else if (value.json().is_primitive() && !value.is_null()) {
-        ref.reference_value = value.json().dump();
-      } else {
-        return value.error("must be a string");
-      }
+      RONDO_ASSIGN_OR_RETURN(ErrorReference ref, decode_reference(r));
       v.error_references.push_back(std::move(ref));
     }
     out.push_back(std::move(v));
@@ -210,6 +233,7 @@ Result<State> decode_state_fields(const Field& root) {
   RONDO_ASSIGN_OR_RETURN(s.action_states, decode_action_states(root));
   RONDO_ASSIGN_OR_RETURN(s.battery_state, decode_battery(root));
   RONDO_ASSIGN_OR_RETURN(s.errors, decode_errors(root));
+  RONDO_ASSIGN_OR_RETURN(s.information, decode_information(root));
   RONDO_ASSIGN_OR_RETURN(s.agv_position, decode_position(root));
   return s;
 }

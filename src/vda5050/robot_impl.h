@@ -13,6 +13,7 @@
 #include "rondo/vda5050/connection_watch.h"
 #include "rondo/vda5050/header.h"
 #include "rondo/vda5050/inbox.h"
+#include "rondo/vda5050/information.h"
 #include "rondo/vda5050/mqtt_client.h"
 #include "rondo/vda5050/order_builder.h"
 #include "rondo/vda5050/progress.h"
@@ -78,6 +79,7 @@ struct Vda5050Robot::Impl {
   Inbox inbox;
   ProgressTracker progress;
   ConnectionWatch watch;
+  InformationReader information;
   std::unique_ptr<MqttClient> client;
   exec::TimerId check_timer = 0;
   exec::TimerId retry_timer = 0;

@@ -19,6 +19,7 @@ Result<std::unique_ptr<Vda5050Robot>> Vda5050Robot::create(exec::Clock& clock, c
   RONDO_RETURN_IF_ERROR(validate(config.topics));
   RONDO_ASSIGN_OR_RETURN(const std::string uri, paho_server_uri(config.broker));
   (void)uri;
+  RONDO_RETURN_IF_ERROR(check_information_places(config.information, map));
   auto impl = std::make_unique<Impl>(clock, map, std::move(config), std::move(options));
   return std::unique_ptr<Vda5050Robot>(new Vda5050Robot(std::move(impl)));
 }
@@ -57,6 +58,7 @@ Vda5050Robot::Impl::Impl(exec::Clock& c, const map::TopoMap& m, Vda5050Config cf
       headers(config.topics.manufacturer, config.topics.serial_number),
       inbox(config.topics.manufacturer, config.topics.serial_number),
       watch(config.offline_after, config.compat),
+      information(config.information, m),
       location(options.start),
       order_prefix(fmt::format("rondo-{}", std::chrono::duration_cast<std::chrono::milliseconds>(
                                                std::chrono::system_clock::now().time_since_epoch())
@@ -211,6 +213,11 @@ void Vda5050Robot::Impl::on_state(State s) {
   }
   update_faults();
   for (const ProgressEvent& e : events) handle(e);
+  // What the vehicle tells of the building (the deployment's information rules).
+  InformationReader::Reading seen = information.read(s.information, now);
+  for (std::string& why : seen.ignored) ignore(why);
+  for (exec::Observation& o : seen.seen)
+    deliver([o = std::move(o)](exec::RobotListener& l) { l.on_observation(o); });
 }
 
 std::optional<map::Pose> Vda5050Robot::Impl::position() const {

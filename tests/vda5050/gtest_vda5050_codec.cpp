@@ -149,6 +149,28 @@ TEST(Vda5050Decode, FullState) {
   EXPECT_DOUBLE_EQ(s->battery_state.battery_charge, 87.5);
   ASSERT_TRUE(s->agv_position.has_value());
   EXPECT_EQ(s->agv_position->map_id, "g4s");
+  EXPECT_TRUE(s->information.empty());
+}
+
+TEST(Vda5050Decode, InformationEntries) {
+  Json j = sample_state_json();
+  j["information"] = Json::parse(R"([{"infoType":"DOOR_STATE","infoLevel":"INFO","infoDescription":"door report",
+      "infoReferences":[{"referenceKey":"doorId","referenceValue":"A-120-door"},{"referenceKey":"level","referenceValue":2}]},
+      {"infoType":"BATTERY_SAVER","infoLevel":"DEBUG"}])");
+  auto s = decode_state(j.dump());
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  ASSERT_EQ(s->information.size(), 2u);
+  EXPECT_EQ(s->information[0].info_type, "DOOR_STATE");
+  EXPECT_EQ(s->information[0].info_description, "door report");
+  EXPECT_EQ(s->information[0].info_level, "INFO");
+  ASSERT_EQ(s->information[0].info_references.size(), 2u);
+  EXPECT_EQ(s->information[0].info_references[0].reference_value, "A-120-door");
+  EXPECT_EQ(s->information[0].info_references[1].reference_value, "2");
+  EXPECT_TRUE(s->information[1].info_references.empty());
+  j["information"] = Json::parse(R"([{"infoLevel":"INFO"}])");
+  auto bad = decode_state(j.dump());
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("information[0]: missing field 'infoType'"), std::string::npos) << bad.error().message;
 }
 
 TEST(Vda5050Decode, MalformedStatesAreErrorsThatNameTheField) {

@@ -9,16 +9,20 @@
 //     map_id: g4s_y2
 //     offline_after: 45s            # optional; default 45s
 //     compatibility: vda5050-lib-1.4  # optional; only for that peer (see compat.h)
+//     information: [...]            # optional; the state's information[] entries that are
+//                                   # observations (information.h)
 //
 //   Result<Vda5050Config> c = parse_vda5050_config(doc.root().required("robot").value());
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "rondo/core/document.h"
 #include "rondo/core/result.h"
 #include "rondo/core/time.h"
 #include "rondo/vda5050/compat.h"
+#include "rondo/vda5050/information.h"
 #include "rondo/vda5050/topics.h"
 
 namespace rondo::vda5050 {
@@ -29,6 +33,7 @@ struct Vda5050Config {
   std::string map_id;
   Duration offline_after = seconds(45);  // the specification asks for a state at least every 30 s
   Compatibility compat;
+  std::vector<InformationRule> information{};  // which information[] entries are observations
   bool operator==(const Vda5050Config&) const = default;
 };
 

@@ -142,6 +142,16 @@ struct VehicleError {
   bool operator==(const VehicleError&) const = default;
 };
 
+// An entry of the state's information[]: what the vehicle wants known, in its vendor's words.
+// Which of them are observations is the deployment's (information.h).
+struct Information {
+  std::string info_type{};                        // infoType, the vendor's name
+  std::vector<ErrorReference> info_references{};  // infoReferences (the same key/value pairs as errors)
+  std::string info_description{};                 // "" when absent
+  std::string info_level{};                       // INFO or DEBUG ("" when absent)
+  bool operator==(const Information&) const = default;
+};
+
 struct BatteryState {
   double battery_charge = 0;  // percent, 0..100
   bool charging = false;
@@ -174,6 +184,7 @@ struct State {
   std::vector<ActionState> action_states;
   BatteryState battery_state;
   std::vector<VehicleError> errors;
+  std::vector<Information> information;  // optional in what rondo reads (required by the schema)
   std::optional<AgvPosition> agv_position;
   bool operator==(const State&) const = default;
 };
