@@ -128,6 +128,7 @@ struct Endpoint {
 void add_task_endpoints(std::vector<Endpoint>& routes);
 void add_command_endpoints(std::vector<Endpoint>& routes);  // commands in words (rondo::lang)
 void add_robot_endpoints(std::vector<Endpoint>& routes);
+void add_observation_endpoints(std::vector<Endpoint>& routes);  // the building's sensors
 void add_meta_endpoints(std::vector<Endpoint>& routes);  // health, metrics, OpenAPI
 void add_dashboard_endpoints(std::vector<Endpoint>& routes);
 

@@ -127,6 +127,10 @@ Json document() {
   paths["/api/v1/routines/{name}"]["delete"] =
       op("Remove a routine (today's tasks stay).", responses({{200, "removed"}, {404, "no such routine"}}),
          Json::array({param("name", "path", "string", "the routine's name")}), false, true);
+  paths["/api/v1/observations"]["post"] =
+      op("An observation of the building's own sensors ({kind: door_open|edge_blocked|person_present, place, "
+         "value: 1|0, time?, source?, text?}): stored and acted on as the robot's own (docs/api.md).",
+         responses({{201, "{observation}"}, {400, "not JSON"}, {422, "a bad field, named"}}), Json::array(), true, true);
   paths["/api/v1/pause"]["post"] =
       op("Out of service ({halt?: bool, reason?}): nothing new starts, the robot docks; the running task "
          "finishes, or with halt goes back to the queue keeping its progress. Stored: a restart keeps it.",

@@ -181,6 +181,7 @@ Server::Server(ServiceContext context, ServerOptions options)
   add_task_endpoints(impl_->endpoints);
   add_command_endpoints(impl_->endpoints);
   add_robot_endpoints(impl_->endpoints);
+  add_observation_endpoints(impl_->endpoints);
   add_dashboard_endpoints(impl_->endpoints);
   for (const Endpoint& r : impl_->endpoints) impl_->add(r);
   Impl& im = *impl_;
