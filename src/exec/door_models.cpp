@@ -10,6 +10,17 @@ void DoorModels::observe(const std::string& door, Time when, bool open) {
   s.push_back({.time = when, .value = open});
 }
 
+bool DoorModels::observe_failed_edge(const std::string& door, Time when) {
+  std::vector<learn::BinarySample>& s = samples_[door];
+  if (!s.empty() && when - s.back().time < kSameLook) return false;
+  double& credit = failed_edge_credit_[door];
+  credit += kFailedEdgeWeight;
+  if (credit < 1 - 1e-9) return false;
+  credit -= 1;
+  s.push_back({.time = when, .value = false});
+  return true;
+}
+
 void DoorModels::refit(Time now, std::optional<Duration> window) {
   learn::EpisodeOptions options;
   options.zone = zone_;

@@ -32,6 +32,14 @@ class DoorModels {
   explicit DoorModels(const TimeZone& zone) : zone_(zone) {}
 
   void observe(const std::string& door, Time when, bool open);
+  // A failed attempt at an edge through `door` is weak evidence that the door is shut: it counts
+  // for kFailedEdgeWeight of a look, as one "closed" sample for every 1 / kFailedEdgeWeight such
+  // failures of the door (the credit is kept per door), and not at all within kSameLook of the
+  // door's last sample (a look at the door, which says more, or the last failure's). True when it
+  // added a sample. The weight is the share of failed door edges that met a shut door in the
+  // simulated buildings (docs/executor.md, "A failed door edge"; bench/door_evidence_bench.cpp).
+  static constexpr double kFailedEdgeWeight = 0.5;
+  bool observe_failed_edge(const std::string& door, Time when);
   // Fits every door's model on its observations since `now - window` (all of them when none);
   // older observations are forgotten.
   void refit(Time now, std::optional<Duration> window);
@@ -46,6 +54,7 @@ class DoorModels {
  private:
   TimeZone zone_;
   std::map<std::string, std::vector<learn::BinarySample>> samples_;
+  std::map<std::string, double> failed_edge_credit_;
   std::map<std::string, std::shared_ptr<const learn::EpisodeBinaryModel>> models_;
 };
 

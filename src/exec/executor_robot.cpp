@@ -8,6 +8,7 @@
 #include "attempt_laws.h"
 #include "charging.h"
 #include "dispatcher.h"
+#include "door_models.h"
 #include "loading_times.h"
 #include "rondo/exec/executor.h"
 #include "rondo/store/observations.h"
@@ -32,6 +33,15 @@ void Executor::learn_from(const EdgeAttempt& a) {
         {.start = a.start, .end = a.start + a.duration, .seconds = to_seconds(a.duration), .success = a.succeeded()});
     ++stats_.navigation_attempts;
     if (a.succeeded()) ++stats_.navigation_successes;
+    // A failed door edge is weak evidence of a shut door (door_models.h); what the door model
+    // takes of it is stored as a door observation, so that a restart learns the same.
+    if (!a.succeeded() && edge.door && door_models_.observe_failed_edge(*edge.door, a.start + a.duration)) {
+      const store::Observation o{.what = std::string(Observation::kDoorOpen), .where = *edge.door,
+                                 .when = a.start + a.duration, .value = 0,
+                                 .text = fmt::format("inferred from a failed attempt at edge {} (weak evidence)", edge.id),
+                                 .robot = options_.robot_name};
+      if (auto ok = store::add_observation(store_, o); !ok) book_.write_error(ok.error().message);
+    }
     return;
   }
   // An attempt the navigation monitor stopped had run this long and would have run longer: kept

@@ -104,5 +104,24 @@ TEST(DoorModels, RepeatedLooksWithinAMinuteCountOnce) {
   EXPECT_EQ(m.samples("d"), 3u);
 }
 
+// A failed door edge is half a look at a shut door: every second one adds a "closed" sample, and
+// none counts within a minute of the door's last sample (a look at the door says more).
+TEST(DoorModels, AFailedDoorEdgeIsHalfALookAtAShutDoor) {
+  static_assert(DoorModels::kFailedEdgeWeight == 0.5);
+  DoorModels m(london());
+  const Time t = london().parse_time("2026-11-23T10:00").value();
+  EXPECT_FALSE(m.observe_failed_edge("d", t));
+  EXPECT_TRUE(m.observe_failed_edge("d", t + minutes(5)));
+  EXPECT_EQ(m.samples("d"), 1u);
+  EXPECT_FALSE(m.observe_failed_edge("d", t + minutes(10)));
+  m.observe("d", t + minutes(15), true);  // the sensor saw it open
+  EXPECT_FALSE(m.observe_failed_edge("d", t + minutes(15) + seconds(10))) << "a look beats the failure";
+  EXPECT_TRUE(m.observe_failed_edge("d", t + minutes(20)));
+  EXPECT_EQ(m.samples("d"), 3u);
+  EXPECT_FALSE(m.observe_failed_edge("e", t)) << "the credit is per door";
+  m.refit(t + hours(1), std::nullopt);
+  ASSERT_TRUE(m.probability("d", t + minutes(20)).has_value());
+}
+
 }  // namespace
 }  // namespace rondo::exec
