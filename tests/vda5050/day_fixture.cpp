@@ -159,12 +159,33 @@ void VdaDay::start_vehicle(const std::string& node, double x, double y, double t
       std::vector<std::string>{node_, "tests/vda5050/peer/virtual_agv.js", "--broker", broker_->url(), "--interface",
                                "uagv", "--manufacturer", "acme", "--serial", "agv-7", "--map", "g4s_y2", "--node",
                                node, arg("x", x), arg("y", y), arg("theta", theta), arg("speed", kVehicleSpeed),
-                               arg("time-lapse", speed_), "--state-interval=1000"},
+                               arg("time-lapse", speed_), "--state-interval=1000", "--information-file",
+                               (dir_ / "information.json").string()},
       dir_ / "virtual_agv.log");
 }
 
 void VdaDay::kill_vehicle() {
   if (vehicle_) vehicle_->kill_hard();
+}
+
+bool VdaDay::tell_information(const Json& entries, std::chrono::milliseconds deadline) {
+  const std::filesystem::path log = dir_ / "virtual_agv.log";
+  const auto log_has = [&log](const std::string& line) {
+    std::ifstream in(log);
+    for (std::string l; std::getline(in, l);)
+      if (l == line) return true;
+    return false;
+  };
+  // Before it is ready the vehicle has no handler yet, and SIGUSR2 would end it.
+  if (!vehicle_ || vehicle_->pid() <= 0 || !poll_until([&] { return log_has("ready"); }, deadline)) return false;
+  const std::filesystem::path file = dir_ / "information.json";
+  {
+    std::ofstream out(dir_ / "information.json.new");
+    out << entries.dump();
+  }
+  std::filesystem::rename(dir_ / "information.json.new", file);  // the vehicle never reads half of it
+  ::kill(vehicle_->pid(), SIGUSR2);
+  return poll_until([&] { return log_has("information: " + entries.dump()); }, deadline);
 }
 
 void VdaDay::freeze_vehicle(bool frozen) {
@@ -182,7 +203,7 @@ void VdaDay::run(const DayOptions& o) {
     tasks << fmt::format(
         "  - {{id: {}, activity: visit {}, window: {{release: \"{}\", deadline: \"{}\"}}, duration: 1m, "
         "priority: 2, start_node: {}, actions: [{}]}}\n",
-        t.id, t.node, utc(now - 1min), utc(now + 1h), t.node, t.action_yaml);
+        t.id, t.node, utc(now + t.release_in), utc(now + 1h), t.node, t.action_yaml);
   }
   tasks.close();
   const std::filesystem::path source = std::filesystem::absolute("examples/g4s");
@@ -193,7 +214,7 @@ void VdaDay::run(const DayOptions& o) {
       << "executor: " << o.executor_yaml << "\n"
       << "robot: {kind: vda5050, broker: \"" << broker_->url() << "\", interface_name: uagv, manufacturer: acme, "
       << "serial_number: agv-7, map_id: g4s_y2, offline_after: " << o.offline_after
-      << ", compatibility: vda5050-lib-1.4}\n";
+      << ", compatibility: vda5050-lib-1.4" << o.robot_yaml << "}\n";
   dep.close();
   auto deployment = app::load_deployment(dir_ / "deployment.yaml");
   if (!deployment) {

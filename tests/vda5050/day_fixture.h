@@ -41,6 +41,7 @@ struct DayTask {
   std::string id;
   std::string node;
   std::string action_yaml = "{name: noop, args: {duration: 3}}";  // 3 s on the vehicle
+  std::chrono::minutes release_in{-1};  // its window opens this long after the start (rondo's clock)
 };
 
 struct DayOptions {
@@ -49,6 +50,7 @@ struct DayOptions {
   std::string run_for = "3m";       // on rondo's clock
   std::string executor_yaml = "{}";  // the deployment's executor section
   std::string offline_after = "20s";
+  std::string robot_yaml = "";  // more keys of the robot section, e.g. ", information: [...]"
 };
 
 struct EventRow {
@@ -115,6 +117,9 @@ class VdaDay {
   void kill_vehicle();
   // SIGSTOP / SIGCONT: the vehicle falls silent with its connection open (no last will).
   void freeze_vehicle(bool frozen);
+  // The vehicle publishes a state whose information[] is `entries` (a JSON array), once it is
+  // ready; true when it said it did within `deadline`.
+  bool tell_information(const Json& entries, std::chrono::milliseconds deadline);
   Broker& broker() { return *broker_; }
   Spy& spy() { return *spy_; }
   const Spy& spy() const { return *spy_; }

@@ -74,6 +74,47 @@ TEST(Vda5050Day, TasksRunOnTheVehicleAndItsEdgeDurationsAreLearned) {
   expect_schemas_kept(*day);
 }
 
+// The vehicle tells of a door in its state's information[] (the deployment maps its DOOR_STATE
+// entries to door_open observations): a task in the room behind WayPoint11_WayPoint12, planned
+// with that door open, is blocked and the rest rescheduled when the vehicle reports the door
+// closed; when it reports the door open, the task is taken as an opportunity and done.
+TEST(Vda5050Day, ADoorTheVehicleReportsClosedBreaksTheAssumptionAndOpenIsTakenAsAnOpportunity) {
+  START_DAY(day);
+  constexpr const char* kDoor = "WayPoint11_WayPoint12";
+  const auto door_entry = [&](const char* state) {
+    return Json::array({Json{{"infoType", "DOOR_STATE"},
+                             {"infoLevel", "INFO"},
+                             {"infoDescription", "door report"},
+                             {"infoReferences", Json::array({Json{{"referenceKey", "doorId"}, {"referenceValue", kDoor}},
+                                                             Json{{"referenceKey", "state"}, {"referenceValue", state}}})}}});
+  };
+  // The room's task opens 5 min on (rondo's clock: 30 s here), so the door is reported before
+  // the vehicle could set off for it.
+  day->run({.tasks = {{.id = "hall", .node = "WayPoint3"},
+                      {.id = "room", .node = "WayPoint12", .release_in = std::chrono::minutes(5)}},
+            .run_for = "8m",
+            .robot_yaml = ", information: [{info_type: DOOR_STATE, kind: door_open, where_key: doorId, "
+                          "value_key: state, values: {OPEN: 1, CLOSED: 0}}]"});
+  ASSERT_TRUE(day->wait_for_event("assumptions", kDeadline, std::string("door ") + kDoor)) << day->event_text();
+  ASSERT_TRUE(day->tell_information(door_entry("CLOSED"), kDeadline));
+  ASSERT_TRUE(day->wait_for_event("blocked", kDeadline, std::string(kDoor) + " seen closed")) << day->event_text();
+  const auto blocked = day->events_named("blocked");
+  ASSERT_FALSE(blocked.empty());
+  EXPECT_EQ(blocked.front().task_id, "room");
+  EXPECT_EQ(blocked.front().code, "assumption broken");
+  ASSERT_TRUE(day->wait_for_event("rescheduled", kDeadline, std::string(kDoor) + " seen closed")) << day->event_text();
+  EXPECT_FALSE(task_ended(*day, "room", "navigating")) << day->event_text();
+  ASSERT_TRUE(day->tell_information(door_entry("OPEN"), kDeadline));
+  ASSERT_TRUE(day->wait_for_event("opportunity taken", kDeadline, std::string(kDoor) + " seen open"))
+      << day->event_text();
+  EXPECT_EQ(day->events_named("opportunity").front().task_id, "room");
+  EXPECT_TRUE(day->wait_for_event("succeeded", kDeadline, "")) << day->event_text();
+  ASSERT_TRUE(day->wait_run_done(kDeadline));
+  ASSERT_EQ(day->run_error(), "");
+  for (const char* t : {"hall", "room"}) EXPECT_TRUE(task_ended(*day, t, "succeeded")) << t << "\n" << day->event_text();
+  expect_schemas_kept(*day);
+}
+
 TEST(Vda5050Day, ACancelInTheMiddleOfAnEdgeEndsOnlyWithTheVehiclesFinished) {
   START_DAY(day);
   // A navigation overrun at once: the monitor cancels the first edge while the vehicle drives it

@@ -8,6 +8,10 @@
 //
 // It prints one line "ready" on stdout once it is connected and has published ONLINE, and stops
 // cleanly (OFFLINE on `connection`) on SIGTERM or SIGINT. Installed by `npm ci` (scripts/setup).
+//
+// With --information-file FILE, on SIGUSR2 (Node keeps SIGUSR1 for its debugger) it reads FILE (a JSON array of VDA 5050 information
+// entries) and publishes a state whose information[] is that array (the tests' command channel:
+// a door seen closed, then open). A file it cannot read or parse is said on stderr and ignored.
 "use strict";
 
 const { parseArgs } = require("node:util");
@@ -28,6 +32,7 @@ const { values } = parseArgs({
     "time-lapse": { type: "string", default: "1" },
     "tick-rate": { type: "string", default: "50" },
     "state-interval": { type: "string", default: "30000" },
+    "information-file": { type: "string" },
   },
 });
 
@@ -85,6 +90,22 @@ async function stop() {
 }
 process.on("SIGTERM", stop);
 process.on("SIGINT", stop);
+
+if (values["information-file"]) {
+  const fs = require("node:fs");
+  process.on("SIGUSR2", () => {
+    let information;
+    try {
+      information = JSON.parse(fs.readFileSync(values["information-file"], "utf8"));
+      if (!Array.isArray(information)) throw new Error("not a JSON array");
+    } catch (err) {
+      console.error(`virtual_agv: --information-file: ${err.message}`);
+      return;
+    }
+    controller.updatePartialState({ information }, true);
+    console.log(`information: ${JSON.stringify(information)}`);
+  });
+}
 
 controller.start().then(
   () => console.log("ready"),
