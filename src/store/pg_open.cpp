@@ -35,18 +35,23 @@ void configure(db::Connection& db, const StoreOptions& options) {
 
 }  // namespace
 
-Result<std::unique_ptr<db::Connection>> open_postgres(const StoreLocation& location, const StoreOptions& options) {
-  const std::string name = location.name();
+Result<std::unique_ptr<db::Connection>> connect_postgres(const StoreLocation& location,
+                                                         std::string_view application_name) {
   db::PgAddress address{.conninfo = location.url, .password = std::nullopt};
+  address.application_name = std::string(application_name);
   if (location.password_file) {
     RONDO_ASSIGN_OR_RETURN(address.password, read_password_file(*location.password_file));
   }
-  std::unique_ptr<db::Connection> db;
   try {
-    db = db::PgConnection::connect(address);
+    return std::unique_ptr<db::Connection>(db::PgConnection::connect(address));
   } catch (const db::Failure& f) {
-    return failure_error(name, "opening", f);
+    return failure_error(location.name(), "opening", f);
   }
+}
+
+Result<std::unique_ptr<db::Connection>> open_postgres(const StoreLocation& location, const StoreOptions& options) {
+  const std::string name = location.name();
+  RONDO_ASSIGN_OR_RETURN(std::unique_ptr<db::Connection> db, connect_postgres(location, "rondo"));
   RONDO_RETURN_IF_ERROR(guarded(std::string_view(name), "setting the session up", [&]() -> Status {
     configure(*db, options);
     return {};

@@ -143,12 +143,61 @@ DROP TABLE v5_single_robot;
 CREATE INDEX traversals_by_robot_start ON traversals (robot, start_ms);
 )sql";
 
+// Active and standby (docs/storage.md, "The lease"): the one-row `lease` holds the epoch, bumped by
+// each new active, and when its holder last renewed it (the server's clock). Every write of a
+// session that has set `rondo.epoch` (the active's executive) is checked against it by a trigger,
+// in the writing transaction: a stale epoch is refused by the database (SQLSTATE RF001). The check
+// takes FOR KEY SHARE on the lease row, which a takeover's FOR UPDATE waits for, so a write is
+// either committed before the new epoch or refused after it; renewals (a non-key UPDATE) do not
+// wait for writers. Events record the epoch they were written under (0: no epoch, a tool's write).
+constexpr std::string_view kSchemaV6 = R"sql(
+CREATE TABLE lease (
+  id          INTEGER PRIMARY KEY NOT NULL CHECK (id = 1),
+  epoch       BIGINT  NOT NULL,
+  holder      TEXT    NOT NULL DEFAULT '',
+  taken_ms    BIGINT  NOT NULL DEFAULT 0,
+  renewed_ms  BIGINT  NOT NULL DEFAULT 0
+);
+INSERT INTO lease (id, epoch) VALUES (1, 0);
+ALTER TABLE events ADD COLUMN epoch BIGINT NOT NULL DEFAULT 0;
+CREATE FUNCTION rondo_fence() RETURNS trigger LANGUAGE plpgsql AS $$
+DECLARE
+  mine text := NULLIF(current_setting('rondo.epoch', true), '');
+  now_at bigint;
+BEGIN
+  IF mine IS NOT NULL THEN
+    SELECT epoch INTO now_at FROM lease WHERE id = 1 FOR KEY SHARE;
+    IF now_at IS DISTINCT FROM mine::bigint THEN
+      RAISE EXCEPTION 'stale epoch %: the lease is at epoch % (another rondo serve is active); nothing written',
+        mine, now_at USING ERRCODE = 'RF001';
+    END IF;
+  END IF;
+  IF TG_LEVEL = 'ROW' THEN
+    IF mine IS NOT NULL THEN NEW.epoch := mine::bigint; END IF;  -- a restore (pg_restore) keeps its own
+    RETURN NEW;
+  END IF;
+  RETURN NULL;
+END $$;
+CREATE TRIGGER events_fenced BEFORE INSERT ON events FOR EACH ROW EXECUTE FUNCTION rondo_fence();
+CREATE TRIGGER tasks_fenced BEFORE INSERT OR UPDATE OR DELETE ON tasks FOR EACH STATEMENT EXECUTE FUNCTION rondo_fence();
+CREATE TRIGGER traversals_fenced BEFORE INSERT OR UPDATE OR DELETE ON traversals
+  FOR EACH STATEMENT EXECUTE FUNCTION rondo_fence();
+CREATE TRIGGER observations_fenced BEFORE INSERT OR UPDATE OR DELETE ON observations
+  FOR EACH STATEMENT EXECUTE FUNCTION rondo_fence();
+CREATE TRIGGER robot_state_fenced BEFORE INSERT OR UPDATE OR DELETE ON robot_state
+  FOR EACH STATEMENT EXECUTE FUNCTION rondo_fence();
+CREATE TRIGGER meta_fenced BEFORE INSERT OR UPDATE OR DELETE ON meta FOR EACH STATEMENT EXECUTE FUNCTION rondo_fence();
+CREATE TRIGGER requests_fenced BEFORE INSERT OR UPDATE OR DELETE ON requests
+  FOR EACH STATEMENT EXECUTE FUNCTION rondo_fence();
+)sql";
+
 constexpr Migration kPgMigrations[] = {
     {1, "tasks, task_events (append-only), traversals, observations", kSchemaV1},
     {2, "events with subject and outcome code; task source and progress; robot_state; meta", kSchemaV2},
     {3, "requests: the queue of requests written by other processes (rondo task add --data)", kSchemaV3},
     {4, "tasks: planned start and end", kSchemaV4},
     {5, "the robot of every task, event, traversal and observation", kSchemaV5},
+    {6, "the lease of the active executive (its epoch) and the epoch of every event", kSchemaV6},
 };
 
 }  // namespace

@@ -151,12 +151,28 @@ DROP TABLE v5_single_robot;
 CREATE INDEX traversals_by_robot_start ON traversals (robot, start_ms);
 )sql";
 
+// The lease (pg_schema.cpp, version 6) in meaning: an SQLite store is used by one executive
+// process, so its epoch stays 0 and nothing checks it; the table and the column keep the two
+// schemas alike.
+constexpr std::string_view kSchemaV6 = R"sql(
+CREATE TABLE lease (
+  id          INTEGER PRIMARY KEY NOT NULL CHECK (id = 1),
+  epoch       INTEGER NOT NULL,
+  holder      TEXT    NOT NULL DEFAULT '',
+  taken_ms    INTEGER NOT NULL DEFAULT 0,
+  renewed_ms  INTEGER NOT NULL DEFAULT 0
+) STRICT;
+INSERT INTO lease (id, epoch) VALUES (1, 0);
+ALTER TABLE events ADD COLUMN epoch INTEGER NOT NULL DEFAULT 0;
+)sql";
+
 constexpr Migration kSqliteMigrations[] = {
     {1, "tasks, task_events (append-only), traversals, observations", kSchemaV1},
     {2, "events with subject and outcome code; task source and progress; robot_state; meta", kSchemaV2},
     {3, "requests: the queue of requests written by other processes (rondo task add --data)", kSchemaV3},
     {4, "tasks: planned start and end", kSchemaV4},
     {5, "the robot of every task, event, traversal and observation", kSchemaV5},
+    {6, "the lease of the active executive (its epoch) and the epoch of every event", kSchemaV6},
 };
 
 }  // namespace

@@ -21,6 +21,8 @@ Error failure_error(std::string_view name, std::string_view doing, const db::Fai
       return Error::storage(fmt::format("{}: {}: the database is corrupt ({})", name, doing, f.what()));
     case db::FailureKind::kUnreachable:
       return Error::invalid(fmt::format("{}: {}: cannot connect: {}", name, doing, f.what()));
+    case db::FailureKind::kFenced:
+      return Error{ErrorCode::kConflict, fmt::format("{}: {}: {}", name, doing, f.what())};
     case db::FailureKind::kStorage:
       break;
   }

@@ -38,7 +38,8 @@ inline db::Connection& connection(const Store& store) {
 SQLite::Database* sqlite_database(const Store& store);
 
 // The Error for a failed database call on `name` (a file or URL) while doing `doing`. Not a
-// database, or no connection, is bad input (kInvalidInput); everything else kStorage.
+// database, or no connection, is bad input (kInvalidInput); a write the database refused for a stale
+// epoch (lease.h) kConflict; everything else kStorage.
 Error failure_error(std::string_view name, std::string_view doing, const db::Failure& f);
 Error sqlite_error(const std::filesystem::path& file, std::string_view doing, const SQLite::Exception& e);
 

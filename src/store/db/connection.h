@@ -30,6 +30,7 @@ enum class FailureKind {
   kNotADatabase,   // the file or server holds something that is not a database we can read
   kCorrupt,        // the database itself is damaged
   kUnreachable,    // no connection could be made (bad address, server down, refused login)
+  kFenced,         // the database refused a write of a stale epoch: another executive is active
 };
 
 class Failure : public std::runtime_error {
