@@ -2,6 +2,9 @@
 // deployment's simulated robot and world, with its store in a data folder and the HTTP API of
 // rondo::service. It runs until SIGTERM or SIGINT, then stops taking requests, lets the requests
 // in progress (and so the commit in progress) finish, halts the robot and returns 0.
+// On a PostgreSQL store several may run: the one that holds the lease is the active executive, the
+// others are standbys that answer 503 until they take it (then they restore the executive from the
+// store as a restart does). An active that loses the lease steps down and is a standby again.
 //
 //   ServeRequest r{.deployment = *load_deployment(file), .data = "rondo-data"};
 //   Result<int> code = serve_deployment(r, std::cerr);
@@ -33,6 +36,14 @@ struct ServeRequest {
   std::optional<std::filesystem::path> token_file;
   double speed = 1.0;
   int max_streams = 64;  // event streams open at once; each holds an HTTP thread, as many again answer
+  // On PostgreSQL, the lease (store/lease.h; docs/operations.md, "Active and standby"), in wall
+  // time: a standby tries to take it every `lease_poll`; the active renews it every `lease_renew`
+  // and stops commanding the robot `lease_trust` after its last renewal was sent unless renewed
+  // again; a holder not renewed for `lease_stale` (by the database's clock) is cut off.
+  Duration lease_poll = std::chrono::milliseconds(500);
+  Duration lease_renew = seconds(1);
+  Duration lease_trust = seconds(2);
+  Duration lease_stale = seconds(3);
 };
 
 // kInvalidInput (exit 2) for a bad deployment, token file, or a non-loopback host without a token;

@@ -132,6 +132,7 @@ Reply metrics_reply(Api& api) {
         "# HELP rondo_event_streams Open event streams.\n# TYPE rondo_event_streams gauge\nrondo_event_streams {}\n",
         api.streams.load());
     reply.text += api.metrics.prometheus();
+    if (api.ctx.role) reply.text += api.ctx.role->prometheus();
   }
   return reply;
 }

@@ -167,6 +167,10 @@ Reply health(Api& api, const httplib::Request&) {
   return api.on_clock([&api] {
     Reply r;
     r.body = Json{{"status", "ok"}, {"deployment", api.ctx.deployment}, {"time", format_time(api.ctx.clock.now())}};
+    if (api.ctx.role) {
+      r.body["role"] = api.ctx.role->active() ? "active" : "standby";
+      r.body["epoch"] = api.ctx.role->epoch();
+    }
     return r;
   });
 }

@@ -29,6 +29,7 @@
 #include "rondo/fleet/fleet.h"
 #include "rondo/lang/places.h"
 #include "rondo/map/topo_map.h"
+#include "rondo/service/service_role.h"
 #include "rondo/store/store.h"
 
 namespace rondo::service {
@@ -46,6 +47,9 @@ struct ServiceContext {
   std::string deployment;  // its name, for /healthz and /metrics
   // The places of commands in words (rooms, aliases, people); nothing: the map's node names.
   const lang::Places* places = nullptr;
+  // Active or standby, the epoch and the lease's age, for /healthz and /metrics (service_role.h);
+  // nothing: no lease (an SQLite store).
+  const ServiceRole* role = nullptr;
 };
 
 struct ServerOptions {
