@@ -24,12 +24,14 @@ Result<std::string> read_password_file(const std::filesystem::path& file) {
   return line;
 }
 
-// lock_timeout plays SQLite's busy timeout: how long a statement waits for another's lock.
+// lock_timeout plays SQLite's busy timeout: how long a statement waits for another's lock;
+// statement_timeout bounds a statement's whole run (0: none).
 // synchronous_commit off is SQLite's synchronous=OFF: a commit is atomic, not yet on disk.
 void configure(db::Connection& db, const StoreOptions& options) {
-  db.exec_script(fmt::format("SET lock_timeout = {}; SET synchronous_commit = {}; SET client_min_messages = warning",
-                             std::max<std::int64_t>(options.busy_timeout.count(), 1),
-                             options.sync_commits ? "on" : "off"));
+  db.exec_script(fmt::format(
+      "SET lock_timeout = {}; SET statement_timeout = {}; SET synchronous_commit = {}; SET client_min_messages = warning",
+      std::max<std::int64_t>(options.busy_timeout.count(), 1), std::max<std::int64_t>(options.statement_timeout.count(), 0),
+      options.sync_commits ? "on" : "off"));
   if (options.mode == OpenMode::kReadOnly) db.exec_script("SET default_transaction_read_only = on");
 }
 

@@ -20,6 +20,7 @@
 #include "rondo/store/task_table.h"
 #include "store/pg_cluster.h"
 #include "store/temp_db.h"
+#include "store_access.h"
 
 namespace rondo::store {
 namespace {
@@ -98,6 +99,18 @@ TEST_F(PostgresStore, OpensMigratesAndStampsTheDatabase) {
   auto again = Store::open(location(), {.mode = OpenMode::kMustExist});
   ASSERT_TRUE(again.ok()) << again.error().message;
   EXPECT_TRUE(get_task(*again, "t1").ok());
+}
+
+TEST_F(PostgresStore, TheSessionHasAStatementTimeout) {
+  auto db = Store::open(location(), {.statement_timeout = std::chrono::milliseconds(1500)});
+  ASSERT_TRUE(db.ok()) << db.error().message;
+  EXPECT_EQ(db::query_text(connection(*db), "SHOW statement_timeout"), "1500ms");
+  auto fallback = Store::open(location());
+  ASSERT_TRUE(fallback.ok());
+  EXPECT_EQ(db::query_text(connection(*fallback), "SHOW statement_timeout"), "1min");
+  auto none = Store::open(location(), {.statement_timeout = Duration{0}});
+  ASSERT_TRUE(none.ok());
+  EXPECT_EQ(db::query_text(connection(*none), "SHOW statement_timeout"), "0");
 }
 
 TEST_F(PostgresStore, AnEmptyDatabaseIsNoStoreForReadersAndMustExist) {

@@ -68,6 +68,10 @@ struct StoreOptions {
   // survives a power cut. False (simulated runs, which a seed reproduces): synchronous=OFF, commits
   // still atomic against a crash of the process but not of the machine.
   bool sync_commits = true;
+  // PostgreSQL: the longest a statement may run on the server before it is cancelled (kStorage
+  // "canceling statement due to statement timeout"), so that a stuck statement cannot hold the
+  // executor's thread for good; 0: no limit. SQLite's statements are local: no limit there.
+  Duration statement_timeout = seconds(60);
 };
 
 // One connection to one database. Movable, not copyable; closing is the destructor.
