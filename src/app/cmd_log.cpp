@@ -208,7 +208,7 @@ void add_log_commands(CLI::App& root, CommandContext& ctx) {
   auto archive_args = std::make_shared<ArchiveArgs>();
   CLI::App* archive = log->add_subcommand(
       "archive", "Move old events, traversals and finished tasks to an archive database (retention)");
-  archive->add_option("--db", archive_args->db, "The SQLite database file (must exist; may be in use)")->required();
+  archive->add_option("--db", archive_args->db, "The store: an SQLite file (must exist; may be in use) or a postgresql:// URL")->required();
   archive->add_option("--older-than", archive_args->older_than,
                       "Age counted back from the store's latest record: 90d, 2160h (at least the 14-day learning window)")
       ->required();

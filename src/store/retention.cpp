@@ -1,5 +1,6 @@
 // archive_old_records: old finished tasks with their events, old events about no task and old
-// traversals move to an archive database and leave the live store (backup.h).
+// traversals move to an archive database (SQLite) and leave the live store (backup.h), from an
+// SQLite store (ATTACH) or a PostgreSQL one (read, copied, then deleted).
 #include <SQLiteCpp/Database.h>
 #include <SQLiteCpp/Statement.h>
 #include <SQLiteCpp/Transaction.h>
@@ -10,7 +11,10 @@
 #include <vector>
 
 #include "rondo/store/backup.h"
+#include "db/dialect.h"
+#include "migrations.h"
 #include "store_access.h"
+#include "write_tx.h"
 
 namespace rondo::store {
 namespace {
@@ -57,6 +61,111 @@ void add_missing_archive_columns(SQLite::Database& db) {
   }
 }
 
+// A table of the archive as this build's SQLite schema has it: its columns and their types.
+struct ArchiveTable {
+  std::string name;
+  std::vector<std::pair<std::string, std::string>> columns;  // name, declared type
+};
+
+// Makes (or brings up to date) the archive's tables from a PostgreSQL store: SQLite's schema of this
+// build is made in memory by the SQLite migrations, its CREATE TABLE texts become the archive's
+// ("CREATE TABLE IF NOT EXISTS"), and an older archive gains the columns added since.
+std::vector<ArchiveTable> prepare_archive(SQLite::Database& archive, const std::filesystem::path& file) {
+  SQLite::Database model(":memory:", SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE);
+  if (Status made = migrate(model, sqlite_migrations(), file); !made)
+    throw std::runtime_error("making the archive's schema: " + made.error().message);
+  std::vector<ArchiveTable> tables;
+  for (const char* name : {"tasks", "events", "traversals"}) {
+    ArchiveTable& t = tables.emplace_back(ArchiveTable{name, {}});
+    std::string sql = model.execAndGet(fmt::format("SELECT sql FROM sqlite_schema WHERE type = 'table' AND name = '{}'",
+                                                   name))
+                          .getString();
+    const std::string head = "CREATE TABLE " + t.name;
+    if (sql.rfind(head, 0) != 0) throw std::runtime_error("unexpected schema of table " + t.name);
+    archive.exec("CREATE TABLE IF NOT EXISTS " + t.name + sql.substr(head.size()));
+    SQLite::Statement columns(model, fmt::format("SELECT name, type FROM pragma_table_info('{}')", name));
+    while (columns.executeStep()) t.columns.emplace_back(columns.getColumn(0).getString(), columns.getColumn(1).getString());
+    std::vector<std::string> have;
+    SQLite::Statement existing(archive, fmt::format("SELECT name FROM pragma_table_info('{}')", name));
+    while (existing.executeStep()) have.push_back(existing.getColumn(0).getString());
+    for (const auto& [column, type] : t.columns)
+      if (std::find(have.begin(), have.end(), column) == have.end())
+        archive.exec(fmt::format("ALTER TABLE {} ADD COLUMN {} {}", name, column, type));
+  }
+  return tables;
+}
+
+// Copies the rows of `table` that `where` selects from PostgreSQL into the archive; a row already
+// there (an interrupted run's) is kept.
+void copy_rows(db::Connection& pg, SQLite::Database& archive, const ArchiveTable& table, const std::string& where) {
+  std::string names, marks;
+  for (const auto& [column, type] : table.columns) {
+    names += (names.empty() ? "" : ", ") + column;
+    marks += marks.empty() ? "?" : ", ?";
+  }
+  auto rows = pg.query(fmt::format("SELECT {} FROM {} WHERE {}", names, table.name, where));
+  SQLite::Statement insert(archive, fmt::format("INSERT OR IGNORE INTO {} ({}) VALUES ({})", table.name, names, marks));
+  while (rows->next()) {
+    for (std::size_t i = 0; i < table.columns.size(); ++i) {
+      const int column = static_cast<int>(i);
+      const std::string& type = table.columns[i].second;
+      if (rows->is_null(column))
+        insert.bind(column + 1);
+      else if (type == "INTEGER")
+        insert.bind(column + 1, static_cast<std::int64_t>(rows->int64(column)));
+      else if (type == "REAL")
+        insert.bind(column + 1, rows->real(column));
+      else
+        insert.bind(column + 1, rows->text(column));
+    }
+    insert.exec();
+    insert.reset();
+    insert.clearBindings();
+  }
+}
+
+// archive_old_records on a PostgreSQL store: the rows to move are read and deleted in one
+// repeatable-read transaction, and the archive is committed between the two, so an interruption
+// leaves them in both (a rerun copies nothing twice and deletes them) or in the store only.
+Result<ArchiveReport> archive_from_postgres(Store& store, Duration age, const std::filesystem::path& file) {
+  return guarded(store, "archiving old records", [&]() -> Result<ArchiveReport> {
+    db::Connection& pg = connection(store);
+    ArchiveReport report;
+    WriteTx tx(pg);
+    pg.exec_script("SET TRANSACTION ISOLATION LEVEL REPEATABLE READ");
+    const std::optional<std::int64_t> latest = db::query_int64(
+        pg,
+        "SELECT MAX(t) FROM (SELECT MAX(time_ms) AS t FROM events UNION ALL "
+        "SELECT MAX(start_ms + duration_ms) FROM traversals UNION ALL SELECT MAX(updated_ms) FROM tasks) AS latest");
+    if (!latest) return report;  // an empty store: nothing to archive
+    report.latest = time_from_db(*latest);
+    report.cut = *report.latest - age;
+    const std::int64_t cut = to_db(*report.cut);
+    const std::string old_tasks =
+        fmt::format("SELECT id FROM tasks WHERE state IN {} AND updated_ms < {}", kFinalStates, cut);
+    const std::string old_events = fmt::format("(task_id IS NULL AND time_ms < {0}) OR task_id IN ({1})", cut, old_tasks);
+    const std::string old_traversals = fmt::format("start_ms < {}", cut);
+    {
+      SQLite::Database archive(file.string(), SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE);
+      SQLite::Transaction archive_tx(archive, SQLite::TransactionBehavior::IMMEDIATE);
+      const std::vector<ArchiveTable> tables = prepare_archive(archive, file);
+      copy_rows(pg, archive, tables[0], "id IN (" + old_tasks + ")");
+      copy_rows(pg, archive, tables[1], old_events);
+      copy_rows(pg, archive, tables[2], old_traversals);
+      archive_tx.commit();
+    }
+    // The event log is append-only (a trigger refuses deletes); retention is the one exception,
+    // inside this transaction.
+    pg.exec_script("ALTER TABLE events DISABLE TRIGGER events_no_delete");
+    report.events = pg.exec("DELETE FROM events WHERE " + old_events);
+    pg.exec_script("ALTER TABLE events ENABLE TRIGGER events_no_delete");
+    report.tasks = pg.exec("DELETE FROM tasks WHERE id IN (" + old_tasks + ")");
+    report.traversals = pg.exec("DELETE FROM traversals WHERE " + old_traversals);
+    tx.commit();
+    return report;
+  });
+}
+
 }  // namespace
 
 Result<ArchiveReport> archive_old_records(Store& store, Duration age, Duration learning_window,
@@ -66,9 +175,9 @@ Result<ArchiveReport> archive_old_records(Store& store, Duration age, Duration l
                                       "would lose the traversals it reads",
                                       std::chrono::duration_cast<hours>(age).count(),
                                       std::chrono::duration_cast<hours>(learning_window).count()));
+  if (store.is_postgres()) return archive_from_postgres(store, age, archive);
   SQLite::Database* sqlite = sqlite_database(store);
-  if (sqlite == nullptr)
-    return Error::unsupported(fmt::format("{}: archiving old records is built for SQLite stores only", store.name()));
+  if (sqlite == nullptr) return Error::internal(fmt::format("{}: no SQLite connection", store.name()));
   return guarded(store, "archiving old records", [&]() -> Result<ArchiveReport> {
     SQLite::Database& db = *sqlite;
     ArchiveReport report;

@@ -18,6 +18,7 @@
 #include "rondo/store/requests.h"
 #include "rondo/store/store.h"
 #include "rondo/store/task_table.h"
+#include "rondo/store/traversal_log.h"
 #include "store/pg_cluster.h"
 #include "store/temp_db.h"
 #include "store_access.h"
@@ -308,15 +309,42 @@ TEST_F(PostgresStore, LogImportAndStatsOnAUrlMatchSqlite) {
   EXPECT_NE(on_pg.out.find("total (62 edges)"), std::string::npos) << on_pg.out;
 }
 
-// Retention ATTACHes an SQLite archive: built for SQLite stores only, and it says so.
-TEST_F(PostgresStore, ArchivingIsRefusedAsSqliteOnly) {
+// Retention on PostgreSQL: the same rows move as from an SQLite store (gtest_backup.cpp), into an
+// SQLite archive; the event log is append-only again afterwards, and a second run moves nothing.
+TEST_F(PostgresStore, ArchivesOldRecordsIntoAnSqliteFile) {
   auto db = Store::open(location());
   ASSERT_TRUE(db.ok()) << db.error().message;
+  const auto day = [](int d, int hour) { return Time{hours(24 * d + hour)}; };
+  for (int d = 0; d < 30; ++d) {
+    const std::string id = "day" + std::to_string(d);
+    ASSERT_TRUE(add_task(*db, {.id = id, .task = Json{{"id", id}}, .state = "queued", .created = day(d, 8),
+                               .updated = day(d, 8), .source = "test"}));
+    ASSERT_TRUE(set_task_state(*db, id, "succeeded", day(d, 9), "done", "done"));
+    ASSERT_TRUE(add_traversal(*db, {.edge_id = "e", .from = "a", .to = "b", .start = day(d, 10),
+                                    .duration = seconds(30), .success = true}));
+    ASSERT_TRUE(append_event(*db, {.time = day(d, 11), .subject = Subject::kRobot, .about = "robot",
+                                   .event = "battery", .code = "battery"}));
+  }
+  ASSERT_TRUE(add_task(*db, {.id = "waiting", .task = Json{{"id", "waiting"}}, .state = "queued", .created = day(0, 7),
+                             .updated = day(0, 7)}));
   TempDb file;
-  const auto archive = archive_old_records(*db, hours(24 * 90), hours(24 * 14), file.path());
-  ASSERT_FALSE(archive.ok());
-  EXPECT_EQ(archive.error().code, ErrorCode::kUnsupported);
-  EXPECT_FALSE(std::filesystem::exists(file.path()));
+  const auto r = archive_old_records(*db, hours(24 * 20), hours(24 * 14), file.path());
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(*r->cut, day(9, 11));
+  EXPECT_EQ(r->tasks, 10);
+  EXPECT_EQ(r->traversals, 10);
+  EXPECT_EQ(r->events, 10 * 2 + 9);
+  SQLite::Database archive(file.str(), SQLite::OPEN_READONLY);
+  EXPECT_EQ(archive.execAndGet("SELECT COUNT(*) FROM tasks").getInt64(), 10);
+  EXPECT_EQ(archive.execAndGet("SELECT COUNT(*) FROM events").getInt64(), 29);
+  EXPECT_EQ(archive.execAndGet("SELECT COUNT(*) FROM traversals").getInt64(), 10);
+  EXPECT_EQ(archive.execAndGet("SELECT task_json FROM tasks WHERE id = 'day3'").getString(), R"({"id":"day3"})");
+  EXPECT_EQ(list_tasks(*db).value().size(), 21u);
+  EXPECT_TRUE(get_task(*db, "waiting").ok());
+  EXPECT_NE(run_sql(url_, "DELETE FROM events"), "") << "append-only again";
+  const auto again = archive_old_records(*db, hours(24 * 20), hours(24 * 14), file.path());
+  ASSERT_TRUE(again.ok()) << again.error().message;
+  EXPECT_EQ(again->tasks + again->events + again->traversals, 0);
 }
 
 TEST(PostgresStoreWatch, AnSqliteStoreHasNoNotificationsToWatch) {

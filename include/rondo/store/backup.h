@@ -8,8 +8,8 @@
 //
 // A PostgreSQL store is backed up with PostgreSQL's pg_dump (custom format, one consistent
 // snapshot of the live database) into FILE.part, read back with pg_restore --list, and renamed to
-// FILE; pg_restore restores it (docs/operations.md). archive_old_records is SQLite's only: on a
-// PostgreSQL store it is kUnsupported.
+// FILE; pg_restore restores it (docs/operations.md). archive_old_records works on both: the
+// archive is an SQLite file either way.
 //
 // archive_old_records moves what is older than `age` (counted back from the latest time the store
 // records, so a simulated run's clock counts, not the machine's) into an archive file, an SQLite
