@@ -156,6 +156,77 @@ Result<std::optional<Takeover>> wait_for_lease(const ServeRequest& request, cons
   }
 }
 
+// The lease thread of an active: renews the lease every lease_renew from the moment it is taken
+// (through the restore, however long it takes); the robot's gate stays open lease_trust past each
+// renewal sent. A renewal that fails, or comes too late, closes the gate, marks the role stepped
+// down and, once the signal thread is up, wakes it with SIGUSR2.
+class LeaseKeeper {
+ public:
+  LeaseKeeper(store::Lease& lease, LeaseGate& gate, service::ServiceRole& role, const ServeRequest& request)
+      : lease_(lease), gate_(gate), role_(role), request_(request), thread_([this] { run(); }) {}
+  ~LeaseKeeper() {
+    {
+      std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+  }
+  LeaseKeeper(const LeaseKeeper&) = delete;
+  LeaseKeeper& operator=(const LeaseKeeper&) = delete;
+
+  // The signal thread to wake when the lease is lost (at once if it is lost already); nothing: no
+  // longer (it is about to be joined).
+  void wake_on_loss(std::optional<pthread_t> waiter) {
+    std::lock_guard lock(mutex_);
+    waiter_ = waiter;
+    if (waiter_ && lost_) pthread_kill(*waiter_, SIGUSR2);
+  }
+  bool lost() const {
+    std::lock_guard lock(mutex_);
+    return lost_;
+  }
+  std::string why() const {
+    std::lock_guard lock(mutex_);
+    return why_;
+  }
+
+ private:
+  void run() {
+    std::unique_lock lock(mutex_);
+    while (!stop_) {
+      lock.unlock();
+      const auto sent = LeaseGate::Clock::now();
+      const Status renewed = lease_.renew();
+      const bool in_time = LeaseGate::Clock::now() < sent + request_.lease_trust && gate_.open();
+      lock.lock();
+      if (!renewed || !in_time) {
+        gate_.close();
+        lost_ = true;
+        why_ = renewed ? "not renewed in time" : renewed.error().message;
+        role_.stepped_down();
+        if (waiter_) pthread_kill(*waiter_, SIGUSR2);
+        return;
+      }
+      gate_.open_until(sent + request_.lease_trust);
+      role_.renewed();
+      wake_.wait_for(lock, request_.lease_renew, [&] { return stop_; });
+    }
+  }
+
+  store::Lease& lease_;
+  LeaseGate& gate_;
+  service::ServiceRole& role_;
+  const ServeRequest& request_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  bool lost_ = false;
+  std::string why_;
+  std::optional<pthread_t> waiter_;
+  std::thread thread_;  // last: started once the rest is set up
+};
+
 // The executive, active: restored from the store (as after a restart), serving until a stop
 // signal, or, with a lease, until the lease is lost (then it steps down: nothing more is written or
 // commanded). Without a lease (SQLite) it is the only executive of its store.
@@ -170,10 +241,12 @@ Result<ActiveEnd> serve_active(const ServeRequest& request, const store::StoreLo
   // taken the lease, the database refuses them.
   store::Lease* lease = takeover ? &takeover->lease : nullptr;
   LeaseGate gate;
+  std::optional<LeaseKeeper> keeper;  // renewing from here on, through the restore
   if (lease) {
     RONDO_RETURN_IF_ERROR(store::fence_writes(db, *lease->epoch(), lease->holder()));
     gate.open_until(LeaseGate::Clock::now() + request.lease_trust);
     role.became_active(*lease->epoch());
+    keeper.emplace(*lease, gate, role, request);
   }
   RONDO_ASSIGN_OR_RETURN(std::vector<store::TaskRow> stored, store::list_tasks(db));
   RONDO_RETURN_IF_ERROR(store::set_meta(db, "serve.deployment", d.name));
@@ -289,20 +362,12 @@ Result<ActiveEnd> serve_active(const ServeRequest& request, const store::StoreLo
   };
   const ScopeExit join_http([&] { end_http(); });
   std::atomic<bool> stepped_down{false};
-  std::mutex keeper_mutex;  // the lease thread's: its stop flag and why the lease was lost
-  std::condition_variable keeper_wake;
-  bool keeper_stop = false;
-  std::string lost_why;
   std::thread waiter([&] {
     int sig = 0;
     sigwait(&signals, &sig);
     if (sig == SIGUSR2) {
       stepped_down = true;
-      std::string why;
-      {
-        std::lock_guard lock(keeper_mutex);  // the lease thread has let go of it by now
-        why = lost_why;
-      }
+      const std::string why = keeper ? keeper->why() : "";
       log << fmt::format("rondo serve: {}: lost the lease at epoch {} ({}): stepping down; nothing more is "
                          "written or commanded\n",
                          lease ? lease->holder() : "", lease ? *lease->epoch() : 0, why)
@@ -320,41 +385,11 @@ Result<ActiveEnd> serve_active(const ServeRequest& request, const store::StoreLo
   // SIGUSR1 wakes the signal thread when the clock's loop ends otherwise (an exception); a no-op
   // when a signal already woke it.
   const ScopeExit join_waiter([&] {
+    if (keeper) keeper->wake_on_loss(std::nullopt);
     pthread_kill(waiter.native_handle(), SIGUSR1);
     waiter.join();
   });
-  // The lease thread: renews every lease_renew; the gate stays open lease_trust past each renewal
-  // sent. A renewal that fails, or comes too late, closes the gate and wakes the signal thread
-  // (SIGUSR2): the service steps down.
-  std::thread keeper;
-  if (lease)
-    keeper = std::thread([&] {
-      std::unique_lock lock(keeper_mutex);
-      while (!keeper_stop) {
-        const auto sent = LeaseGate::Clock::now();
-        const Status renewed = lease->renew();
-        const bool in_time = LeaseGate::Clock::now() < sent + request.lease_trust && gate.open();
-        if (renewed && in_time) {
-          gate.open_until(sent + request.lease_trust);
-          role.renewed();
-        } else {
-          gate.close();
-          lost_why = renewed ? "not renewed in time" : renewed.error().message;
-          pthread_kill(waiter.native_handle(), SIGUSR2);
-          return;
-        }
-        keeper_wake.wait_for(lock, request.lease_renew, [&] { return keeper_stop; });
-      }
-    });
-  const ScopeExit join_keeper([&] {
-    if (!keeper.joinable()) return;
-    {
-      std::lock_guard lock(keeper_mutex);
-      keeper_stop = true;
-    }
-    keeper_wake.notify_all();
-    keeper.join();
-  });
+  if (keeper) keeper->wake_on_loss(waiter.native_handle());
   clock.run_until(clock.now() + hours(24 * 365 * 100));
   if (fenced && fenced->held_back() > 0)
     log << fmt::format("rondo serve: {} command(s) to the robot held back after the lease was lost\n",
@@ -419,12 +454,13 @@ Status serve_deployment(const ServeRequest& request, std::ostream& log) {
       return Status{};
     }
     const Result<ActiveEnd> ended = serve_active(request, where, &*takeover, role, port, signals, token, log);
-    if (!ended) return ended.error();
-    if (*ended == ActiveEnd::kStopped) {
+    if (!ended && role.active()) return ended.error();
+    if (!ended)  // lost while restoring: its writes were refused, or its connection ended
+      log << fmt::format("rondo serve: lost the lease while starting ({}): stepping down\n", ended.error().message);
+    if (ended && *ended == ActiveEnd::kStopped) {
       takeover->lease.release();  // a standby takes over at once
       return Status{};
     }
-    role.stepped_down();
     log << "rondo serve: standby again\n" << std::flush;
   }
 }
