@@ -71,12 +71,44 @@ std::optional<std::pair<std::size_t, Duration>> best_insertion(const Way& way, c
   return best;
 }
 
+// When the robot could be at the task's place: when it is next free, plus its way there.
+Duration soonest_there(const Task& t, const Way& way, const exec::Building& building) {
+  const auto node =
+      t.start_node.empty() ? std::optional<map::NodeIndex>(way.from) : building.map.find_node(t.start_node);
+  const Duration to = node ? building.travel.travel(way.from, *node, way.free) : exec::kUnreachable;
+  return (way.free - building.clock.now()) + to;
+}
+
+// What a unit costs on a robot's way: the expected travel it adds at its best positions (a drop
+// after its pickup), where every stop still starts in its window; nothing when it fits nowhere.
+struct Insertion {
+  Duration cost{0};
+  std::vector<std::pair<std::size_t, Stop>> inserts;  // position, stop: applied in order
+};
+std::optional<Insertion> insertion(const AllocationUnit& unit, const Way& way, const exec::Building& building) {
+  const std::optional<Duration> before = way_travel(way.from, way.free, way.stops, building.travel);
+  if (!before) return std::nullopt;
+  Way trial = way;
+  Insertion out;
+  std::size_t after = 0;
+  for (const Task* t : unit.tasks) {
+    const std::optional<Stop> stop = stop_of(*t, nullptr, building);
+    if (!stop) return std::nullopt;
+    const auto at = best_insertion(trial, *stop, after, building.travel);
+    if (!at) return std::nullopt;
+    trial.stops.insert(trial.stops.begin() + static_cast<std::ptrdiff_t>(at->first), *stop);
+    out.inserts.emplace_back(at->first, *stop);
+    after = at->first + 1;
+    out.cost = at->second - *before;
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<std::size_t> GreedyAllocator::allocate(const std::vector<AllocationUnit>& units,
                                                    const std::vector<const exec::Executor*>& robots,
                                                    const exec::Building& building) {
-  const exec::TravelCache& travel = building.travel;
   std::map<std::size_t, Way> ways;  // built when a unit has a choice to make
   auto way_of = [&](std::size_t r) -> Way& {
     auto it = ways.find(r);
@@ -100,59 +132,22 @@ std::vector<std::size_t> GreedyAllocator::allocate(const std::vector<AllocationU
     }
     const bool on_demand =
         std::any_of(unit.tasks.begin(), unit.tasks.end(), [](const Task* t) { return t->kind == TaskKind::kOnDemand; });
+    // The best robot so far: one the unit fits ranks before every one it does not; then by cost
+    // (added travel where it fits, else how soon the robot could be there).
     std::optional<std::size_t> best;
     Duration best_cost = Duration::max();
     bool best_fits = false;
     std::vector<std::pair<std::size_t, Stop>> best_inserts;
     for (const std::size_t r : unit.eligible) {
-      Way& way = way_of(r);
-      if (on_demand) {
-        // Soonest there: when the robot is next free, plus its way to the task's place.
-        const Task& t = *unit.tasks.front();
-        const auto node =
-            t.start_node.empty() ? std::optional<map::NodeIndex>(way.from) : building.map.find_node(t.start_node);
-        const Duration to = node ? travel.travel(way.from, *node, way.free) : exec::kUnreachable;
-        const Duration cost = (way.free - building.clock.now()) + to;
-        if (!best || cost < best_cost) {
-          best = r;
-          best_cost = cost;
-        }
-        continue;
-      }
-      const std::optional<Duration> before = way_travel(way.from, way.free, way.stops, travel);
-      Way trial = way;
-      std::vector<std::pair<std::size_t, Stop>> inserts;
-      bool fits = before.has_value();
-      std::size_t after = 0;
-      Duration cost{0};
-      for (const Task* t : unit.tasks) {
-        const std::optional<Stop> stop = stop_of(*t, nullptr, building);
-        if (!stop) {
-          fits = false;
-          break;
-        }
-        const auto at = fits ? best_insertion(trial, *stop, after, travel) : std::nullopt;
-        if (!at) {
-          fits = false;
-          break;
-        }
-        trial.stops.insert(trial.stops.begin() + static_cast<std::ptrdiff_t>(at->first), *stop);
-        inserts.emplace_back(at->first, *stop);
-        after = at->first + 1;
-        cost = at->second - *before;
-      }
-      if (!fits) {
-        // Fits nowhere: ranked after every robot it fits, by when this robot could first get there.
-        const Task& t = *unit.tasks.front();
-        const auto node = building.map.find_node(t.start_node);
-        cost =
-            (way.free - building.clock.now()) + (node ? travel.travel(way.from, *node, way.free) : exec::kUnreachable);
-      }
+      const Way& way = way_of(r);
+      std::optional<Insertion> fit = on_demand ? std::nullopt : insertion(unit, way, building);
+      const bool fits = fit.has_value();
+      const Duration cost = fits ? fit->cost : soonest_there(*unit.tasks.front(), way, building);
       if (!best || (fits && !best_fits) || (fits == best_fits && cost < best_cost)) {
         best = r;
         best_cost = cost;
         best_fits = fits;
-        best_inserts = fits ? inserts : decltype(inserts){};
+        best_inserts = fits ? std::move(fit->inserts) : decltype(best_inserts){};
       }
     }
     const std::size_t r = best.value_or(unit.eligible.front());
