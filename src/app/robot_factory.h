@@ -2,7 +2,7 @@
 // driven over MQTT (kind vda5050, docs/vda5050.md), with the figures the run report reads.
 //
 //   Result<DeploymentRobot> r = make_robot(deployment, parts, clock);
-//   exec::Executor executor(clock, *r->robot, ...);
+//   fleet.add_robot(*r->robot, options);
 //   r->charging_time();
 #pragma once
 
