@@ -167,6 +167,10 @@ TEST_F(ServeFailoverPostgres, AFrozenActiveStepsDownAndWritesAndCommandsNothing)
   const auto r = active.Post("/api/v1/tasks", tasks_body("s", 3), "application/json");
   ASSERT_TRUE(r);
   ASSERT_EQ(r->status, 201) << r->body;
+  // What it sent the robot while it held the lease is read before the freeze (the test reads a
+  // process's output only while it waits on it), so that only what comes after counts below.
+  EXPECT_FALSE(active_->wait_for(std::regex(R"(epoch 1: (first task step sent) to the robot)")).empty())
+      << active_->seen;
 
   ASSERT_EQ(::kill(active_->pid, SIGSTOP), 0);
   // Its renewal grows old; the standby cuts it off and takes over.
