@@ -74,7 +74,8 @@ void run_eval_robustness(const EvalRobustnessArgs& args, CommandContext& ctx) {
   for (const std::string& file : args.deployments) {
     auto d = load_deployment(file);
     if (!d) return (void)fail(ctx, d.error());
-    if (d->vda5050) return (void)fail(ctx, Error::invalid(file + ": robustness runs the simulated robot, not a vehicle"));
+    if (d->has_vehicle())
+      return (void)fail(ctx, Error::invalid(file + ": robustness runs simulated robots, not vehicles"));
     options.deployments.push_back(std::move(*d));
   }
   auto seeds = parse_seeds(args.seeds);

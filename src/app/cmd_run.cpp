@@ -19,6 +19,7 @@ struct RunArgs {
   std::string deployment;
   std::optional<int> days;
   std::optional<std::int64_t> seed;
+  std::optional<int> robots;
   std::string out;
   bool realtime = false;
   double speed = 1.0;
@@ -40,9 +41,15 @@ void run_run(const RunArgs& args, CommandContext& ctx) {
   if (!deployment) return (void)fail(ctx, deployment.error());
   if (args.days) deployment->days = *args.days;  // the options' ranges are checked as they are read
   if (args.seed) deployment->seed = static_cast<std::uint64_t>(*args.seed);
+  if (args.robots) {
+    if (static_cast<std::size_t>(*args.robots) > deployment->robots.size())
+      return (void)fail(ctx, Error::invalid(fmt::format("--robots: {} is more than the {} robot(s) of {}", *args.robots,
+                                                        deployment->robots.size(), file.string())));
+    deployment->robots.resize(static_cast<std::size_t>(*args.robots));
+  }
   if (!(args.speed > 0 && args.speed <= 1e6))
     return (void)fail(ctx, Error::invalid(fmt::format("--speed: {} is not above 0 (and at most 1e6)", args.speed)));
-  if (deployment->vda5050 && !args.realtime)
+  if (deployment->has_vehicle() && !args.realtime)
     return (void)fail(ctx, Error::invalid(fmt::format("{}: robot: a vda5050 vehicle moves in real time; run with --realtime",
                                                       file.string())));
   std::optional<Duration> run_for;
@@ -122,6 +129,9 @@ void add_run_commands(CLI::App& root, CommandContext& ctx) {
   auto* run = root.add_subcommand("run", "Run the executive on a deployment (default: the bundled G4S example)");
   run->add_option("deployment", args->deployment, "The deployment file (examples/g4s/deployment.yaml)");
   run->add_option("--days", args->days, "Days to run (default: the deployment's)")->transform(whole_number(1, 3660));
+  run->add_option("--robots", args->robots,
+                  "Run with the deployment's first N robots only (a fleet's baseline; default: all)")
+      ->check(CLI::Range(1, 100000));
   run->add_option("--seed", args->seed, "Random seed of the simulated world (default: the deployment's)")
       ->transform(whole_number(0, kMaxWholeNumber));
   run->add_option("--out", args->out,

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "deployment_robots.h"
 #include "rondo/core/document.h"
 #include "rondo/sim/sim_world.h"
 
@@ -62,13 +63,13 @@ Status decode_battery_levels(const Field& f, exec::ExecutorOptions& o) {
 }
 
 Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
-  RONDO_RETURN_IF_ERROR(f.expect_keys({"navigation_overrun", "navigation_slack", "action_overrun", "action_slack",
-                                       "dock_when_waiting_over", "max_failed_edges", "blocked_edge",
-                                       "on_demand_patience", "person_patience", "refit_at",
-                                       "refit_window", "weekly_half_life", "online_model", "slot_width", "scheduler_polls", "capacity",
-                                       "return_to", "return_within", "battery_reserve", "battery_threshold",
-                                       "battery_resume", "battery_planning", "battery_margin", "risk_alpha",
-                                       "navigation_alpha", "navigation_window", "route_threshold"}));
+  RONDO_RETURN_IF_ERROR(f.expect_keys(
+      {"navigation_overrun", "navigation_slack", "action_overrun",     "action_slack",    "dock_when_waiting_over",
+       "max_failed_edges",   "blocked_edge",     "on_demand_patience", "person_patience", "refit_at",
+       "refit_window",       "weekly_half_life", "online_model",       "slot_width",      "scheduler_polls",
+       "capacity",           "return_to",        "return_within",      "battery_reserve", "battery_threshold",
+       "battery_resume",     "battery_planning", "battery_margin",     "risk_alpha",      "navigation_alpha",
+       "navigation_window",  "route_threshold",  "reallocate_after"}));
   if (auto v = f.optional("navigation_overrun")) { RONDO_ASSIGN_OR_RETURN(o.navigation_overrun, positive(*v)); }
   if (auto v = f.optional("navigation_slack")) { RONDO_ASSIGN_OR_RETURN(o.navigation_slack, non_negative_duration(*v)); }
   if (auto v = f.optional("action_overrun")) { RONDO_ASSIGN_OR_RETURN(o.action_overrun, positive(*v)); }
@@ -92,6 +93,9 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
       o.blocked_edge = B::kWait;
     else
       return v->error("must be retry, give_up or wait, not '" + s + "'");
+  }
+  if (auto v = f.optional("reallocate_after")) {
+    RONDO_ASSIGN_OR_RETURN(o.reallocate_after, non_negative_duration(*v));
   }
   if (auto v = f.optional("on_demand_patience")) {
     RONDO_ASSIGN_OR_RETURN(o.on_demand_patience, non_negative_duration(*v));
@@ -155,20 +159,6 @@ Status decode_executor(const Field& f, exec::ExecutorOptions& o) {
   return decode_battery_levels(f, o);
 }
 
-// robot: {kind: sim} (the default) or a VDA 5050 vehicle (docs/vda5050.md).
-Status decode_robot(const Field& f, Deployment& d) {
-  RONDO_ASSIGN_OR_RETURN(const Field kind, f.required("kind"));
-  RONDO_ASSIGN_OR_RETURN(const std::string k, kind.as_string());
-  if (k == "sim") {
-    RONDO_RETURN_IF_ERROR(f.expect_keys({"kind"}));
-    d.vda5050.reset();
-    return Status{};
-  }
-  if (k != "vda5050") return kind.error(fmt::format("'{}' is not a robot kind (sim or vda5050)", k));
-  RONDO_ASSIGN_OR_RETURN(d.vda5050, vda5050::parse_vda5050_config(f));
-  return Status{};
-}
-
 // store: {kind: sqlite, file: PATH} or {kind: postgresql, url: URL, password_file: PATH}; paths
 // are relative to the deployment file. A password in the URL is refused (StoreLocation::postgres).
 Status decode_store(const Field& f, const std::filesystem::path& base, Deployment& d) {
@@ -193,32 +183,29 @@ Status decode_store(const Field& f, const std::filesystem::path& base, Deploymen
   return Status{};
 }
 
-// world and battery describe the simulated building and robot: the simulated robot needs its world,
-// and a VDA 5050 vehicle, which drives in the real building and reports its own battery, is refused
-// either rather than have it read and never used (docs/deployment.md, "The robot").
+// The world describes the simulated building: a simulated robot needs it, and a fleet of VDA 5050
+// vehicles alone, which drive in the real building, has it refused rather than read and never used
+// (docs/deployment.md, "The robots").
 Status decode_simulated_building(const Field& root, const std::filesystem::path& base, Deployment& d) {
-  if (d.vda5050) {
-    for (const char* key : {"world", "battery"})
-      if (auto f = root.optional(key))
-        return f->error(fmt::format(
-            "a vda5050 vehicle drives in the real building; the simulated {} is for robot kind sim only (remove "
-            "it, or run the simulated robot)",
-            key));
+  if (!d.has_simulated()) {
+    if (auto f = root.optional("world"))
+      return f->error(
+          "a vda5050 vehicle drives in the real building; the simulated world is for robot kind sim only (remove "
+          "it, or run the simulated robot)");
     return Status{};
   }
   if (!root.has("world"))
     return root.error("missing field 'world': the simulated robot (robot kind sim, the default) needs its building");
   RONDO_ASSIGN_OR_RETURN(const Field world, root.required("world"));
   RONDO_ASSIGN_OR_RETURN(d.world, path_field(world, base));
-  if (auto f = root.optional("battery")) { RONDO_ASSIGN_OR_RETURN(d.battery, sim::decode_battery(*f)); }
   return Status{};
 }
 
 Result<Deployment> decode(const Field& root, const std::filesystem::path& file) {
   const std::filesystem::path base = file.parent_path();
-  RONDO_RETURN_IF_ERROR(root.expect_keys({"rondo_deployment", "name", "map", "time_zone", "dock", "start", "days",
-                                          "seed", "routines", "world", "requests", "places", "executor", "robot",
-                                          "battery", "store"}));
+  RONDO_RETURN_IF_ERROR(
+      root.expect_keys({"rondo_deployment", "name", "map", "time_zone", "dock", "start", "days", "seed", "routines",
+                        "world", "requests", "places", "executor", "robot", "robots", "docks", "battery", "store"}));
   Deployment d;
   d.file = file;
   RONDO_ASSIGN_OR_RETURN(const Field version, root.required("rondo_deployment"));
@@ -252,7 +239,7 @@ Result<Deployment> decode(const Field& root, const std::filesystem::path& file) 
   if (auto f = root.optional("requests")) { RONDO_ASSIGN_OR_RETURN(d.requests, path_field(*f, base)); }
   if (auto f = root.optional("places")) { RONDO_ASSIGN_OR_RETURN(d.places, path_field(*f, base)); }
   if (auto f = root.optional("executor")) RONDO_RETURN_IF_ERROR(decode_executor(*f, d.executor));
-  if (auto f = root.optional("robot")) RONDO_RETURN_IF_ERROR(decode_robot(*f, d));
+  RONDO_RETURN_IF_ERROR(decode_robots(root, d));
   if (auto f = root.optional("store")) RONDO_RETURN_IF_ERROR(decode_store(*f, base, d));
   RONDO_RETURN_IF_ERROR(decode_simulated_building(root, base, d));
   return d;

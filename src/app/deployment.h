@@ -18,6 +18,10 @@
 //              slot_width: 15m, scheduler_polls: 20000}
 //   robot: {kind: vda5050, broker: "mqtt://127.0.0.1:1883", interface_name: uagv,   # optional;
 //           manufacturer: acme, serial_number: agv-7, map_id: g4s}                  # kind: sim
+//   robots:                        # or a fleet, in place of robot: (docs/fleet.md)
+//     - {name: r1, kind: sim, dock: Dock1, start: Hall, actions: [load, unload], capacity: 2,
+//        speed: 0.8, battery: {...}}
+//   docks: [{node: Dock1, capacity: 2}]   # optional: a dock not listed has room for one robot
 //   store: {kind: postgresql, url: "postgresql://rondo@db/fleet", password_file: pw}  # optional;
 //                                   # rondo serve's store (default: rondo.sqlite in its data folder)
 #pragma once
@@ -27,6 +31,8 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "rondo/core/result.h"
 #include "rondo/core/timezone.h"
@@ -36,6 +42,30 @@
 #include "rondo/vda5050/config.h"
 
 namespace rondo::app {
+
+// One robot of the deployment: `robot:` (named "robot") or an entry of `robots:`.
+struct RobotSpec {
+  std::string name = "robot";
+  std::string where;  // "file:line: robots[i]", for errors found once the map is loaded
+  // A VDA 5050 vehicle; nothing for the simulated robot (kind: sim, the default).
+  std::optional<vda5050::Vda5050Config> vda5050;
+  std::string dock;   // empty: the deployment's dock
+  std::string start;  // empty: its dock
+  // The actions it runs (the simulated robot's; a vehicle's factsheet says its own); nothing: any.
+  std::optional<std::vector<std::string>> actions;
+  std::optional<int> capacity;  // items on board at once; nothing: executor.capacity
+  // The simulated robot's battery (`battery:` of its entry, or the deployment's for `robot:`), in
+  // place of the world file's; and its speed, a factor on every edge's time in the world.
+  std::optional<sim::BatteryModel> battery;
+  double speed = 1.0;
+};
+
+// A place where robots dock and charge, and how many robots it has room for at once.
+struct DockSpec {
+  std::string node;
+  int capacity = 1;
+  std::string where;
+};
 
 struct Deployment {
   std::filesystem::path file;  // where it was read from
@@ -55,13 +85,19 @@ struct Deployment {
   // dock is filled in once the map is loaded; risk_alpha is exec::kDeploymentRiskAlpha unless the
   // file says otherwise (null: expected values).
   exec::ExecutorOptions executor{.risk_alpha = exec::kDeploymentRiskAlpha};
-  // `battery:`: the simulated battery, in place of the world file's (docs/simulation.md); kind sim only.
-  std::optional<sim::BatteryModel> battery;
-  // The robot: nothing for the simulated one (kind: sim, the default), or a VDA 5050 vehicle.
-  std::optional<vda5050::Vda5050Config> vda5050;
+  // The robots, at least one; `robot:` (or neither) is a fleet of one named "robot".
+  std::vector<RobotSpec> robots;
+  // Docks with room for more than one robot (or listed for clarity); `dock` and every robot's dock
+  // not listed here has room for one.
+  std::vector<DockSpec> docks;
   // `store:`: where `rondo serve` keeps its store; none: rondo.sqlite in its data folder
   // (docs/deployment.md, "The store").
   std::optional<store::StoreLocation> store;
+
+  bool has_vehicle() const;    // a VDA 5050 vehicle among the robots
+  bool has_simulated() const;  // a simulated robot among them
+  const RobotSpec* find_robot(std::string_view name) const;
+  int dock_capacity(std::string_view node) const;  // 1 unless `docks:` says otherwise
 };
 
 // Reads and checks a deployment file; paths come back resolved against its folder. Errors name

@@ -1,13 +1,16 @@
 // Everything a deployment names, loaded and checked against each other before anything runs or is
 // written (the map, the dock, the routines and tasks, the simulated world, the requests, the
 // places): every node they name is on the map, and every error names the file, the line and the
-// node. A VDA 5050 vehicle's deployment has no simulated world.
+// node. A VDA 5050 vehicle's deployment has no simulated world. Every robot docks and starts on the
+// map, and every task and routine names a robot of the deployment (or none) and actions that some
+// robot runs (a robot that does not list its actions runs any).
 //
 //   Result<DeploymentParts> parts = load_parts(deployment);   // reads files, writes nothing
 //   if (!parts) return parts.error();   // "routines.yaml:12: routines[0].task.start_node: node ..."
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "deployment.h"
 #include "rondo/core/result.h"
@@ -19,9 +22,16 @@
 
 namespace rondo::app {
 
+// Where one robot of the deployment docks and starts, on the map.
+struct RobotNodes {
+  map::NodeIndex dock = 0;
+  map::NodeIndex start = 0;
+};
+
 struct DeploymentParts {
   map::TopoMap map;
-  map::NodeIndex dock = 0;
+  map::NodeIndex dock = 0;         // the deployment's dock
+  std::vector<RobotNodes> robots;  // per Deployment::robots, in its order
   TaskFile plan;  // routines and one-off tasks
   std::optional<sim::SimWorld> world;  // the simulated robot's building; none for a VDA 5050 vehicle
   std::optional<sim::RequestGenerator> people;

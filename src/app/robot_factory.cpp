@@ -7,20 +7,38 @@
 
 namespace rondo::app {
 
-Result<DeploymentRobot> make_robot(const Deployment& d, DeploymentParts& parts, exec::Clock& clock,
-                                   map::NodeIndex start, std::uint64_t seed) {
-  if (d.vda5050) {
+Result<DeploymentRobot> make_robot(const Deployment& d, const RobotSpec& spec, DeploymentParts& parts,
+                                   exec::Clock& clock, map::NodeIndex start, std::uint64_t seed) {
+  if (spec.vda5050) {
     RONDO_ASSIGN_OR_RETURN(std::unique_ptr<vda5050::Vda5050Robot> vehicle,
-                           vda5050::Vda5050Robot::create(clock, parts.map, *d.vda5050, {.start = start}));
+                           vda5050::Vda5050Robot::create(clock, parts.map, *spec.vda5050, {.start = start}));
     return DeploymentRobot{.robot = std::move(vehicle), .charging_time = [] { return Duration{0}; }};
   }
   // load_deployment gives the simulated robot a world, always.
   if (!parts.world) return Error::internal(fmt::format("{}: the simulated robot has no world", d.file.string()));
   parts.world->edges->set_seed(d.seed);  // the building's own spells: the deployment's seed, also on resume
-  auto sim = std::make_unique<sim::SimRobot>(clock, parts.map, *parts.world,
-                                             sim::SimRobotOptions{.start = start, .dock = parts.dock, .seed = seed});
+  const std::size_t i = static_cast<std::size_t>(&spec - d.robots.data());
+  if (i >= parts.robots.size()) return Error::internal("make_robot: a robot that is not the deployment's");
+  auto sim =
+      std::make_unique<sim::SimRobot>(clock, parts.map, *parts.world,
+                                      sim::SimRobotOptions{.start = start,
+                                                           .dock = parts.robots[i].dock,
+                                                           .seed = seed,
+                                                           .battery = d.robots.size() > 1 ? spec.battery : std::nullopt,
+                                                           .speed = spec.speed,
+                                                           .actions = spec.actions,
+                                                           .name = spec.name});
   const sim::SimRobot* s = sim.get();
   return DeploymentRobot{.robot = std::move(sim), .charging_time = [s] { return s->charging_time(); }};
+}
+
+exec::ExecutorOptions robot_options(const Deployment& d, const RobotSpec& spec, const RobotNodes& nodes) {
+  exec::ExecutorOptions options = d.executor;
+  options.dock = nodes.dock;
+  options.seed = d.seed;
+  options.robot_name = spec.name;
+  if (spec.capacity) options.capacity = *spec.capacity;
+  return options;
 }
 
 }  // namespace rondo::app

@@ -1,7 +1,7 @@
-// The deployment's robot: the simulated one (robot kind sim, the default) or a VDA 5050 vehicle
+// A robot of the deployment: the simulated one (robot kind sim, the default) or a VDA 5050 vehicle
 // driven over MQTT (kind vda5050, docs/vda5050.md), with the figures the run report reads.
 //
-//   Result<DeploymentRobot> r = make_robot(deployment, parts, clock);
+//   Result<DeploymentRobot> r = make_robot(deployment, deployment.robots[i], parts, clock, start, seed);
 //   fleet.add_robot(*r->robot, options);
 //   r->charging_time();
 #pragma once
@@ -23,12 +23,18 @@ struct DeploymentRobot {
   std::function<Duration()> charging_time;   // time on the charger (0 when the robot cannot tell)
 };
 
-// The robot starts at `start` (a VDA 5050 vehicle then says where it is); `seed` is the simulated
-// robot's, which drives in `parts.world`. `parts` and `clock` must outlive it.
-Result<DeploymentRobot> make_robot(const Deployment& deployment, DeploymentParts& parts, exec::Clock& clock,
-                                   map::NodeIndex start, std::uint64_t seed);
+// `spec` is one of `deployment.robots`. It starts at `start` (a VDA 5050 vehicle then says where it
+// is); `seed` is the simulated robot's, which drives in `parts.world` with the fleet's other
+// simulated robots. `parts` and `clock` must outlive it.
+Result<DeploymentRobot> make_robot(const Deployment& deployment, const RobotSpec& spec, DeploymentParts& parts,
+                                   exec::Clock& clock, map::NodeIndex start, std::uint64_t seed);
+
+// The executor's options for `spec`: the deployment's, with the robot's name, dock and capacity.
+exec::ExecutorOptions robot_options(const Deployment& deployment, const RobotSpec& spec, const RobotNodes& nodes);
 
 // A VDA 5050 vehicle moves in real time: it needs the system clock (rondo run --realtime).
-inline bool needs_realtime(const Deployment& deployment) { return deployment.vda5050.has_value(); }
+inline bool needs_realtime(const Deployment& deployment) {
+  return deployment.has_vehicle();
+}
 
 }  // namespace rondo::app

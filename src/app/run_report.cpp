@@ -11,11 +11,11 @@
 
 namespace rondo::app {
 
-Json task_summary(const exec::Executor& executor) {
+Json task_summary(const fleet::Fleet& fleet) {
   int completed = 0, pending = 0;
   std::map<std::string, std::map<std::string, int>> by_state;  // sorted: a stable report
   std::map<std::string, int> dropped_after_leaving;
-  for (const auto& [id, r] : executor.tasks()) {
+  for (const auto& [id, r] : fleet.tasks()) {
     if (!is_final(r.state)) {
       ++pending;
       continue;
@@ -28,7 +28,7 @@ Json task_summary(const exec::Executor& executor) {
     if (r.state == TaskState::kDropped && r.started) ++dropped_after_leaving[std::string(exec::to_string(r.outcome))];
   }
   Json tasks = Json::object();
-  tasks["added"] = executor.tasks().size();
+  tasks["added"] = fleet.tasks().size();
   tasks["completed"] = completed;
   tasks["pending"] = pending;
   for (const char* state : {"failed", "dropped", "cancelled"}) {
@@ -47,10 +47,10 @@ Json task_summary(const exec::Executor& executor) {
 // Delivery jobs by how their drop ended (the job's own drop, not a return made later): delivered,
 // failed or cancelled by code, pending; returns made and done; what is on board at the end.
 // Nothing when the run had no delivery.
-std::optional<Json> delivery_summary(const exec::Executor& executor) {
+std::optional<Json> delivery_summary(const fleet::Fleet& fleet) {
   std::map<std::string, std::vector<const exec::TaskRecord*>> drops;  // job -> its drops, in order added
-  for (const TaskId& id : executor.task_order()) {
-    const exec::TaskRecord& r = executor.tasks().at(id);
+  for (const TaskId& id : fleet.task_order()) {
+    const exec::TaskRecord& r = fleet.tasks().at(id);
     if (r.task.delivery && r.task.delivery->role == DeliveryRole::kDrop) drops[r.task.delivery->job].push_back(&r);
   }
   if (drops.empty()) return std::nullopt;
@@ -86,25 +86,36 @@ std::optional<Json> delivery_summary(const exec::Executor& executor) {
   }
   j["returns"] = Json{{"made", returns}, {"done", returned}};
   Json on_board = Json::array();
-  for (const exec::OnBoard& o : executor.on_board()) on_board.push_back(Json{{"job", o.job}, {"object", o.object}});
+  for (const auto& robot : fleet.robots())
+    for (const exec::OnBoard& o : robot->on_board()) on_board.push_back(Json{{"job", o.job}, {"object", o.object}});
   j["on_board_at_end"] = on_board;
   return j;
 }
 
 // What the door observations did (docs/executor.md, "Assumptions" and "Opportunities"); nothing
 // when the robot saw no door (no door sensor), so such reports stay as they were.
-std::optional<Json> assumption_summary(const exec::Executor& executor, Time end) {
-  const exec::AssumptionStats& a = executor.assumption_stats();
+std::optional<Json> assumption_summary(const fleet::Fleet& fleet, Time end) {
+  exec::AssumptionStats a;
+  for (const auto& robot : fleet.robots()) {
+    const exec::AssumptionStats& r = robot->assumption_stats();
+    a.door_observations += r.door_observations;
+    a.broken += r.broken;
+    a.reschedules += r.reschedules;
+    a.opportunities_taken += r.opportunities_taken;
+    a.opportunities_declined += r.opportunities_declined;
+    a.failed_blocked += r.failed_blocked;
+    a.retries += r.retries;
+  }
   if (a.door_observations == 0) return std::nullopt;
   Json doors = Json::object();
   // The learned chance that each door the schedules rested on is open, at a few hours of the last
   // day (local time), against the rhythm of the world file.
-  const TimeZone& zone = executor.zone();
+  const TimeZone& zone = fleet.zone();
   const auto day = zone.local_date(end - seconds(1));
-  for (const std::string& door : executor.door_names()) {
+  for (const std::string& door : fleet.door_names()) {
     Json by_hour = Json::object();
     for (int h : {8, 10, 12, 13, 16, 20})
-      if (const auto p = executor.door_open_probability(door, zone.at(day, hours(h))))
+      if (const auto p = fleet.door_open_probability(door, zone.at(day, hours(h))))
         by_hour[fmt::format("{:02}:00", h)] = std::round(*p * 1000) / 1000;
     if (!by_hour.empty()) doors[door] = by_hour;
   }
@@ -120,8 +131,8 @@ std::optional<Json> assumption_summary(const exec::Executor& executor, Time end)
 
 // What happened on the way that is not a final outcome: preemptions (the task went back to the
 // queue), drops for now and re-offers, cancels that waited, robot faults; each by outcome code.
-Json event_summary(const exec::Executor& executor) {
-  const auto& counts = executor.book().event_counts();
+Json event_summary(const fleet::Fleet& fleet) {
+  const auto& counts = fleet.book().event_counts();
   const auto by_code = [&](std::string_view event, std::initializer_list<exec::Outcome> only = {}) {
     Json j = Json::object();
     const auto it = counts.find(std::string(event));
@@ -145,9 +156,27 @@ Json event_summary(const exec::Executor& executor) {
 // The battery (docs/executor.md, "Battery"): the lowest state of charge read, the stays on the
 // charger, the falls below the hard threshold, the tasks moved, dropped or failed for charging
 // (events with the code `charging`, by event), and the learned costs with their standard errors.
-Json battery_summary(const exec::Executor& executor) {
+namespace {
+
+// The tasks moved, dropped or failed for charging (events with the code `charging`), by event.
+Json for_charging(const exec::TaskBook& book) {
+  Json j = Json::object();
+  for (const auto& [event, codes] : book.event_counts()) {
+    const auto it = codes.find(exec::Outcome::kCharging);
+    if (it != codes.end() && event != to_string(exec::EventKind::kBatteryLow) &&
+        event != to_string(exec::EventKind::kCharged))
+      j[event] = it->second;
+  }
+  return j;
+}
+
+double round_to(double v, double digits) {
+  return std::round(v * digits) / digits;
+}
+
+// One robot's battery: what it read and what it learned of the costs.
+Json robot_battery(const exec::Executor& executor) {
   const exec::BatteryFigures f = executor.battery_figures();
-  const auto round_to = [](double v, double digits) { return std::round(v * digits) / digits; };
   const auto rates = [&](const exec::BatteryRates& r) {
     return Json{{"per_km", round_to(r.per_metre * 1000, 1e5)},
                 {"moving_per_hour", round_to(r.moving_per_hour, 1e5)},
@@ -155,25 +184,81 @@ Json battery_summary(const exec::Executor& executor) {
                 {"idle_per_hour", round_to(r.idle_per_hour, 1e5)},
                 {"charging_per_hour", round_to(r.charging_per_hour, 1e5)}};
   };
-  Json for_charging = Json::object();
-  for (const auto& [event, codes] : executor.book().event_counts()) {
-    const auto it = codes.find(exec::Outcome::kCharging);
-    if (it != codes.end() && event != to_string(exec::EventKind::kBatteryLow) &&
-        event != to_string(exec::EventKind::kCharged))
-      for_charging[event] = it->second;
-  }
   Json j{{"readings", f.readings},
          {"lowest", round_to(f.lowest, 1e4)},
          {"charges", f.charges},
          {"on_charger_s", to_seconds(f.on_charger)},
          {"below_threshold", f.low_battery},
          {"empty_readings", f.empty_readings},
-         {"for_charging", for_charging},
+         {"for_charging", for_charging(executor.book())},
          {"learned", rates(f.learned)},
          {"standard_errors", rates(f.standard_errors)},
          {"intervals_learned", f.intervals_learned}};
   if (f.lowest_at) j["lowest_at"] = format_time(*f.lowest_at);
   return j;
+}
+
+}  // namespace
+
+Json battery_summary(const fleet::Fleet& fleet) {
+  if (fleet.robots().size() == 1) return robot_battery(fleet.robot());
+  exec::BatteryFigures sum;
+  for (const auto& robot : fleet.robots()) {
+    const exec::BatteryFigures f = robot->battery_figures();
+    sum.readings += f.readings;
+    if (f.readings > 0 && f.lowest < sum.lowest) sum.lowest = f.lowest, sum.lowest_at = f.lowest_at;
+    sum.charges += f.charges;
+    sum.on_charger += f.on_charger;
+    sum.low_battery += f.low_battery;
+    sum.empty_readings += f.empty_readings;
+  }
+  Json j{{"readings", sum.readings},
+         {"lowest", round_to(sum.lowest, 1e4)},
+         {"charges", sum.charges},
+         {"on_charger_s", to_seconds(sum.on_charger)},
+         {"below_threshold", sum.low_battery},
+         {"empty_readings", sum.empty_readings},
+         {"for_charging", for_charging(fleet.book())}};
+  if (sum.lowest_at) j["lowest_at"] = format_time(*sum.lowest_at);
+  return j;
+}
+
+namespace {
+
+Json time_use(const exec::ExecutorStats& s, Duration charging) {
+  return Json{{"busy", to_seconds(s.busy)},
+              {"travelling", to_seconds(s.travelling)},
+              {"acting", to_seconds(s.acting)},
+              {"waiting", to_seconds(s.waiting)},
+              {"charging", to_seconds(charging)}};
+}
+
+}  // namespace
+
+Json robot_summaries(const fleet::Fleet& fleet, const RunFigures& figures) {
+  std::map<std::string, std::map<std::string, int>> tasks;  // robot -> state -> count
+  for (const auto& [id, r] : fleet.tasks()) {
+    std::map<std::string, int>& t = tasks[r.robot];
+    ++t["allocated"];
+    ++t[is_final(r.state) ? std::string(to_string(r.state)) : "pending"];
+  }
+  Json robots = Json::array();
+  for (const auto& robot : fleet.robots()) {
+    const std::string& name = robot->name();
+    Json t = Json::object();
+    for (const char* key : {"allocated", "succeeded", "failed", "dropped", "cancelled", "pending"})
+      t[key] = tasks[name][key];
+    const auto distance = figures.distance_by_robot.find(name);
+    const auto charging = figures.charging_by_robot.find(name);
+    robots.push_back(Json{
+        {"name", name},
+        {"tasks", t},
+        {"distance_m", std::round((distance == figures.distance_by_robot.end() ? 0.0 : distance->second) * 10) / 10},
+        {"time_s",
+         time_use(robot->stats(), charging == figures.charging_by_robot.end() ? Duration{0} : charging->second)},
+        {"battery", robot_battery(*robot)}});
+  }
+  return robots;
 }
 
 Json travel_table(const map::TopoMap& map, std::span<const Traversal> log, Time start, int days,
@@ -301,16 +386,25 @@ Json weekly_summary(std::span<const Traversal> log, std::span<const store::Event
 }
 
 Json run_report(const fleet::Fleet& fleet, const RunFigures& figures) {
-  const exec::Executor& executor = fleet.robot();
-  const exec::ExecutorStats& s = executor.stats();
+  exec::ExecutorStats s;  // the fleet's totals
+  std::vector<exec::NavigationRecord> navigations;
+  for (const auto& robot : fleet.robots()) {
+    const exec::ExecutorStats& r = robot->stats();
+    s.busy += r.busy;
+    s.travelling += r.travelling;
+    s.acting += r.acting;
+    s.waiting += r.waiting;
+    s.schedules += r.schedules;
+    navigations.insert(navigations.end(), robot->navigations().begin(), robot->navigations().end());
+  }
   Json j = Json::object();
   j["from"] = format_time(figures.from);
   j["to"] = format_time(figures.to);
-  j["tasks"] = task_summary(executor);
-  j["events"] = event_summary(executor);
-  if (std::optional<Json> d = delivery_summary(executor)) j["deliveries"] = *d;
-  if (std::optional<Json> a = assumption_summary(executor, figures.to)) j["assumptions"] = *a;
-  const std::vector<exec::LearnedActionTime> learned = executor.loading_times();
+  j["tasks"] = task_summary(fleet);
+  j["events"] = event_summary(fleet);
+  if (std::optional<Json> d = delivery_summary(fleet)) j["deliveries"] = *d;
+  if (std::optional<Json> a = assumption_summary(fleet, figures.to)) j["assumptions"] = *a;
+  const std::vector<exec::LearnedActionTime> learned = fleet.loading_times();
   if (!learned.empty()) {
     Json times = Json::array();
     for (const exec::LearnedActionTime& t : learned)
@@ -321,23 +415,21 @@ Json run_report(const fleet::Fleet& fleet, const RunFigures& figures) {
   j["navigation"] = Json{{"attempts", figures.navigation_attempts},
                          {"successes", figures.navigation_successes},
                          {"distance_m", std::round(figures.distance_m * 10) / 10}};
-  j["time_s"] = Json{{"busy", to_seconds(s.busy)},
-                     {"travelling", to_seconds(s.travelling)},
-                     {"acting", to_seconds(s.acting)},
-                     {"waiting", to_seconds(s.waiting)},
-                     {"charging", to_seconds(figures.charging)}};
+  j["time_s"] = time_use(s, figures.charging);
   j["scheduler_calls"] = s.schedules;
   j["model_refits"] = fleet.refits();
-  j["live_estimates"] = live_estimates(executor.navigations());
-  j["battery"] = battery_summary(executor);
+  j["live_estimates"] = live_estimates(navigations);
+  j["battery"] = battery_summary(fleet);
+  j["robots"] = robot_summaries(fleet, figures);
   return j;
 }
 
 DayPicture day_picture(const exec::Executor& executor, const std::string& title, Time from, Time to,
-                       const TimeZone& zone) {
+                       const TimeZone& zone, bool every_task) {
   DayPicture day{.title = title, .from = from, .to = to, .zone = zone, .rows = {}, .charging = {}};
   for (const TaskId& id : executor.task_order()) {
     const exec::TaskRecord& r = executor.tasks().at(id);
+    if (!every_task && r.robot != executor.name()) continue;
     const Time a = r.task.window ? r.task.window->release : r.added;
     const Time b = r.task.window ? r.task.window->deadline : r.ended.value_or(r.added);
     if (b < from || a >= to) continue;

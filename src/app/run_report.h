@@ -3,6 +3,7 @@
 #pragma once
 
 #include <chrono>
+#include <map>
 #include <span>
 #include <string>
 
@@ -25,10 +26,13 @@ struct RunFigures {
   int navigation_successes = 0;
   double distance_m = 0;
   Duration charging{0};
+  // Per robot, by name: the distance from the traversal log, the time on the charger.
+  std::map<std::string, double> distance_by_robot{};
+  std::map<std::string, Duration> charging_by_robot{};
 };
 
 // The "tasks" object: added, completed, pending, and failed/dropped/cancelled/preempted by reason.
-Json task_summary(const exec::Executor& executor);
+Json task_summary(const fleet::Fleet& fleet);
 
 // Table I on the run's own log: models trained on no data, week 1 and weeks 1–2, scored on the
 // journeys of week 3 (a run of 14–20 days: no data and week 1, scored on week 2). A "note" in
@@ -49,13 +53,19 @@ Json live_estimates(std::span<const exec::NavigationRecord> navigations);
 Json weekly_summary(std::span<const Traversal> log, std::span<const store::Event> events, Time from, Time to);
 
 // report.json's "battery": lowest state of charge, stays on the charger, falls below the hard
-// threshold, tasks moved/dropped/failed for charging by event, and the learned costs.
-Json battery_summary(const exec::Executor& executor);
+// threshold, tasks moved/dropped/failed for charging by event, and the learned costs. For a fleet of
+// several robots: the counts summed, the lowest of all, and the learned costs per robot only.
+Json battery_summary(const fleet::Fleet& fleet);
 
+// report.json's "robots": per robot, its tasks by final state, distance, time use and battery.
+Json robot_summaries(const fleet::Fleet& fleet, const RunFigures& figures);
+
+// Every key is the fleet's total (a fleet of one: its robot's), with "robots" per robot.
 Json run_report(const fleet::Fleet& fleet, const RunFigures& figures);
 
-// The schedule picture of one local day [from, to).
+// The schedule picture of one local day [from, to): the tasks allocated to `executor`'s robot
+// (every task when `every_task`).
 DayPicture day_picture(const exec::Executor& executor, const std::string& title, Time from, Time to,
-                       const TimeZone& zone);
+                       const TimeZone& zone, bool every_task = false);
 
 }  // namespace rondo::app

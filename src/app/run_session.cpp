@@ -74,15 +74,27 @@ Result<Session> open_session(const RunRequest& request, Time start) {
 
 // The figures that a restart would lose if they came from the executor (it only knows what
 // happened since it started): the edge attempts and the distance, from the traversal log.
+// A traversal without a robot's name (an older store) is the first robot's.
 void navigation_from_log(const map::TopoMap& map, std::span<const Traversal> log, Time from, Time to,
-                         RunFigures& figures) {
+                         const std::string& first_robot, RunFigures& figures) {
   for (const Traversal& t : log) {
     if (t.start < from || t.start >= to) continue;
     ++figures.navigation_attempts;
     if (!t.success) continue;
     ++figures.navigation_successes;
-    if (const auto e = map.find_edge(t.edge_id)) figures.distance_m += map::edge_length(map, *e);
+    if (const auto e = map.find_edge(t.edge_id)) {
+      const double metres = map::edge_length(map, *e);
+      figures.distance_m += metres;
+      figures.distance_by_robot[t.robot.empty() ? first_robot : t.robot] += metres;
+    }
   }
+}
+
+// Battery readings at empty, over every robot.
+std::size_t empty_readings(const fleet::Fleet& fleet) {
+  std::size_t n = 0;
+  for (const auto& robot : fleet.robots()) n += robot->battery_figures().empty_readings;
+  return n;
 }
 
 // A finished run is not run again: its report is read back.
@@ -95,34 +107,100 @@ Result<RunResult> finished_run(const RunRequest& request) {
   return result;
 }
 
+// The seed of the deployment's i-th simulated robot: the first has the deployment's own (a fleet of
+// one draws as it always did), the others a stream of their own.
+std::uint64_t robot_seed(std::uint64_t seed, std::size_t i) {
+  if (i == 0) return seed;
+  std::uint64_t mix = seed + 0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(i);
+  return sim::splitmix64(mix);
+}
+
 // Where and when a run goes on. A run that was stopped (killed, a power cut) goes on from the
-// latest thing its store holds, with the robot at its last known node, up to the same end.
+// latest thing its store holds, with each robot at its last known node, up to the same end.
 struct Resume {
   bool resumed = false;  // the store held something of this run
   Time at{};
-  map::NodeIndex robot_at = 0;
-  std::uint64_t robot_seed = 0;
+  std::vector<map::NodeIndex> robot_at;  // per robot of the deployment
+  std::vector<std::uint64_t> robot_seed;
 };
 
-Result<Resume> resume_point(const RunRequest& request, const store::Store& db, Time start, const map::TopoMap& map,
-                            map::NodeIndex dock) {
+Result<Resume> resume_point(const RunRequest& request, const store::Store& db, Time start,
+                            const DeploymentParts& parts) {
   const Deployment& d = request.deployment;
-  RONDO_ASSIGN_OR_RETURN(const store::StoredRun stored, store::read_back(db, "robot"));
-  const std::optional<Time> stored_until = stored.latest();
-  Resume r{.resumed = stored_until.has_value(),
-           .at = request.realtime ? std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now())
-                                  : std::max(start, stored_until.value_or(start)),
-           .robot_at = dock,
-           .robot_seed = d.seed};
-  if (stored.robot)
-    if (const auto n = map.find_node(stored.robot->node)) r.robot_at = *n;
+  RONDO_ASSIGN_OR_RETURN(const store::StoredRun stored, store::read_back(db, d.robots.front().name));
+  std::optional<Time> stored_until = stored.latest();
+  Resume r;
+  for (std::size_t i = 0; i < d.robots.size(); ++i) {
+    r.robot_at.push_back(parts.robots[i].start);
+    r.robot_seed.push_back(robot_seed(d.seed, i));
+    RONDO_ASSIGN_OR_RETURN(const std::optional<store::RobotState> state, store::load_robot_state(db, d.robots[i].name));
+    if (!state) continue;
+    if (const auto n = parts.map.find_node(state->node)) r.robot_at[i] = *n;
+    stored_until = stored_until ? std::max(*stored_until, state->updated) : state->updated;
+  }
+  r.resumed = stored_until.has_value();
+  r.at = request.realtime ? std::chrono::time_point_cast<Duration>(std::chrono::system_clock::now())
+                          : std::max(start, stored_until.value_or(start));
   // A resumed world is seeded from the seed and the time it resumes at: its draws from then on are
   // its own, but the same for the same kill.
-  if (r.resumed) {
-    std::uint64_t mix = d.seed ^ static_cast<std::uint64_t>(r.at.time_since_epoch().count());
-    r.robot_seed = sim::splitmix64(mix);
-  }
+  if (r.resumed)
+    for (std::uint64_t& seed : r.robot_seed) {
+      std::uint64_t mix = seed ^ static_cast<std::uint64_t>(r.at.time_since_epoch().count());
+      seed = sim::splitmix64(mix);
+    }
   return r;
+}
+
+// Spans on the charger for the day pictures, sampled once a minute (reads only: the run is the
+// same with or without it).
+class ChargerSpans {
+ public:
+  ChargerSpans(exec::Clock& clock, const exec::Robot& robot) : clock_(clock), robot_(robot) {}
+  void start(Time at) {
+    clock_.schedule_at(at, [this] { sample(); });
+  }
+  // The spans that overlap [from, to), the one still going cut at `to`.
+  std::vector<std::pair<Time, Time>> between(Time from, Time to) const {
+    std::vector<std::pair<Time, Time>> out;
+    for (const auto& [a, b] : spans_)
+      if (b > from && a < to) out.emplace_back(a, b);
+    if (since_) out.emplace_back(*since_, to);
+    return out;
+  }
+
+ private:
+  void sample() {
+    const bool on = robot_.charging();
+    if (on && !since_) since_ = clock_.now();
+    if (!on && since_) {
+      spans_.emplace_back(*since_, clock_.now());
+      since_.reset();
+    }
+    clock_.schedule_after(minutes(1), [this] { sample(); });
+  }
+
+  exec::Clock& clock_;
+  const exec::Robot& robot_;
+  std::vector<std::pair<Time, Time>> spans_;
+  std::optional<Time> since_;
+};
+
+// Each robot's picture of the day: days/<date>.svg for a fleet of one, days/<date>-<robot>.svg for
+// each robot of a larger one.
+Status draw_day(const fleet::Fleet& fleet, const std::vector<std::unique_ptr<ChargerSpans>>& chargers,
+                const RunRequest& request, const std::string& date, int day, Time from, Time to) {
+  const Deployment& d = request.deployment;
+  for (std::size_t i = 0; i < fleet.robots().size(); ++i) {
+    const exec::Executor& executor = *fleet.robots()[i];
+    const bool one = fleet.robots().size() == 1;
+    const std::string title = one ? fmt::format("{} — {} (day {})", d.name, date, day + 1)
+                                  : fmt::format("{} — {} — {} (day {})", d.name, executor.name(), date, day + 1);
+    DayPicture picture = day_picture(executor, title, from, to, d.zone, /*every_task=*/one);
+    picture.charging = chargers[i]->between(from, to);
+    const std::string file = one ? date + ".svg" : fmt::format("{}-{}.svg", date, executor.name());
+    RONDO_RETURN_IF_ERROR(write_file(request.out / "days" / file, render_day_svg(picture)));
+  }
+  return Status{};
 }
 
 }  // namespace
@@ -135,29 +213,36 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   RONDO_ASSIGN_OR_RETURN(Session s, open_session(request, first_start));
   if (s.folder.finished) return finished_run(request);
   const map::TopoMap& map = s.parts.map;
-  const map::NodeIndex dock = s.parts.dock;
   store::Store& db = *s.folder.store;
 
   const Time start = s.folder.start;
-  RONDO_ASSIGN_OR_RETURN(const Resume resume, resume_point(request, db, start, map, dock));
+  RONDO_ASSIGN_OR_RETURN(const Resume resume, resume_point(request, db, start, s.parts));
   const bool resumed = resume.resumed;
   const Time resume_at = resume.at;
 
   exec::SimClock sim_clock(resume_at);
   exec::SystemClock system_clock(request.speed);
   exec::Clock& clock = request.realtime ? static_cast<exec::Clock&>(system_clock) : sim_clock;
-  RONDO_ASSIGN_OR_RETURN(DeploymentRobot deployed, make_robot(d, s.parts, clock, resume.robot_at, resume.robot_seed));
-  exec::Robot& robot = *deployed.robot;
-  exec::ExecutorOptions options = d.executor;
-  options.dock = dock;
-  options.seed = d.seed;
-  options.robot_name = "robot";
-  fleet::Fleet fleet(clock, map, db, d.zone, options);
-  exec::Executor& executor = fleet.add_robot(robot, options);
+  exec::ExecutorOptions shared = d.executor;
+  shared.dock = s.parts.dock;
+  shared.seed = d.seed;
+  // Every robot of the deployment (made before the fleet, which they outlive), each with its runner.
+  std::vector<DeploymentRobot> deployed;
+  std::vector<std::unique_ptr<ChargerSpans>> chargers;
+  for (std::size_t i = 0; i < d.robots.size(); ++i) {
+    RONDO_ASSIGN_OR_RETURN(DeploymentRobot robot,
+                           make_robot(d, d.robots[i], s.parts, clock, resume.robot_at[i], resume.robot_seed[i]));
+    chargers.push_back(std::make_unique<ChargerSpans>(clock, *robot.robot));
+    deployed.push_back(std::move(robot));
+  }
+  fleet::Fleet fleet(clock, map, db, d.zone, shared);
+  for (std::size_t i = 0; i < d.robots.size(); ++i)
+    fleet.add_robot(*deployed[i].robot, robot_options(d, d.robots[i], s.parts.robots[i]));
+  exec::Executor& executor = fleet.robot();
   std::unique_ptr<exec::RobotListener> listener;
   if (request.wrap_listener) {
     listener = request.wrap_listener(executor);
-    robot.set_listener(listener.get());
+    deployed.front().robot->set_listener(listener.get());
   }
   // The deployment's routines, with those that queued requests added (kept in the store).
   std::vector<std::string> skipped;
@@ -184,20 +269,7 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
                                request.out.string(), format_time(resume_at))
                 << std::flush;
 
-  // Spans on the charger for the day pictures, sampled once a minute (reads only: the run is the
-  // same with or without it).
-  std::vector<std::pair<Time, Time>> charging;
-  std::optional<Time> charging_since;
-  std::function<void()> sample_charger = [&] {
-    const bool on = robot.charging();
-    if (on && !charging_since) charging_since = clock.now();
-    if (!on && charging_since) {
-      charging.emplace_back(*charging_since, clock.now());
-      charging_since.reset();
-    }
-    clock.schedule_after(minutes(1), sample_charger);
-  };
-  clock.schedule_at(resume_at, sample_charger);
+  for (const auto& charger : chargers) charger->start(resume_at);
 
   // People's requests come from their own stream, drawn day by day from the start as in an
   // uninterrupted run; a resumed run posts those after it resumes that are not stored yet.
@@ -232,19 +304,13 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
       day_wall_seconds.push_back(nullptr);  // run by an earlier attempt
       day_cpu_seconds.push_back(nullptr);
     } else {
-      const std::size_t empty_before = executor.battery_figures().empty_readings;
+      const std::size_t empty_before = empty_readings(fleet);
       run_until(day_to);
-      if (executor.battery_figures().empty_readings > empty_before) ++days_flat;
+      if (empty_readings(fleet) > empty_before) ++days_flat;
       day_wall_seconds.push_back(
           std::chrono::duration<double>(std::chrono::steady_clock::now() - day_wall_start).count());
       day_cpu_seconds.push_back(process_cpu_seconds() - day_cpu_start);
-      const std::string date = date_text(today);
-      DayPicture picture =
-          day_picture(executor, fmt::format("{} — {} (day {})", d.name, date, day + 1), day_from, day_to, d.zone);
-      for (const auto& [a, b] : charging)
-        if (b > day_from && a < day_to) picture.charging.emplace_back(a, b);
-      if (charging_since) picture.charging.emplace_back(*charging_since, day_to);
-      RONDO_RETURN_IF_ERROR(write_file(request.out / "days" / (date + ".svg"), render_day_svg(picture)));
+      RONDO_RETURN_IF_ERROR(draw_day(fleet, chargers, request, date_text(today), day, day_from, day_to));
     }
     if (request.progress) draw_progress(progress_to, day + 1, d.days);
     today = tomorrow;
@@ -256,8 +322,13 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   RunResult result;
   result.resumed = resumed;
   RONDO_ASSIGN_OR_RETURN(const std::vector<Traversal> log, store::find_traversals(db));
-  RunFigures figures{.from = start, .to = end, .charging = deployed.charging_time()};
-  navigation_from_log(map, log, start, end, figures);
+  RunFigures figures{.from = start, .to = end, .charging = Duration{0}};
+  for (std::size_t i = 0; i < deployed.size(); ++i) {
+    const Duration charging = deployed[i].charging_time();
+    figures.charging += charging;
+    figures.charging_by_robot[d.robots[i].name] = charging;
+  }
+  navigation_from_log(map, log, start, end, d.robots.front().name, figures);
   result.report = run_report(fleet, figures);
   // The simulated truth beside what was learned of it (not for a real vehicle, which has no world).
   if (s.parts.world && result.report.contains("loading_times"))
@@ -277,10 +348,10 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   result.report["deployment"] = d.name;
   result.report["seed"] = d.seed;
   result.report["days"] = d.days;
-  result.report["travel_table"] = travel_table(map, log, start, d.days, executor.zone());
+  result.report["travel_table"] = travel_table(map, log, start, d.days, fleet.zone());
   RONDO_ASSIGN_OR_RETURN(const std::vector<store::Event> events, store::read_events(db));
   result.report["weeks"] = weekly_summary(log, events, start, end);
-  result.write_errors = static_cast<int>(executor.write_errors().size());
+  result.write_errors = static_cast<int>(fleet.write_errors().size());
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   RONDO_RETURN_IF_ERROR(write_file(request.out / "report.json", result.report.dump(2) + "\n"));
   Json run{{"wall_seconds", result.wall_seconds},
@@ -290,7 +361,7 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
            {"day_cpu_seconds", day_cpu_seconds},
            {"realtime", request.realtime},
            {"resumed", resumed},
-           {"store_write_errors", executor.write_errors()}};
+           {"store_write_errors", fleet.write_errors()}};
   RONDO_RETURN_IF_ERROR(write_file(request.out / "run.json", run.dump(2) + "\n"));
   RONDO_RETURN_IF_ERROR(mark_finished(db));
   return result;

@@ -254,28 +254,42 @@ Result<ActiveEnd> serve_active(const ServeRequest& request, const store::StoreLo
       store::set_meta(db, "serve.deployment_file", std::filesystem::absolute(d.file).lexically_normal().string()));
 
   exec::SystemClock clock(request.speed);
-  // After a restart the robot is where it was last known to be.
-  map::NodeIndex start_at = parts.dock;
-  if (!stored.empty()) {
-    RONDO_ASSIGN_OR_RETURN(const std::optional<store::RobotState> last,
-                           store::load_robot_state(db, d.executor.robot_name));
-    if (last)
-      if (const auto n = parts.map.find_node(last->node)) start_at = *n;
-  }
-  // The deployment's robot: the simulated one, or a VDA 5050 vehicle (docs/vda5050.md); with a
-  // lease, commanded only while the lease is this process's.
-  RONDO_ASSIGN_OR_RETURN(DeploymentRobot deployed, make_robot(d, parts, clock, start_at, d.seed));
-  std::optional<FencedRobot> fenced;
-  if (lease) fenced.emplace(*deployed.robot, gate, *lease->epoch(), log);
-  exec::Robot& robot = fenced ? static_cast<exec::Robot&>(*fenced) : *deployed.robot;
-  exec::ExecutorOptions options = d.executor;
-  options.dock = parts.dock;
-  options.seed = d.seed;
+  exec::ExecutorOptions shared = d.executor;
+  shared.dock = parts.dock;
+  shared.seed = d.seed;
   // Requests are answered after their commit, not after the reschedule (docs/executor.md).
-  options.background_scheduling = true;
-  options.forget_finished = true;  // finished tasks stay only in the store: months of service do not grow
-  fleet::Fleet fleet(clock, parts.map, db, d.zone, options);
-  exec::Executor& executor = fleet.add_robot(robot, options);
+  shared.background_scheduling = true;
+  shared.forget_finished = true;  // finished tasks stay only in the store: months of service do not grow
+  // The deployment's robots: simulated ones, or VDA 5050 vehicles (docs/vda5050.md); with a lease,
+  // commanded only while the lease is this process's. After a restart each robot is where it was
+  // last known to be. Made before the fleet, which they outlive.
+  std::vector<DeploymentRobot> deployed;
+  std::vector<std::unique_ptr<FencedRobot>> fenced;
+  std::vector<exec::Robot*> commanded;
+  for (std::size_t i = 0; i < d.robots.size(); ++i) {
+    const RobotSpec& spec = d.robots[i];
+    map::NodeIndex start_at = parts.robots[i].start;
+    if (!stored.empty()) {
+      RONDO_ASSIGN_OR_RETURN(const std::optional<store::RobotState> last, store::load_robot_state(db, spec.name));
+      if (last)
+        if (const auto n = parts.map.find_node(last->node)) start_at = *n;
+    }
+    RONDO_ASSIGN_OR_RETURN(DeploymentRobot robot, make_robot(d, spec, parts, clock, start_at, d.seed + i));
+    commanded.push_back(robot.robot.get());
+    if (lease)
+      commanded.back() =
+          fenced.emplace_back(std::make_unique<FencedRobot>(*robot.robot, gate, *lease->epoch(), log)).get();
+    deployed.push_back(std::move(robot));
+  }
+  fleet::Fleet fleet(clock, parts.map, db, d.zone, shared);
+  for (std::size_t i = 0; i < d.robots.size(); ++i) {
+    exec::ExecutorOptions options = robot_options(d, d.robots[i], parts.robots[i]);
+    options.background_scheduling = shared.background_scheduling;
+    options.forget_finished = shared.forget_finished;
+    fleet.add_robot(*commanded[i], options);
+  }
+  exec::Executor& executor = fleet.robot();
+  exec::Robot& robot = fenced.empty() ? *deployed.front().robot : static_cast<exec::Robot&>(*fenced.front());
   // The deployment's routines with the changes made through the API (kept in the store).
   std::vector<std::string> skipped;
   RONDO_ASSIGN_OR_RETURN(std::vector<Routine> routines,
@@ -293,7 +307,11 @@ Result<ActiveEnd> serve_active(const ServeRequest& request, const store::StoreLo
   // Out of service when it stopped (POST /api/v1/pause), out of service again.
   RONDO_ASSIGN_OR_RETURN(const std::optional<std::string> out_of_service,
                          store::get_meta(db, service::kOutOfServiceKey));
-  if (out_of_service == "1") executor.set_out_of_service(true, false, "as before the restart");
+  for (const auto& r : fleet.robots()) {
+    RONDO_ASSIGN_OR_RETURN(const std::optional<std::string> own,
+                           store::get_meta(db, service::out_of_service_key(r->name())));
+    if (out_of_service == "1" || own == "1") r->set_out_of_service(true, false, "as before the restart");
+  }
   if (lease) {
     const store::LeaseState& before = takeover->before;
     const std::string reason =
@@ -391,9 +409,10 @@ Result<ActiveEnd> serve_active(const ServeRequest& request, const store::StoreLo
   });
   if (keeper) keeper->wake_on_loss(waiter.native_handle());
   clock.run_until(clock.now() + hours(24 * 365 * 100));
-  if (fenced && fenced->held_back() > 0)
-    log << fmt::format("rondo serve: {} command(s) to the robot held back after the lease was lost\n",
-                       fenced->held_back());
+  int held_back = 0;
+  for (const auto& f : fenced) held_back += f->held_back();
+  if (held_back > 0)
+    log << fmt::format("rondo serve: {} command(s) to the robot held back after the lease was lost\n", held_back);
   log << (stepped_down ? "rondo serve: stepped down\n" : "rondo serve: stopped\n") << std::flush;
   return stepped_down ? ActiveEnd::kSteppedDown : ActiveEnd::kStopped;
 }

@@ -195,6 +195,10 @@ Result<std::vector<std::pair<std::string, Field>>> Field::members() const {
 }
 
 Status Field::expect_keys(std::initializer_list<std::string_view> allowed) const {
+  return expect_keys(std::span<const std::string_view>(allowed.begin(), allowed.size()));
+}
+
+Status Field::expect_keys(std::span<const std::string_view> allowed) const {
   if (!value_->is_object()) return error("expected a mapping");
   for (auto it = value_->begin(); it != value_->end(); ++it) {
     bool known = false;

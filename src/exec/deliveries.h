@@ -35,6 +35,11 @@ class Deliveries {
   // The jobs not settled yet: an object to pick up, on board, or a drop pending.
   const std::set<std::string>& open() const { return open_; }
   void close(const std::string& job) { open_.erase(job); }
+  // Forgets a job that went to another robot (nothing of it on board here).
+  void hand_over(const std::string& job) {
+    jobs_.erase(job);
+    open_.erase(job);
+  }
   const Job* job(const std::string& name) const;
   // The objects on board now, in job order.
   std::vector<OnBoard> on_board(const TaskBook& book) const;

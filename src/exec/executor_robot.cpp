@@ -231,6 +231,7 @@ void Executor::on_fault(const RobotFault& fault) {
     clock_.cancel(look_again_);
     look_again_ = 0;
   }
+  if (unable_) unable_();
 }
 
 void Executor::on_ready() {

@@ -90,6 +90,7 @@ void Executor::set_out_of_service(bool out, bool halt, const std::string& reason
                  "out of service, but it cannot be interrupted now: it finishes");
   }
   if (started_) kick();
+  if (unable_) unable_();
 }
 
 }  // namespace rondo::exec

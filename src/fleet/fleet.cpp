@@ -32,6 +32,7 @@ Fleet::~Fleet() = default;
 exec::Executor& Fleet::add_robot(exec::Robot& robot, exec::ExecutorOptions options,
                                  std::unique_ptr<schedule::Scheduler> scheduler) {
   robots_.push_back(std::make_unique<exec::Executor>(building_, robot, std::move(options), std::move(scheduler)));
+  watch(*robots_.back());
   return *robots_.back();
 }
 

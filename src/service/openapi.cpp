@@ -138,6 +138,20 @@ Json document() {
   paths["/api/v1/resume"]["post"] =
       op("Back in service ({reason?}): dispatch resumes and the tasks are rescheduled.",
          responses({{200, "{out_of_service}"}, {400, "not JSON"}, {422, "a bad field"}}), Json::array(), false, true);
+  const Json robot_name = param("name", "path", "string", "the robot's name in the deployment");
+  paths["/api/v1/robots"]["get"] =
+      op("Every robot of the fleet: the fields of /api/v1/robot with its name and open_tasks.",
+         responses({{200, "{robots}"}}));
+  paths["/api/v1/robots/{name}"]["get"] =
+      op("One robot of the fleet.", responses({{200, "the robot"}, {404, "no such robot"}}), Json::array({robot_name}));
+  paths["/api/v1/robots/{name}/pause"]["post"] =
+      op("One robot out of service (as /api/v1/pause); its unstarted tasks go to the others after a while.",
+         responses({{200, "{out_of_service, robot}"}, {400, "not JSON"}, {404, "no such robot"}, {422, "a bad field"}}),
+         Json::array({robot_name}), false, true);
+  paths["/api/v1/robots/{name}/resume"]["post"] =
+      op("One robot back in service.",
+         responses({{200, "{out_of_service, robot}"}, {400, "not JSON"}, {404, "no such robot"}, {422, "a bad field"}}),
+         Json::array({robot_name}), false, true);
   paths["/api/v1/events"]["get"] =
       op("The event log as server-sent events; id is the log's sequence number.",
          responses({{200, "text/event-stream"}, {422, "a bad Last-Event-ID"}}),

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <limits>
+#include <map>
+#include <optional>
 
 #include "api.h"
 #include "rondo/core/task_codec.h"
@@ -21,33 +23,80 @@ Json fault_json(const std::optional<exec::RobotFault>& f) {
   return Json{{"kind", exec::to_string(f->kind)}, {"message", f->message}};
 }
 
+// What one robot is doing: where, its task, battery, faults, the route it expects.
+Json robot_view(const Api& api, exec::Executor& executor) {
+  const exec::Robot& robot = executor.robot();
+  const exec::Executor::Activity a = executor.activity();
+  const auto pose = robot.position();
+  Json faults = Json::array();
+  if (auto f = robot.fault()) faults.push_back(fault_json(f));
+  Json route = Json::array();  // the edges the running navigation expects to take
+  for (const map::EdgeIndex e : executor.route()) {
+    const map::Edge& edge = api.ctx.map.edge(e);
+    route.push_back(Json{{"edge", edge.id},
+                         {"from", api.ctx.map.node(api.ctx.map.from_index(e)).name},
+                         {"to", api.ctx.map.node(api.ctx.map.to_index(e)).name}});
+  }
+  return Json{{"name", executor.name()},
+              {"time", format_time(api.ctx.clock.now())},
+              {"node", api.ctx.map.node(robot.location()).name},
+              {"pose", pose ? Json{{"x", pose->x}, {"y", pose->y}, {"yaw", pose->yaw}} : Json(nullptr)},
+              {"phase", a.phase},
+              {"current_task", a.current ? Json(*a.current) : Json(nullptr)},
+              {"busy", robot.busy()},
+              {"battery", robot.battery()},
+              {"charging", robot.charging()},
+              {"dispatch_paused", a.fault.has_value() || executor.out_of_service()},
+              {"out_of_service", executor.out_of_service()},
+              {"faults", std::move(faults)},
+              {"route", std::move(route)}};
+}
+
+// GET /api/v1/robot: the fleet's first robot (a fleet of one: its robot).
 Reply robot(Api& api, const httplib::Request&) {
   return api.on_clock([&api] {
-    const exec::Robot& robot = api.ctx.robot;
-    const exec::Executor::Activity a = api.ctx.executor.activity();
-    const auto pose = robot.position();
-    Json faults = Json::array();
-    if (auto f = robot.fault()) faults.push_back(fault_json(f));
-    Json route = Json::array();  // the edges the running navigation expects to take
-    for (const map::EdgeIndex e : api.ctx.executor.route()) {
-      const map::Edge& edge = api.ctx.map.edge(e);
-      route.push_back(Json{{"edge", edge.id},
-                           {"from", api.ctx.map.node(api.ctx.map.from_index(e)).name},
-                           {"to", api.ctx.map.node(api.ctx.map.to_index(e)).name}});
+    Reply r;
+    r.body = robot_view(api, api.ctx.executor);
+    r.body.erase("name");  // as before fleets: the robot's view without a name
+    return r;
+  });
+}
+
+// The tasks allocated to each robot that are not over, by robot.
+std::map<std::string, int> open_tasks(const Api& api) {
+  std::map<std::string, int> n;
+  for (const auto& [id, r] : api.ctx.fleet.tasks())
+    if (!is_final(r.state)) ++n[r.robot];
+  return n;
+}
+
+// GET /api/v1/robots: every robot of the fleet, with the tasks it holds.
+Reply robots(Api& api, const httplib::Request&) {
+  return api.on_clock([&api] {
+    const std::map<std::string, int> open = open_tasks(api);
+    Json list = Json::array();
+    for (const auto& e : api.ctx.fleet.robots()) {
+      Json view = robot_view(api, *e);
+      const auto it = open.find(e->name());
+      view["open_tasks"] = it == open.end() ? 0 : it->second;
+      list.push_back(std::move(view));
     }
     Reply r;
-    r.body = Json{{"time", format_time(api.ctx.clock.now())},
-                  {"node", api.ctx.map.node(robot.location()).name},
-                  {"pose", pose ? Json{{"x", pose->x}, {"y", pose->y}, {"yaw", pose->yaw}} : Json(nullptr)},
-                  {"phase", a.phase},
-                  {"current_task", a.current ? Json(*a.current) : Json(nullptr)},
-                  {"busy", robot.busy()},
-                  {"battery", robot.battery()},
-                  {"charging", robot.charging()},
-                  {"dispatch_paused", a.fault.has_value() || api.ctx.executor.out_of_service()},
-                  {"out_of_service", api.ctx.executor.out_of_service()},
-                  {"faults", std::move(faults)},
-                  {"route", std::move(route)}};
+    r.body = Json{{"robots", std::move(list)}};
+    return r;
+  });
+}
+
+// GET /api/v1/robots/{name}
+Reply one_robot(Api& api, const httplib::Request& req) {
+  return api.on_clock([&api, name = std::string(req.matches[1])] {
+    exec::Executor* e = api.ctx.fleet.find_robot(name);
+    if (!e) return error_reply(Error::not_found(fmt::format("no robot '{}'", name)));
+    const std::map<std::string, int> open = open_tasks(api);
+    Reply r;
+    r.body = robot_view(api, *e);
+    const auto it = open.find(name);
+    r.body["open_tasks"] = it == open.end() ? 0 : it->second;
     return r;
   });
 }
@@ -248,9 +297,11 @@ Reply remove_routine(Api& api, const httplib::Request& req) {
 }
 
 // POST /api/v1/pause {"halt": bool, "reason": text} and POST /api/v1/resume {"reason": text}:
-// dispatch out of service and back. The state is stored (meta serve.out_of_service) before the
-// answer, so a restart keeps it.
-Reply set_service(Api& api, const httplib::Request& req, bool out) {
+// dispatch out of service and back, for every robot, or for one (/api/v1/robots/{name}/pause). The
+// state is stored (meta serve.out_of_service, or serve.out_of_service.<name>) before the answer,
+// so a restart keeps it. A robot out of service for a while hands its unstarted tasks to the
+// others (docs/fleet.md, "Re-allocation").
+Reply set_service(Api& api, const httplib::Request& req, bool out, std::optional<std::string> robot) {
   bool halt = false;
   std::string reason;
   if (!req.body.empty()) {
@@ -265,12 +316,19 @@ Reply set_service(Api& api, const httplib::Request& req, bool out) {
       reason = it->get<std::string>();
     }
   }
-  return api.on_clock([&api, out, halt, reason] {
-    if (Status ok = store::set_meta(api.ctx.store, kOutOfServiceKey, out ? "1" : "0"); !ok)
-      return error_reply(ok.error());
-    api.ctx.executor.set_out_of_service(out, halt, reason);
+  return api.on_clock([&api, out, halt, reason, robot] {
+    exec::Executor* one = robot ? api.ctx.fleet.find_robot(*robot) : nullptr;
+    if (robot && !one) return error_reply(Error::not_found(fmt::format("no robot '{}'", *robot)));
+    const std::string key = robot ? out_of_service_key(*robot) : std::string(kOutOfServiceKey);
+    if (Status ok = store::set_meta(api.ctx.store, key, out ? "1" : "0"); !ok) return error_reply(ok.error());
+    if (one) {
+      one->set_out_of_service(out, halt, reason);
+    } else {
+      for (const auto& e : api.ctx.fleet.robots()) e->set_out_of_service(out, halt, reason);
+    }
     Reply reply;
-    reply.body = Json{{"out_of_service", api.ctx.executor.out_of_service()}};
+    reply.body = Json{{"out_of_service", one ? one->out_of_service() : api.ctx.executor.out_of_service()}};
+    if (one) reply.body["robot"] = one->name();
     return reply;
   });
 }
@@ -279,6 +337,14 @@ Reply set_service(Api& api, const httplib::Request& req, bool out) {
 
 void add_robot_endpoints(std::vector<Endpoint>& routes) {
   routes.push_back({"GET", "/api/v1/robot", false, robot});
+  routes.push_back({"GET", "/api/v1/robots", false, robots});
+  routes.push_back({"GET", "/api/v1/robots/{name}", false, one_robot});
+  routes.push_back({"POST", "/api/v1/robots/{name}/pause", true, [](Api& api, const httplib::Request& req) {
+                      return set_service(api, req, true, std::string(req.matches[1]));
+                    }});
+  routes.push_back({"POST", "/api/v1/robots/{name}/resume", true, [](Api& api, const httplib::Request& req) {
+                      return set_service(api, req, false, std::string(req.matches[1]));
+                    }});
   routes.push_back({"GET", "/api/v1/map", false, map_view});
   routes.push_back({"GET", "/api/v1/schedule", false, schedule});
   routes.push_back({"GET", "/api/v1/edges", false, edges_now});
@@ -287,9 +353,9 @@ void add_robot_endpoints(std::vector<Endpoint>& routes) {
   routes.push_back({"POST", "/api/v1/routines", true, add_routines});
   routes.push_back({"DELETE", "/api/v1/routines/{name}", true, remove_routine});
   routes.push_back({"POST", "/api/v1/pause", true,
-                    [](Api& api, const httplib::Request& req) { return set_service(api, req, true); }});
+                    [](Api& api, const httplib::Request& req) { return set_service(api, req, true, std::nullopt); }});
   routes.push_back({"POST", "/api/v1/resume", true,
-                    [](Api& api, const httplib::Request& req) { return set_service(api, req, false); }});
+                    [](Api& api, const httplib::Request& req) { return set_service(api, req, false, std::nullopt); }});
 }
 
 }  // namespace rondo::service

@@ -16,7 +16,7 @@ SimRobot::SimRobot(exec::Clock& clock, const map::TopoMap& map, SimWorld& world,
       rng_(options.seed),
       sensor_rng_(options.seed ^ 0xD00A5E5502ULL),
       location_(options.start),
-      battery_(world.battery.initial),
+      battery_(options.battery ? options.battery->initial : world.battery.initial),
       battery_since_(clock.now()) {
   if (options.start >= map.node_count() || options.dock >= map.node_count()) {
     throw std::logic_error("SimRobot: start or dock is not a node of the map");
@@ -70,8 +70,13 @@ BatteryModel::Mode SimRobot::mode() const {
   return BatteryModel::Mode::kIdle;
 }
 
+std::optional<exec::ActionSupport> SimRobot::supported_actions() const {
+  if (!options_.actions) return std::nullopt;
+  return exec::ActionSupport{.robot = "simulated robot " + options_.name, .actions = *options_.actions};
+}
+
 double SimRobot::battery() const {
-  return world_.battery.after(battery_, mode(), clock_.now() - battery_since_);
+  return battery_model().after(battery_, mode(), clock_.now() - battery_since_);
 }
 
 bool SimRobot::charging() const { return mode() == BatteryModel::Mode::kCharging; }
@@ -107,13 +112,13 @@ void SimRobot::drive(const exec::Route& route) {
 }
 
 void SimRobot::rescue_if_stranded() {
-  if (battery_ > 0 || location_ == options_.dock || !world_.battery.rescue_after) {
+  if (battery_ > 0 || location_ == options_.dock || !battery_model().rescue_after) {
     empty_since_.reset();
     return;
   }
   const Time now = clock_.now();
   if (!empty_since_) empty_since_ = now;
-  if (now - *empty_since_ < *world_.battery.rescue_after) return;
+  if (now - *empty_since_ < *battery_model().rescue_after) return;
   location_ = options_.dock;  // carried back onto the charger: the command fails, from the dock
   empty_since_.reset();
   ++rescues_;
@@ -131,6 +136,9 @@ void SimRobot::start_edge(map::EdgeIndex edge) {
     const EdgeSample s = world_.edges->sample_edge(edge, job.start, rng_);
     job.success = s.success;
     job.duration = s.duration;
+    if (options_.speed != 1.0)
+      job.duration =
+          Duration{static_cast<Duration::rep>(std::llround(static_cast<double>(s.duration.count()) / options_.speed))};
   } else {
     job.success = false;  // an empty battery: the robot cannot move
   }
@@ -212,7 +220,7 @@ void SimRobot::finish() {
       location_ = map_.to_index(job.edge);
       const double metres = map::edge_length(map_, job.edge);
       distance_m_ += metres;
-      battery_ = world_.battery.after_distance(battery_, metres);
+      battery_ = battery_model().after_distance(battery_, metres);
     }
     // The rest of the committed route goes on after a success; anything else ends the drive.
     if (job.success && job.end == End::kNatural && !route_.empty()) {

@@ -29,9 +29,11 @@ Result<std::string> topic_level(const Field& robot, std::string_view key) {
 
 }  // namespace
 
-Result<Vda5050Config> parse_vda5050_config(const Field& robot) {
-  RONDO_RETURN_IF_ERROR(robot.expect_keys({"kind", "broker", "interface_name", "manufacturer", "serial_number",
-                                           "map_id", "offline_after", "compatibility", "information"}));
+Result<Vda5050Config> parse_vda5050_config(const Field& robot, std::span<const std::string_view> also_allowed) {
+  std::vector<std::string_view> keys{"kind",   "broker",        "interface_name", "manufacturer", "serial_number",
+                                     "map_id", "offline_after", "compatibility",  "information"};
+  keys.insert(keys.end(), also_allowed.begin(), also_allowed.end());
+  RONDO_RETURN_IF_ERROR(robot.expect_keys(keys));
   RONDO_ASSIGN_OR_RETURN(std::string kind, required_text(robot, "kind"));
   if (kind != "vda5050") return robot.error_at("kind", "is '" + kind + "', not vda5050");
   Vda5050Config c;

@@ -16,6 +16,7 @@
 
 #include "cli_runner.h"
 #include "deployment.h"
+#include "g4s_copy.h"
 #include "rondo/core/document.h"
 #include "test_files.h"
 
@@ -38,20 +39,12 @@ std::map<std::string, std::string> snapshot(const std::filesystem::path& dir) {
 // A copy of the G4S example with one file's text replaced: `from` -> `to` (which must occur).
 std::filesystem::path edited_example(const std::filesystem::path& dir, const std::string& file, const std::string& from,
                                      const std::string& to) {
-  for (const char* f : {"deployment.yaml", "map.yaml", "routines.yaml", "world.yaml", "requests.yaml"})
-    std::filesystem::copy_file(std::filesystem::path("examples/g4s") / f, dir / f);
-  std::string text = slurp(dir / file);
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << file << " has no '" << from << "'";
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  std::ofstream(dir / file, std::ios::binary | std::ios::trunc) << text;
-  return dir / "deployment.yaml";
+  const auto deployment = test::copy_g4s(dir);
+  test::replace_in(dir / file, from, to);
+  return deployment;
 }
 
-int line_of(const std::string& text, const std::string& needle) {
-  const auto at = text.find(needle);
-  return at == std::string::npos ? -1 : 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
-}
+using test::line_of;
 
 struct UnknownNodeCase {
   const char* name;

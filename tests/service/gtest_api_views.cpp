@@ -6,6 +6,7 @@
 #include <set>
 
 #include "live_service.h"
+#include "rondo/store/robot_state.h"
 #include "test_files.h"
 
 namespace rondo::test {
@@ -197,6 +198,42 @@ TEST(ApiViews, TheDashboardIsServedFromTheBinaryWithoutTheToken) {
   EXPECT_NE(script->body.find("sessionStorage"), std::string::npos);  // asks for the token, keeps it in the tab
   EXPECT_EQ(cli.Get("/dashboard.css")->status, 200);
   for (const auto* body : {&page->body, &script->body}) EXPECT_EQ(body->find("dashboard-token"), std::string::npos);
+}
+
+// A fleet's robots (issue 38): listed, one by name (404 for another), and paused one at a time:
+// the pause is stored under the robot's own key, and the others keep working.
+TEST(ApiViews, TheFleetsRobotsAreListedAndPausedOneByOne) {
+  LiveService s(fresh_dir("rondo-service-test", "robots"), {.more_robots = {"r2", "r3"}});
+  auto cli = s.client();
+  Json all = body_of(cli.Get("/api/v1/robots"));
+  ASSERT_EQ(all["robots"].size(), 3u) << all.dump();
+  EXPECT_EQ(all["robots"][0]["name"], "robot");
+  EXPECT_EQ(all["robots"][1]["name"], "r2");
+  EXPECT_EQ(all["robots"][2]["node"], "ChargingPoint");
+  EXPECT_EQ(all["robots"][2]["open_tasks"], 0);
+  ASSERT_EQ(cli.Post("/api/v1/tasks", s.task_body("f1", hours(1)), "application/json")->status, 201);
+  int open = 0;
+  const Json now = body_of(cli.Get("/api/v1/robots"));
+  for (const Json& r : now["robots"]) open += r["open_tasks"].get<int>();
+  EXPECT_EQ(open, 1) << now.dump();
+
+  Json r2 = body_of(cli.Get("/api/v1/robots/r2"));
+  EXPECT_EQ(r2["name"], "r2");
+  EXPECT_FALSE(r2["out_of_service"].get<bool>());
+  EXPECT_EQ(cli.Get("/api/v1/robots/r9")->status, 404);
+
+  auto paused = cli.Post("/api/v1/robots/r2/pause", R"({"reason": "wheel check"})", "application/json");
+  ASSERT_EQ(paused->status, 200) << paused->body;
+  EXPECT_EQ(body_of(paused)["robot"], "r2");
+  EXPECT_TRUE(body_of(cli.Get("/api/v1/robots/r2"))["out_of_service"].get<bool>());
+  EXPECT_FALSE(body_of(cli.Get("/api/v1/robots/r3"))["out_of_service"].get<bool>());
+  EXPECT_FALSE(body_of(cli.Get("/api/v1/robot"))["out_of_service"].get<bool>());
+  std::optional<std::string> stored;
+  s.on_clock([&] { stored = store::get_meta(s.store(), "serve.out_of_service.r2").value(); });
+  EXPECT_EQ(stored, "1");
+  EXPECT_EQ(cli.Post("/api/v1/robots/r9/pause", "", "application/json")->status, 404);
+  ASSERT_EQ(cli.Post("/api/v1/robots/r2/resume", "", "application/json")->status, 200);
+  EXPECT_FALSE(body_of(cli.Get("/api/v1/robots/r2"))["out_of_service"].get<bool>());
 }
 
 }  // namespace

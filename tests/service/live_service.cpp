@@ -76,6 +76,14 @@ LiveService::LiveService(const std::filesystem::path& data, LiveOptions o)
   eo.forget_finished = true;  // as rondo serve: finished tasks are read from the store
   fleet_ = std::make_unique<fleet::Fleet>(clock_, parts_.map, store_, TimeZone::utc(), eo);
   executor_ = &fleet_->add_robot(*robot_, eo);
+  for (std::size_t i = 0; i < o.more_robots.size(); ++i) {
+    more_.push_back(std::make_unique<sim::SimRobot>(
+        clock_, parts_.map, *parts_.world,
+        sim::SimRobotOptions{.start = parts_.dock, .dock = parts_.dock, .seed = 4 + i, .name = o.more_robots[i]}));
+    exec::ExecutorOptions own = eo;
+    own.robot_name = o.more_robots[i];
+    fleet_->add_robot(*more_.back(), own);
+  }
   fleet_->start();
   server_ =
       std::make_unique<service::Server>(service::ServiceContext{.clock = clock_,

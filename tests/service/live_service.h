@@ -41,6 +41,8 @@ struct LiveOptions {
   // The actions the robot says it runs (Robot::supported_actions), as a vehicle's factsheet
   // lists them; nothing: it does not say (the simulated robot runs any action).
   std::optional<std::vector<std::string>> robot_actions = std::nullopt;
+  // More simulated robots in the same world, by name (a fleet); the first is always "robot".
+  std::vector<std::string> more_robots = {};
 };
 
 class LiveService {
@@ -70,6 +72,7 @@ class LiveService {
   store::Store store_;
   exec::SystemClock clock_;
   std::unique_ptr<sim::SimRobot> sim_;
+  std::vector<std::unique_ptr<sim::SimRobot>> more_;  // LiveOptions::more_robots
   std::unique_ptr<exec::Robot> with_actions_;  // LiveOptions::robot_actions: the simulated robot saying so
   exec::Robot* robot_ = nullptr;               // the one the executor drives
   std::unique_ptr<fleet::Fleet> fleet_;

@@ -25,6 +25,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -96,6 +97,7 @@ class Field {
 
   // Checks that this is an object whose keys are all in `allowed`; names the first stranger.
   Status expect_keys(std::initializer_list<std::string_view> allowed) const;
+  Status expect_keys(std::span<const std::string_view> allowed) const;
 
   Result<std::string> as_string() const;
   Result<double> as_number() const;  // finite numbers only

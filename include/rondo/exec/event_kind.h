@@ -32,6 +32,7 @@ enum class EventKind {
   kStaysOnBoard,         // its drop did not happen and the object stays on board
   kReturnPlanned,        // its drop did not happen: a new task takes the object back
   kEdge,                 // an edge attempt cancelled or cut by a fault (a task's or the robot's)
+  kReallocated,          // the fleet gave it to another robot (its robot could not work)
   // the robot's
   kDeparted,              // a journey without a task left
   kArrived,               // ... and arrived

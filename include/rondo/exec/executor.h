@@ -41,6 +41,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -112,12 +113,23 @@ class Executor final : public RobotListener {
 
   // --- What the fleet asks of its robot (fleet::Fleet) ---
   const std::string& name() const { return options_.robot_name; }
+  const Robot& robot() const { return robot_; }
   // Why the robot cannot run one of these actions (it says so: Robot::supported_actions), or nothing.
   std::optional<std::string> cannot_run(const std::vector<Action>& actions) const;
   // Tasks the fleet recorded in the book and allocated to this robot: on-demand ones queue (and
   // preempt the running task when they may), standard ones are scheduled with the rest of its work
   // (trySchedule; from start() on).
   void take(std::vector<TaskId> ids);
+  // Hands back the tasks the robot has not started, for the fleet to give to other robots (a fault
+  // that lasts, a pause): those planned, on-demand and dropped for now, less those that must stay
+  // (a task naming this robot, and every task of a delivery job that has begun here: its item is
+  // on board, or its pickup runs). They leave every queue of this robot.
+  std::vector<TaskId> release();
+  // The fleet's call when the robot stops being able to work: a fault begins, or it is put out of
+  // service. It may release() the robot's tasks.
+  void on_unable(std::function<void()> call) { unable_ = std::move(call); }
+  bool able() const { return !in_fault_ && !out_of_service_; }
+  Duration reallocate_after() const { return options_.reallocate_after; }
   // Where and when the robot is next free: after its running task and its on-demand queue.
   std::pair<map::NodeIndex, Time> free_at() const;
   // After a restart (fleet_restore.cpp): a task of this robot read back (what is on board follows
@@ -380,6 +392,7 @@ class Executor final : public RobotListener {
   std::optional<Time> fault_since_;
   bool started_ = false;
   bool out_of_service_ = false;  // set_out_of_service(): next() starts nothing
+  std::function<void()> unable_;        // on_unable()
   std::unique_ptr<Charging> charging_;  // the battery: readings, thresholds, charges
   // assumptions and opportunities
   std::unique_ptr<AssumptionMap> assumption_map_;

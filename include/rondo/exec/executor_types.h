@@ -39,6 +39,9 @@ struct ExecutorOptions {
   // quantiles' last level. 0.98 was chosen on the office example's validation seeds 101-103.
   double person_patience = 0.98;
   Duration dock_when_waiting_over = minutes(15);  // longer waits are spent on the charger
+  // A fleet gives the unstarted tasks of a robot that cannot work (a fault, out of service) to its
+  // other robots after this long (a fault that clears sooner keeps them).
+  Duration reallocate_after = minutes(2);
   // The battery (docs/executor.md, "Battery"), states of charge in [0, 1]. Below
   // `battery_threshold` the robot goes to charge at the next interruptible moment, whatever the
   // schedule says, and starts nothing new until the battery is back at `battery_resume` (0: at

@@ -143,6 +143,11 @@ class Fleet {
   exec::Executor& robot_of(const TaskId& id) const;      // the robot that holds the task
   // Gives recorded tasks to their robots, in the order of the robots.
   void hand_out(const std::vector<TaskId>& ids);
+  // Re-allocation (fleet_reallocation.cpp): a robot that cannot work (ExecutorOptions::
+  // reallocate_after after a fault began or it went out of service, and still so) hands back its
+  // unstarted tasks, which go to the robots that can work, each with a `re-allocated` event.
+  void watch(exec::Executor& robot);
+  void reallocate_from(exec::Executor& robot);
 
   // Daily (fleet_daily.cpp).
   void create_routine_tasks(std::chrono::year_month_day day);

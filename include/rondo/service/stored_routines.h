@@ -25,6 +25,10 @@ namespace rondo::service {
 // The store's meta key of dispatch out of service ("1") or not ("0" or absent): written by
 // POST /api/v1/pause and /resume, read at start.
 inline constexpr const char* kOutOfServiceKey = "serve.out_of_service";
+// One robot of a fleet out of service (POST /api/v1/robots/{name}/pause): this key, a dot, its name.
+inline std::string out_of_service_key(const std::string& robot) {
+  return std::string(kOutOfServiceKey) + "." + robot;
+}
 
 // The meta key of the stored changes.
 inline constexpr const char* kStoredRoutinesKey = "serve.routines";

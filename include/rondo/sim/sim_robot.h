@@ -24,6 +24,9 @@
 // Faults, for tests and demonstrations: inject_fault() ends a running edge or action with the
 // outcome kRobotFault and reports the fault; clear_fault() reports the robot ready. While in fault,
 // drive() and run_action() end at once with kRobotFault.
+// Several SimRobots may share one world (a fleet in one building): its doors and spells are the
+// same for all; each has its own random stream, battery and speed (SimRobotOptions). They pass
+// through each other: there is no traffic between them.
 // Figures: distance_m() counts the length of successfully crossed edges only (a failed or
 // cancelled attempt ends where it began and counts 0 m). charging_time() is the time spent idle
 // at the dock. The battery drains by the hour in each mode (BatteryModel) and, at the end of each
@@ -56,6 +59,13 @@ struct SimRobotOptions {
   map::NodeIndex start = 0;
   map::NodeIndex dock = 0;
   std::uint64_t seed = 1;
+  // One robot of a fleet in a shared world: its own battery (nothing: the world's), a factor on
+  // every edge's time drawn from the world (0.5: half as fast), and the actions it runs (nothing:
+  // it does not say; supported_actions() names it `name`).
+  std::optional<BatteryModel> battery{};
+  double speed = 1.0;
+  std::optional<std::vector<std::string>> actions{};
+  std::string name = "robot";
 };
 
 class SimRobot final : public exec::Robot {
@@ -77,6 +87,7 @@ class SimRobot final : public exec::Robot {
   double battery() const override;
   bool charging() const override;
   std::optional<exec::RobotFault> fault() const override { return fault_; }
+  std::optional<exec::ActionSupport> supported_actions() const override;
 
   void inject_fault(exec::RobotFault fault);
   void clear_fault();
@@ -110,6 +121,7 @@ class SimRobot final : public exec::Robot {
   void start_edge(map::EdgeIndex edge);
   void stop_job(End end, std::string message);  // cancel() and inject_fault()
 
+  const BatteryModel& battery_model() const { return options_.battery ? *options_.battery : world_.battery; }
   BatteryModel::Mode mode() const;
   void settle_battery();  // accounts the time since the last change, before the mode changes
   // Empty away from the dock for BatteryModel::rescue_after: carried back onto the dock.

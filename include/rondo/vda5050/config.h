@@ -15,7 +15,9 @@
 //   Result<Vda5050Config> c = parse_vda5050_config(doc.root().required("robot").value());
 #pragma once
 
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rondo/core/document.h"
@@ -38,6 +40,7 @@ struct Vda5050Config {
 };
 
 // Errors name the file, line and field ("deployment.yaml:7: robot.serial_number: ...").
-Result<Vda5050Config> parse_vda5050_config(const Field& robot);
+// `also_allowed`: more keys the caller reads from the same mapping (a fleet entry's name, dock...).
+Result<Vda5050Config> parse_vda5050_config(const Field& robot, std::span<const std::string_view> also_allowed = {});
 
 }  // namespace rondo::vda5050

@@ -1,0 +1,36 @@
+// Handing tasks back to the fleet (Executor::release): re-allocation when a robot cannot work.
+#include <set>
+
+#include "deliveries.h"
+#include "dispatcher.h"
+#include "rondo/exec/executor.h"
+#include "task_run.h"
+
+namespace rondo::exec {
+
+std::vector<TaskId> Executor::release() {
+  std::vector<TaskId> queued(dispatcher_->planned().begin(), dispatcher_->planned().end());
+  queued.insert(queued.end(), dispatcher_->on_demand().begin(), dispatcher_->on_demand().end());
+  queued.insert(queued.end(), dispatcher_->deferred().begin(), dispatcher_->deferred().end());
+  // A delivery job stays whole with the robot that began it.
+  std::set<std::string> begun;
+  for (const std::string& job : deliveries_->open()) {
+    const Deliveries::Job* j = deliveries_->job(job);
+    const bool pickup_runs = j && j->pickup && run_ && run_->id() == *j->pickup;
+    if (pickup_runs || deliveries_->is_on_board(book_, job)) begun.insert(job);
+  }
+  std::vector<TaskId> released;
+  for (const TaskId& id : queued) {
+    const TaskRecord& r = book_.at(id);
+    if (is_final(r.state) || r.task.robot == name()) continue;
+    if (r.task.delivery && begun.contains(r.task.delivery->job)) continue;
+    released.push_back(id);
+  }
+  for (const TaskId& id : released) {
+    dispatcher_->forget(id);
+    if (const auto& d = book_.at(id).task.delivery) deliveries_->hand_over(d->job);
+  }
+  return released;
+}
+
+}  // namespace rondo::exec

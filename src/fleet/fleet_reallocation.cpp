@@ -1,0 +1,38 @@
+// Re-allocation: the unstarted tasks of a robot that cannot work go to the robots that can.
+#include <fmt/format.h>
+
+#include "rondo/fleet/fleet.h"
+
+namespace rondo::fleet {
+
+void Fleet::watch(exec::Executor& robot) {
+  robot.on_unable([this, &robot] {
+    if (robots_.size() < 2) return;
+    building_.clock.schedule_after(robot.reallocate_after(), [this, &robot] { reallocate_from(robot); });
+  });
+}
+
+void Fleet::reallocate_from(exec::Executor& robot) {
+  if (robot.able()) return;  // the fault cleared, or it is back in service: it keeps its work
+  bool others = false;
+  for (const auto& r : robots_) others = others || (r.get() != &robot && r->able());
+  if (!others) return;
+  const std::vector<TaskId> ids = robot.release();
+  if (ids.empty()) return;
+  std::vector<Task> tasks;
+  for (const TaskId& id : ids) tasks.push_back(building_.book.at(id).task);
+  const std::vector<std::string> to = allocate(tasks);
+  const std::string why = robot.paused() ? "a fault" : "out of service";
+  const Duration after = robot.reallocate_after();
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    if (to[i] == robot.name()) continue;
+    if (!building_.book.allocate(ids[i], to[i])) continue;  // the store refused: it goes back to its robot
+    building_.book.note(ids[i], exec::EventKind::kReallocated,
+                        robot.paused() ? exec::Outcome::kRobotFault : exec::Outcome::kNone,
+                        fmt::format("from {} ({} for {}) to {}", robot.name(), why,
+                                    format_duration(std::chrono::round<std::chrono::seconds>(after)), to[i]));
+  }
+  hand_out(ids);  // each to the robot the book now names
+}
+
+}  // namespace rondo::fleet
