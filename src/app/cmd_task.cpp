@@ -11,6 +11,7 @@
 #include "request_queue.h"
 #include "rondo/core/task_codec.h"
 #include "rondo/lang/command.h"
+#include "rondo/ltl/task_formula.h"
 #include "rondo/map/map_loader.h"
 #include "time_parsing_cli.h"
 
@@ -43,12 +44,20 @@ void print_tasks(const std::vector<Task>& tasks, const TimeZone& zone, std::ostr
     out << fmt::format("{:<36} {:<26} {:<26} {:>8} {:>4}  {}\n", t.id,
                        t.window ? zone.format_local(t.window->release) : "now",
                        t.window ? zone.format_local(t.window->deadline) : "-", format_duration(t.duration), t.priority,
-                       t.start_node.empty() ? "-" : t.start_node);
+                       t.has_spec()           ? "spec: " + t.spec
+                       : t.start_node.empty() ? "-"
+                                              : t.start_node);
   }
 }
 
+// Without a map, a task's formula is checked for the fragment and its automaton's size.
+PlaceCheck formula_check() {
+  return {.known = {}, .map_name = {}, .spec = [](std::string_view f) { return ltl::check_task_formula(f); }};
+}
+
 void check(const TaskOptions& o, CommandContext& ctx) {
-  auto file = load_task_file(o.file);
+  const PlaceCheck formulas = formula_check();
+  auto file = load_task_file(o.file, &formulas);
   if (!file) {
     fail(ctx, file.error());
     return;
@@ -65,7 +74,8 @@ void check(const TaskOptions& o, CommandContext& ctx) {
 
 // Lists the tasks of a file and those its routines make on `days` days from `from`.
 void expand(const TaskOptions& o, CommandContext& ctx) {
-  auto file = load_task_file(o.file);
+  const PlaceCheck formulas = formula_check();
+  auto file = load_task_file(o.file, &formulas);
   if (!file) {
     fail(ctx, file.error());
     return;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "rondo/ltl/task_formula.h"
 #include "rondo/map/map_loader.h"
 
 namespace rondo::app {
@@ -91,8 +92,10 @@ Result<DeploymentParts> load_parts(const Deployment& d) {
   RONDO_ASSIGN_OR_RETURN(std::vector<RobotNodes> robots, robot_nodes(d, map, *dock));
   TaskFile plan;
   if (d.routines) {
-    const PlaceCheck places{.known = [&map](std::string_view node) { return map.find_node(node).has_value(); },
-                            .map_name = map.name()};
+    const auto known = [&map](std::string_view node) { return map.find_node(node).has_value(); };
+    const PlaceCheck places{.known = known, .map_name = map.name(), .spec = [&](std::string_view f) {
+                              return ltl::check_task_formula(f, known, map.name());
+                            }};
     RONDO_ASSIGN_OR_RETURN(const Document doc, Document::load(*d.routines));
     RONDO_ASSIGN_OR_RETURN(plan, decode_task_file(doc, &places));
     RONDO_RETURN_IF_ERROR(check_robots(d, doc, plan));

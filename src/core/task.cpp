@@ -81,6 +81,12 @@ std::optional<Problem> first_problem(const Task& t) {
                                      format_duration(t.window->width()) + ")"};
     }
   }
+  if (t.has_spec()) {
+    if (!t.start_node.empty()) return Problem{"spec", "a task has a spec or a start_node, not both"};
+    if (!t.end_node.empty())
+      return Problem{"end_node", "a spec task ends where its formula is satisfied: it takes no end_node"};
+    if (t.delivery) return Problem{"delivery", "a delivery picks up and drops at a start_node: it takes no spec"};
+  }
   if (t.start_node.empty() && !t.end_node.empty()) {
     return Problem{"end_node", "an end node needs a start node"};
   }

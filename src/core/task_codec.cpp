@@ -75,7 +75,7 @@ Result<Delivery> decode_delivery(const Field& f) {
 // Everything of a task except id, kind and window, which tasks and routine templates treat
 // differently.
 Status check_place(const Field& f, std::string_view key, const std::string& node, const PlaceCheck* places) {
-  if (!places || node.empty() || places->known(node)) return {};
+  if (!places || !places->known || node.empty() || places->known(node)) return {};
   return f.error_at(key, fmt::format("node '{}' is not on the map '{}'", node, places->map_name));
 }
 
@@ -93,6 +93,13 @@ Status decode_task_body(const Field& f, Task& t, const PlaceCheck* places) {
   RONDO_ASSIGN_OR_RETURN(t.end_node, optional_string(f, "end_node"));
   RONDO_RETURN_IF_ERROR(check_place(f, "start_node", t.start_node, places));
   RONDO_RETURN_IF_ERROR(check_place(f, "end_node", t.end_node, places));
+  if (auto spec = f.optional("spec")) {
+    RONDO_ASSIGN_OR_RETURN(t.spec, spec->as_string());
+    if (t.spec.empty()) return spec->error("a spec is a formula over the map's nodes: it must not be empty");
+    if (places && places->spec) {
+      if (Status ok = places->spec(t.spec); !ok) return spec->error(ok.error().message);
+    }
+  }
   if (auto actions = f.optional("actions")) {
     RONDO_ASSIGN_OR_RETURN(auto items, actions->items());
     for (const auto& item : items) {
@@ -189,7 +196,7 @@ std::string format_date(std::chrono::year_month_day d) {
 
 Result<Task> decode_task(const Field& f, const TimeZone* zone, const PlaceCheck* places) {
   RONDO_RETURN_IF_ERROR(f.expect_keys({"id", "activity", "kind", "window", "duration", "priority", "start_node",
-                                       "end_node", "actions", "interruptible", "delivery", "after", "robot"}));
+                                       "end_node", "spec", "actions", "interruptible", "delivery", "after", "robot"}));
   Task t;
   RONDO_ASSIGN_OR_RETURN(auto id, f.required("id"));
   RONDO_ASSIGN_OR_RETURN(t.id, id.as_string());
@@ -221,7 +228,7 @@ Result<Routine> decode_routine(const Field& f, const PlaceCheck* places) {
   RONDO_ASSIGN_OR_RETURN(r.name, name.as_string());
   RONDO_ASSIGN_OR_RETURN(auto task, f.required("task"));
   RONDO_RETURN_IF_ERROR(task.expect_keys(
-      {"activity", "duration", "priority", "start_node", "end_node", "actions", "interruptible", "robot"}));
+      {"activity", "duration", "priority", "start_node", "end_node", "spec", "actions", "interruptible", "robot"}));
   RONDO_RETURN_IF_ERROR(decode_task_body(task, r.task, places));
   RONDO_ASSIGN_OR_RETURN(auto window, f.required("window"));
   RONDO_RETURN_IF_ERROR(window.expect_keys({"from", "to"}));
@@ -344,6 +351,7 @@ void encode_task_body(const Task& t, Json& j) {
   if (t.priority != 0) j["priority"] = t.priority;
   if (!t.start_node.empty()) j["start_node"] = t.start_node;
   if (!t.end_node.empty()) j["end_node"] = t.end_node;
+  if (t.has_spec()) j["spec"] = t.spec;
   if (!t.actions.empty()) {
     Json actions = Json::array();
     for (const auto& a : t.actions) {

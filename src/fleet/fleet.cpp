@@ -56,7 +56,7 @@ Status Fleet::runs_here(const Task& task) const {
     if (!node->empty() && !building_.map.find_node(*node))
       return Error::invalid(fmt::format("task {}: node '{}' is not on the map", task.id, *node));
   }
-  if (task.kind == TaskKind::kStandard && task.start_node.empty())
+  if (task.kind == TaskKind::kStandard && task.start_node.empty() && !task.has_spec())
     return Error::invalid(fmt::format("task {}: a standard task needs a start node", task.id));
   return Status{};
 }

@@ -9,6 +9,7 @@
 
 #include "api.h"
 #include "rondo/core/task_codec.h"
+#include "rondo/ltl/task_formula.h"
 #include "rondo/map/map_yaml.h"
 #include "rondo/plan/learned_edge_models.h"
 #include "rondo/service/stored_routines.h"
@@ -249,7 +250,9 @@ Reply add_routines(Api& api, const httplib::Request& req) {
   Json j;
   if (auto refused = read_json_object(req, j)) return *refused;
   const map::TopoMap& map = api.ctx.map;
-  const PlaceCheck places{[&map](std::string_view n) { return map.find_node(n).has_value(); }, map.name()};
+  const auto known = [&map](std::string_view n) { return map.find_node(n).has_value(); };
+  const PlaceCheck places{known, map.name(),
+                          [&](std::string_view f) { return ltl::check_task_formula(f, known, map.name()); }};
   auto file = parse_task_file(with_default_zone(j, api.ctx.zone), DocumentFormat::kJson, "request", &places);
   if (!file) return error_reply(file.error());
   if (!file->tasks.empty())

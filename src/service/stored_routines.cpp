@@ -1,4 +1,5 @@
 #include "rondo/service/stored_routines.h"
+#include "rondo/ltl/task_formula.h"
 
 #include <fmt/format.h>
 
@@ -67,7 +68,9 @@ Result<std::vector<Routine>> routines_to_run(store::Store& store, std::vector<Ro
   std::set<std::string> gone;
   for (const Json& name : j.at("removed"))
     if (name.is_string()) gone.insert(name.get<std::string>());
-  const PlaceCheck places{[&map](std::string_view n) { return map.find_node(n).has_value(); }, map.name()};
+  const auto known = [&map](std::string_view n) { return map.find_node(n).has_value(); };
+  const PlaceCheck places{known, map.name(),
+                          [&](std::string_view f) { return ltl::check_task_formula(f, known, map.name()); }};
   std::vector<Routine> added;
   for (const Json& r : j.at("added")) {
     const std::string name = name_of(r);

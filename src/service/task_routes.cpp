@@ -6,6 +6,7 @@
 
 #include "api.h"
 #include "rondo/core/task_codec.h"
+#include "rondo/ltl/task_formula.h"
 #include "rondo/store/batch.h"
 #include "rondo/store/events.h"
 #include "rondo/store/robot_state.h"
@@ -93,7 +94,9 @@ Reply submit(Api& api, const httplib::Request& req) {
   Json body;
   if (auto refused = read_json_object(req, body)) return *refused;
   const map::TopoMap& map = api.ctx.map;
-  const PlaceCheck places{[&map](std::string_view n) { return map.find_node(n).has_value(); }, map.name()};
+  const auto known = [&map](std::string_view n) { return map.find_node(n).has_value(); };
+  const PlaceCheck places{known, map.name(),
+                          [&](std::string_view f) { return ltl::check_task_formula(f, known, map.name()); }};
   auto file = parse_task_file(with_default_zone(body, api.ctx.zone), DocumentFormat::kJson, "request", &places);
   if (!file) return error_reply(file.error());
   if (!file->routines.empty())

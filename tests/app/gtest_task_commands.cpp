@@ -51,6 +51,11 @@ TEST_F(TaskCommands, BadFilesExitWithTwoAndSayWhere) {
        "backwards.yaml:3: tasks[0].window.deadline: deadline 2026-01-01T00:00:00Z is before the release"},
       {"garbage.json", "\x01\x02\xff{", "garbage.json:1: the text is not valid UTF-8"},
       {"broken.json", "{\"tasks\": [", "broken.json: [json.exception.parse_error"},
+      {"always.yaml", "tasks:\n  - id: a\n    kind: on-demand\n    spec: F A & G B\n",
+       "always.yaml:4: tasks[0].spec: position 7: 'G' (always) is outside the co-safe fragment"},
+      {"nine.yaml",
+       "tasks:\n  - id: a\n    kind: on-demand\n    spec: F a & F b & F c & F d & F e & F f & F g & F h & F i\n",
+       "nine.yaml:4: tasks[0].spec: "},
   };
   for (const auto& c : cases) {
     auto r = run_cli({"task", "check", write(c.name, c.text).string()});

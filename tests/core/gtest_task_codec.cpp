@@ -83,6 +83,49 @@ TEST(TaskCodec, MalformedFilesNameWhereAndWhat) {
   }
 }
 
+TEST(TaskCodec, SpecTasksRoundTrip) {
+  const std::string text =
+      "tasks:\n  - id: rounds\n    window: {release: 2026-11-23T09:00Z, deadline: 2026-11-23T12:00Z}\n"
+      "    duration: 2m\n    spec: '!WayPoint12 U Station'\n    actions: [check_door]\n"
+      "routines:\n  - name: doors\n    task: {duration: 1m, spec: F A & F B}\n    window: {from: \"08:00\", to: "
+      "\"10:00\"}\ntimezone: UTC\n";
+  auto file = parse_yaml(text);
+  ASSERT_TRUE(file.ok()) << file.error().message;
+  EXPECT_EQ(file->tasks[0].spec, "!WayPoint12 U Station");
+  EXPECT_TRUE(file->tasks[0].has_spec());
+  EXPECT_TRUE(file->tasks[0].start_node.empty());
+  EXPECT_EQ(file->routines[0].task.spec, "F A & F B");
+  auto back = parse_task_file(encode(*file).dump(), DocumentFormat::kJson, "back.json");
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  EXPECT_EQ(back->tasks, file->tasks);
+  EXPECT_EQ(back->routines[0].task, file->routines[0].task);
+}
+
+TEST(TaskCodec, SpecTasksRefuseWhatCannotBeMeant) {
+  const std::string head = "tasks:\n  - id: a\n    kind: on-demand\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {head + "    spec: F A\n    start_node: A\n",
+       "day.yaml:4: tasks[0].spec: a task has a spec or a start_node, not both"},
+      {head + "    spec: F A\n    end_node: A\n", "day.yaml:5: tasks[0].end_node: a spec task ends where"},
+      {head + "    spec: ''\n", "day.yaml:4: tasks[0].spec: a spec is a formula over the map's nodes"},
+      {head + "    spec: [F A]\n", "day.yaml:4: tasks[0].spec: expected text, found a list"},
+  };
+  for (const auto& [text, expect] : cases) {
+    auto file = parse_yaml(text);
+    ASSERT_FALSE(file.ok()) << text;
+    EXPECT_EQ(file.error().message.substr(0, expect.size()), expect) << file.error().message;
+  }
+  // The formula's own check (ltl's, injected: core cannot read formulas) speaks at the field.
+  const PlaceCheck check{.known = {}, .map_name = {}, .spec = [](std::string_view f) -> Status {
+                           if (f == "G A") return Error::invalid("position 1: 'G' (always) is outside the fragment");
+                           return {};
+                         }};
+  auto refused = parse_task_file(head + "    spec: G A\n", DocumentFormat::kYaml, "day.yaml", &check);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().message, "day.yaml:4: tasks[0].spec: position 1: 'G' (always) is outside the fragment");
+  EXPECT_TRUE(parse_task_file(head + "    spec: F A\n", DocumentFormat::kYaml, "day.yaml", &check).ok());
+}
+
 TEST(TaskCodec, JsonFilesReadLikeYaml) {
   const std::string json = R"({"tasks": [{"id": "a", "window": {"release": "2026-11-23T09:00:00Z",
      "deadline": "2026-11-23T10:00:00Z"}, "duration": 60, "start_node": "A"}]})";

@@ -67,14 +67,18 @@ struct Task {
   int priority = 0;                  // higher is more important
   std::string start_node;            // empty: the task has no place (it runs where the robot is)
   std::string end_node;              // empty: ends where it starts
+  // A co-safe LTL formula over the map's nodes (docs/ltl.md), instead of start_node: the task's
+  // journey is the way that satisfies it, and its actions run where it is satisfied. Empty: none.
+  std::string spec;
   std::vector<Action> actions;
   bool interruptible = true;         // initial value; the running task may change it
   std::optional<Delivery> delivery;
   std::vector<TaskId> after;         // tasks that must end before this one starts
   std::string robot;                 // the robot that must do it (a fleet's name); empty: any robot
 
-  // Where the robot is when the task ends.
+  // Where the robot is when the task ends (empty for a spec task: where its formula is satisfied).
   const std::string& end_location() const { return end_node.empty() ? start_node : end_node; }
+  bool has_spec() const { return !spec.empty(); }
   bool operator==(const Task&) const = default;
 };
 
@@ -103,7 +107,8 @@ Result<TaskState> parse_task_state(std::string_view text);
 // Checks one task for what cannot be meant: no id, a standard task without a window or an
 // on-demand one with a window, a deadline before the release, a duration longer than the window,
 // an end node without a start node, an empty action name, a delivery without a job or with a
-// load below 1. The message names the field, prefixed by `path` (e.g. "tasks[3]").
+// load below 1, a spec beside a start node, an end node or a delivery. The message names the
+// field, prefixed by `path` (e.g. "tasks[3]").
 Status validate(const Task& task, const std::string& path = "");
 
 // Checks a set of tasks together: unique ids, `after` naming existing tasks and no cycle, each

@@ -32,10 +32,14 @@ struct TaskFile {
 
 // The places a file may name, when the map is known (a deployment): a start_node or end_node that
 // `known` refuses is an error at its field ("routines.yaml:12: routines[0].task.start_node: node
-// 'Lab' is not on the map 'g4s'"). Without one, node names are not checked.
+// 'Lab' is not on the map 'g4s'"). Without one, node names are not checked. A task's `spec:`
+// (a formula: core cannot read it) is checked by `spec` when set (ltl::check_task_formula: the
+// fragment, the automaton's size, the nodes), its error shown at the field; `known` may then be
+// empty, for a check without a map.
 struct PlaceCheck {
   std::function<bool(std::string_view)> known;
   std::string map_name;
+  std::function<Status(std::string_view formula)> spec{};
 };
 
 // Times without an explicit zone are read in `zone`; with no zone they are an error.
