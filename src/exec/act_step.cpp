@@ -7,7 +7,7 @@
 
 namespace rondo::exec {
 
-ActStep::ActStep(StepContext& ctx, StepHooks hooks, TaskId task, const NavigateStep& arrival)
+ActStep::ActStep(StepContext& ctx, StepHooks hooks, TaskId task, const Arrival& arrival)
     : RobotStep(ctx, std::move(hooks)), task_(std::move(task)), arrival_(arrival) {}
 
 void ActStep::start() {

@@ -7,6 +7,7 @@
 #include "loading_times.h"
 #include "rondo/learn/weekly_memory.h"
 #include "scheduling.h"
+#include "spec_tasks.h"
 
 namespace rondo::exec {
 
@@ -30,7 +31,8 @@ Building::Building(Clock& clock_in, const map::TopoMap& map_in, store::Store& st
       book(store_in, clock_in),
       loading(std::make_unique<LoadingTimes>()),
       found_blocked(std::make_unique<FoundBlocked>()),
-      door_models(std::make_unique<DoorModels>(zone)) {}
+      door_models(std::make_unique<DoorModels>(zone)),
+      spec_tasks(std::make_unique<SpecTasks>(map_in, models, options.slot_width)) {}
 
 Building::~Building() = default;
 

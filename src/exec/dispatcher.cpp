@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "spec_tasks.h"
 #include "text.h"
 
 namespace rondo::exec {
@@ -29,19 +30,24 @@ Decision Dispatcher::next(map::NodeIndex here, Time now) {
   const TaskId id = planned_.front();
   const TaskRecord& r = book_.at(id);
   const Task& task = r.task;
-  const Duration travel = travel_.travel(here, *map_.find_node(task.start_node), now);
+  const Duration travel = task_travel(travel_, specs_, map_, r, here, now);
+  const std::string place = task.has_spec() ? "the way that satisfies " + task.spec : task.start_node;
   const Time latest_start = task.window->deadline - r.remaining();
   if (travel >= kUnreachable || now + travel > latest_start) {
     planned_.erase(planned_.begin());
     const std::string& from = map_.node(here).name;
     if (travel >= kUnreachable)
-      return {.kind = Decision::Kind::kFail, .task = id, .outcome = Outcome::kNoRoute,
-              .reason = fmt::format("too late: {} cannot be reached from {} at {}", task.start_node, from,
-                                    zone_.format_clock(now))};
-    return {.kind = Decision::Kind::kFail, .task = id, .outcome = Outcome::kTooLate,
+      return {
+          .kind = Decision::Kind::kFail,
+          .task = id,
+          .outcome = Outcome::kNoRoute,
+          .reason = fmt::format("too late: {} cannot be reached from {} at {}", place, from, zone_.format_clock(now))};
+    return {.kind = Decision::Kind::kFail,
+            .task = id,
+            .outcome = Outcome::kTooLate,
             .reason = fmt::format("too late: leaving {} at {} arrives at {} about {} (travel {}), after the latest "
                                   "start {} that finishes by {}",
-                                  from, zone_.format_clock(now), task.start_node, zone_.format_clock(now + travel),
+                                  from, zone_.format_clock(now), place, zone_.format_clock(now + travel),
                                   duration_text(travel), zone_.format_clock(latest_start),
                                   zone_.format_clock(task.window->deadline))};
   }

@@ -50,12 +50,14 @@ struct PlannedCharge {
   std::optional<TaskId> before{};
 };
 
+class SpecTasks;
+
 class Dispatcher {
  public:
   // Everything given outlives the dispatcher.
   Dispatcher(const map::TopoMap& map, const TravelCache& travel, const TaskBook& book, const ExecutorOptions& options,
-             const TimeZone& zone)
-      : map_(map), travel_(travel), book_(book), options_(options), zone_(zone) {}
+             const TimeZone& zone, const SpecTasks* specs = nullptr)
+      : map_(map), travel_(travel), book_(book), options_(options), zone_(zone), specs_(specs) {}
 
   // The queues, read.
   const std::vector<TaskId>& planned() const { return planned_; }    // standard, in the schedule's order
@@ -97,6 +99,7 @@ class Dispatcher {
   const TaskBook& book_;
   const ExecutorOptions& options_;
   const TimeZone& zone_;
+  const SpecTasks* specs_;
   std::vector<TaskId> planned_;
   std::deque<TaskId> on_demand_;
   std::vector<TaskId> deferred_;

@@ -18,6 +18,7 @@
 #include "rondo/exec/executor.h"
 #include "rondo/store/observations.h"
 #include "scheduling.h"
+#include "spec_tasks.h"
 #include "task_run.h"
 
 namespace rondo::exec {
@@ -254,8 +255,8 @@ bool Executor::opportunity_fits(const TaskId& id, bool interrupt, const std::vec
   // Where and when the robot would take it: now from here (the running task goes back to the
   // queue), or once the running task and the on-demand ones are done.
   auto [from, at] = interrupt ? std::pair{robot_.location(), now} : free_at();
-  const map::NodeIndex start = *map_.find_node(r.task.start_node);
-  const Duration travel = travel_.travel(from, start, at);
+  const map::NodeIndex start = task_place(building_.spec_tasks.get(), map_, r, from, at);
+  const Duration travel = task_travel(travel_, building_.spec_tasks.get(), map_, r, from, at);
   const Time begins = std::max(at + travel, r.task.window->release);
   const Time ends = begins + r.remaining();
   if (travel >= kUnreachable || ends > r.task.window->deadline) {
@@ -281,9 +282,17 @@ bool Executor::opportunity_fits(const TaskId& id, bool interrupt, const std::vec
                       .picked_up_by = id});
   }
   std::mt19937_64 rng(options_.seed);  // a trial: the executor's own draws stay as they were
-  const ScheduleInputs in{.map = map_, .travel = travel_, .book = book_, .zone = zone_, .scheduler = *scheduler_,
-                          .polls = options_.scheduler_polls, .rng = rng, .capacity = options_.capacity,
-                          .on_board = std::move(load), .risk_alpha = options_.risk_alpha};
+  const ScheduleInputs in{.map = map_,
+                          .travel = travel_,
+                          .book = book_,
+                          .zone = zone_,
+                          .scheduler = *scheduler_,
+                          .polls = options_.scheduler_polls,
+                          .rng = rng,
+                          .capacity = options_.capacity,
+                          .on_board = std::move(load),
+                          .risk_alpha = options_.risk_alpha,
+                          .specs = building_.spec_tasks.get()};
   const map::NodeIndex end = r.task.end_node.empty() ? start : *map_.find_node(r.task.end_node);
   refresh_learned_durations(pending.ids);
   auto solved = schedule_pending(in, pending, end, ends, std::nullopt);

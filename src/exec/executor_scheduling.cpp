@@ -8,6 +8,7 @@
 #include "dispatcher.h"
 #include "rondo/exec/executor.h"
 #include "scheduling.h"
+#include "spec_tasks.h"
 #include "task_run.h"
 #include "text.h"
 
@@ -21,11 +22,11 @@ std::pair<map::NodeIndex, Time> Executor::free_at() const {
   // its actions are expected to end (`acting_until`).
   const auto run = [&](const TaskRecord& r, std::optional<Time> acting_until) {
     const Task& task = r.task;
-    const map::NodeIndex start = task.start_node.empty() ? here : *map_.find_node(task.start_node);
+    const map::NodeIndex start = task_place(building_.spec_tasks.get(), map_, r, here, t);
     if (acting_until) {
       t = std::max(now, *acting_until);
     } else {
-      Time s = t + travel_.travel(here, start, t);
+      Time s = t + task_travel(travel_, building_.spec_tasks.get(), map_, r, here, t);
       if (task.window) s = std::max(s, r.release());
       t = s + r.remaining();
     }
@@ -79,7 +80,17 @@ std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_
   if (run_ && run_->waiting()) add(run_->id());  // waiting = still pending
   for (const TaskId& id : dispatcher_->planned()) add(id);
   pending.old_count = ids.size();
-  for (const TaskId& id : new_ids) add(id);
+  for (const TaskId& id : new_ids) {
+    // A spec task whose formula cannot be satisfied from here is dropped at once, saying why.
+    if (const TaskRecord& r = book_.at(id); r.task.has_spec() && r.task.window && r.spec_place.empty()) {
+      if (std::optional<std::string> no = building_.spec_tasks->why_unsatisfiable(
+              r, robot_.location(), std::max(clock_.now(), r.task.window->release))) {
+        book_.transition(id, TaskState::kDropped, Outcome::kSpecUnsatisfiable, "spec unsatisfiable: " + *no);
+        continue;
+      }
+    }
+    add(id);
+  }
   pending.first_reoffered = ids.size();
   for (const TaskId& id : offered_again) add(id);
   if (ids.empty()) {
@@ -95,9 +106,17 @@ std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_
     // An on-demand task is never given up for scheduled work.
     running = schedule::RunningTask{run_->id(), t.priority, t.kind == TaskKind::kStandard && interruptible_now()};
   }
-  ScheduleInputs in{.map = map_, .travel = travel_, .book = book_, .zone = zone_, .scheduler = *scheduler_,
-                          .polls = options_.scheduler_polls, .rng = rng_, .capacity = options_.capacity,
-                          .on_board = on_board_when_free(), .risk_alpha = options_.risk_alpha};
+  ScheduleInputs in{.map = map_,
+                    .travel = travel_,
+                    .book = book_,
+                    .zone = zone_,
+                    .scheduler = *scheduler_,
+                    .polls = options_.scheduler_polls,
+                    .rng = rng_,
+                    .capacity = options_.capacity,
+                    .on_board = on_board_when_free(),
+                    .risk_alpha = options_.risk_alpha,
+                    .specs = building_.spec_tasks.get()};
   if (options_.battery_planning) {
     read_battery();
     charging_->drift().observe(clock_.now(), charging_->level());

@@ -5,7 +5,7 @@
 namespace rondo::exec {
 namespace {
 
-constexpr NameTable<Outcome, 41> kNames{{{
+constexpr NameTable<Outcome, 42> kNames{{{
     {Outcome::kNone, ""},
     {Outcome::kAdded, "added"},
     {Outcome::kScheduled, "scheduled"},
@@ -47,6 +47,7 @@ constexpr NameTable<Outcome, 41> kNames{{{
     {Outcome::kBattery, "battery"},
     {Outcome::kConfirmed, "confirmed"},
     {Outcome::kCharging, "charging"},
+    {Outcome::kSpecUnsatisfiable, "spec unsatisfiable"},
 }}};
 
 }  // namespace

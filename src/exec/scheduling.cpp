@@ -5,6 +5,7 @@
 
 #include "rondo/map/map_geometry.h"
 #include "rondo/schedule/stop_condition.h"
+#include "spec_tasks.h"
 
 namespace rondo::exec {
 
@@ -18,11 +19,74 @@ Outcome drop_outcome(schedule::DropCause cause) {
   return Outcome::kDoesNotFit;
 }
 
+namespace {
+
+// A travel oracle with the spec tasks' locations priced by their SpecPrice.
+class WithSpecs final : public schedule::TravelOracle {
+ public:
+  WithSpecs(std::shared_ptr<const schedule::TravelOracle> base, std::vector<map::NodeIndex> nodes,
+            const std::vector<SpecPrice>& specs)
+      : base_(std::move(base)), nodes_(std::move(nodes)), specs_(nodes_.size(), nullptr) {
+    prices_ = specs;
+    for (const SpecPrice& s : prices_) specs_[s.location] = &s;
+  }
+  std::size_t location_count() const override { return base_->location_count(); }
+  Duration travel(schedule::LocationIndex from, schedule::LocationIndex to, Time depart) const override {
+    if (const SpecPrice* s = specs_[to]; s && from != to) return s->travel(nodes_[from], depart);
+    return base_->travel(from, to, depart);
+  }
+  Duration lower_bound(schedule::LocationIndex from, schedule::LocationIndex to) const override {
+    if (const SpecPrice* s = specs_[to]; s && from != to) return s->lower_bound(nodes_[from]);
+    return base_->lower_bound(from, to);
+  }
+  bool time_dependent() const override { return true; }
+
+ private:
+  std::shared_ptr<const schedule::TravelOracle> base_;
+  std::vector<map::NodeIndex> nodes_;
+  std::vector<SpecPrice> prices_;
+  std::vector<const SpecPrice*> specs_;
+};
+
+}  // namespace
+
+Duration SpecPrice::travel(map::NodeIndex from, Time depart) const {
+  if (seconds.empty()) return kUnreachable;
+  const auto slot_at = [&](std::size_t k) {
+    const double s = seconds[k][from];
+    return s < to_seconds(kUnreachable) ? s : to_seconds(kUnreachable);
+  };
+  const double width = to_seconds(slot_width);
+  const double t = to_seconds(depart - first_slot) / width;
+  if (t <= 0) return from_seconds(slot_at(0));
+  const std::size_t k = static_cast<std::size_t>(t);
+  if (k + 1 >= seconds.size()) return from_seconds(slot_at(seconds.size() - 1));
+  const double a = slot_at(k);
+  const double b = slot_at(k + 1);
+  return from_seconds(a + (b - a) * (t - static_cast<double>(k)));
+}
+
+void SpecPrice::repair_fifo() {
+  const double width = to_seconds(slot_width);
+  for (std::size_t k = 1; k < seconds.size(); ++k)
+    for (std::size_t n = 0; n < seconds[k].size(); ++n)
+      seconds[k][n] = std::max(seconds[k][n], seconds[k - 1][n] - width);
+}
+
+Duration SpecPrice::lower_bound(map::NodeIndex from) const {
+  double least = to_seconds(kUnreachable);
+  for (const std::vector<double>& slot : seconds) least = std::min(least, slot[from]);
+  return from_seconds(std::max(0.0, least));
+}
+
 void set_travel(schedule::Problem& problem, const TravelCache& cache, const std::vector<map::NodeIndex>& nodes,
-                std::optional<double> risk_alpha) {
+                std::optional<double> risk_alpha, const std::vector<SpecPrice>& specs) {
   problem.travel = std::make_shared<SchedulerTravel>(cache, nodes);
   problem.window_travel.reset();
   if (risk_alpha) problem.window_travel = std::make_shared<SchedulerQuantileTravel>(cache, nodes, 1.0 - *risk_alpha);
+  if (specs.empty()) return;
+  problem.travel = std::make_shared<WithSpecs>(problem.travel, nodes, specs);
+  if (problem.window_travel) problem.window_travel = std::make_shared<WithSpecs>(problem.window_travel, nodes, specs);
 }
 
 Result<schedule::TryScheduleResult> schedule_pending(const ScheduleInputs& in, const PendingTasks& pending,
@@ -43,12 +107,33 @@ Result<PendingProblem> pending_problem(const ScheduleInputs& in, const PendingTa
     if (inserted) nodes.push_back(n);
     return it->second;
   };
+  std::vector<SpecPrice> specs;
+  // A spec task is a location of its own, whose node is where its journey is expected to end from
+  // where the robot is when next free, departing at its release (docs/ltl.md, "Scheduling").
+  const auto spec_location = [&](const TaskRecord& r) {
+    const Time release = r.release();
+    const map::NodeIndex end = task_place(in.specs, in.map, r, here, std::max(free, release));
+    const schedule::LocationIndex at = nodes.size();
+    nodes.push_back(end);
+    SpecPrice price{.location = at,
+                    .first_slot = in.travel.slot_start(std::max(free, release - kSpecLead)),
+                    .slot_width = in.specs->slot_width(),
+                    .seconds = {}};
+    for (Time t = price.first_slot; t <= r.task.window->deadline; t += price.slot_width) {
+      std::vector<double>& row = price.seconds.emplace_back(in.map.node_count());
+      for (map::NodeIndex n = 0; n < in.map.node_count(); ++n)
+        row[n] = to_seconds(task_travel(in.travel, in.specs, in.map, r, n, t));
+    }
+    price.repair_fifo();
+    specs.push_back(std::move(price));
+    return at;
+  };
   std::map<TaskId, std::size_t> index;
   for (std::size_t i = 0; i < pending.ids.size(); ++i) index.emplace(pending.ids[i], i);
   for (const TaskId& id : pending.ids) {
     const TaskRecord& r = in.book.at(id);
     const Task& t = r.task;
-    const schedule::LocationIndex start = location_of(t.start_node);
+    const schedule::LocationIndex start = t.has_spec() ? spec_location(r) : location_of(t.start_node);
     problem.tasks.push_back({.id = id,
                              .release = r.release(),
                              .deadline = t.window->deadline,
@@ -86,13 +171,14 @@ Result<PendingProblem> pending_problem(const ScheduleInputs& in, const PendingTa
   for (map::NodeIndex n : nodes) problem.location_names.push_back(in.map.node(n).name);
   problem.robot.location = 0;
   problem.robot.time = free;
-  set_travel(problem, in.travel, nodes, in.risk_alpha);
+  set_travel(problem, in.travel, nodes, in.risk_alpha, specs);
 
   RONDO_RETURN_IF_ERROR(schedule::validate(problem));
   PendingProblem out{.request = {.problem = std::move(problem), .new_tasks = {}, .zone = in.zone},
                      .nodes = std::move(nodes),
                      .risk_alpha = in.risk_alpha,
-                     .battery = std::move(battery)};
+                     .battery = std::move(battery),
+                     .specs = std::move(specs)};
   schedule::TryScheduleRequest& request = out.request;
   for (std::size_t i = pending.old_count; i < pending.ids.size(); ++i) request.new_tasks.push_back(i);
   for (std::size_t i = pending.first_reoffered; i < pending.ids.size(); ++i) request.cannot_preempt.push_back(i);

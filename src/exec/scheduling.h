@@ -21,6 +21,10 @@
 
 namespace rondo::exec {
 
+// How long before a spec task's release its travel is priced slot by slot (a departure before that
+// is priced as at that slot's start: the robot waits where it is until it is time to leave).
+inline constexpr Duration kSpecLead = hours(2);
+
 // The per-slot travel models (M_t) each planner keeps: like TravelCache's entries, those from a
 // day (kTravelKeepBehind) before the slot asked for on, and never more than two days of 15-minute
 // slots, so a service that runs for months holds the day it plans over, not every slot it used.
@@ -55,6 +59,25 @@ struct BatteryInputs {
   Duration dock_when_waiting_over = minutes(15);
 };
 
+class SpecTasks;
+
+// A spec task's place in a problem (docs/ltl.md, "Scheduling"): location `location` stands for the
+// task; the travel to it from node n departing at slot start k is seconds[k][n] (the product
+// policy's expected time until the formula is satisfied, kUnreachable's seconds when it cannot be),
+// interpolated between slot starts and FIFO-repaired; the travel from it is from its end node (the
+// location's node). Values, so a solver on another thread reads it as it is.
+struct SpecPrice {
+  schedule::LocationIndex location = 0;
+  Time first_slot{};
+  Duration slot_width{0};
+  std::vector<std::vector<double>> seconds;  // per slot start from first_slot, per map node
+  // FIFO: raises each slot start's value to at least the one before less the slot width (a
+  // forward pass, as TravelCache does). Call once the values are in.
+  void repair_fifo();
+  Duration travel(map::NodeIndex from, Time depart) const;
+  Duration lower_bound(map::NodeIndex from) const;
+};
+
 struct ScheduleInputs {
   const map::TopoMap& map;
   const TravelCache& travel;
@@ -67,6 +90,7 @@ struct ScheduleInputs {
   std::vector<OnBoard> on_board{};        // when the robot is next free
   std::optional<double> risk_alpha{};     // ExecutorOptions::risk_alpha
   std::optional<BatteryInputs> battery{};  // planned charging, when on
+  const SpecTasks* specs = nullptr;        // prices spec tasks (none: the book has none)
 };
 
 // A scheduling problem built from the book (on the clock's thread), ready to solve anywhere: the
@@ -77,11 +101,14 @@ struct PendingProblem {
   std::vector<map::NodeIndex> nodes;
   std::optional<double> risk_alpha{};  // the window travel's level is 1 − risk_alpha
   std::optional<ChargePlan> battery{};  // planned charging: the dock is one of `nodes`
+  std::vector<SpecPrice> specs{};       // the spec tasks' locations and their travel
 };
 
-// The problem's travel, and its window travel under a chance constraint, over `cache` and `nodes`.
+// The problem's travel, and its window travel under a chance constraint, over `cache` and `nodes`;
+// travel to a spec task's location as `specs` price it (the window travel too: a spec task's journey
+// is priced at its expected time).
 void set_travel(schedule::Problem& problem, const TravelCache& cache, const std::vector<map::NodeIndex>& nodes,
-                std::optional<double> risk_alpha);
+                std::optional<double> risk_alpha, const std::vector<SpecPrice>& specs = {});
 
 // One reschedule between its two halves: which tasks, and their problem.
 struct ScheduleCall {
@@ -91,7 +118,8 @@ struct ScheduleCall {
 
 // Delivery tasks carry their transfer (precedence, load, look-alike rule), `after` the tasks among
 // `pending` (the others have ended or run now), and the robot its capacity and what is on board.
-// Precondition: every id is a standard task of the book with a window and a start node.
+// Precondition: every id is a standard task of the book with a window and a start node or a spec
+// (then `in.specs` is set).
 // kInvalidInput when the problem is not well formed (schedule::validate's message).
 Result<schedule::TryScheduleResult> schedule_pending(const ScheduleInputs& in, const PendingTasks& pending,
                                              map::NodeIndex here, Time free,

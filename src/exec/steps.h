@@ -8,6 +8,7 @@
 
 #include "monitor.h"
 #include "rondo/exec/step.h"
+#include "rondo/plan/spec_planner.h"
 
 namespace rondo::exec {
 
@@ -28,6 +29,16 @@ class WaitStep final : public Step {
   Time until_;
   Time since_{};
   TimerId timer_ = 0;
+};
+
+// How the robot came to a task's place, for the act step's words: when the journey began, what it
+// was expected to take, and where it ended.
+class Arrival {
+ public:
+  virtual ~Arrival() = default;
+  virtual Time started() const = 0;
+  virtual Duration expected() const = 0;
+  virtual map::NodeIndex target() const = 0;
 };
 
 // A step that has the robot work (drive, act), watched by a monitor: halting cancels what the
@@ -59,7 +70,7 @@ class RobotStep : public Step {
 // events; the executor's own write robot events (`departed`, `arrived`, and the end that the
 // executor gives a journey that does not arrive). A task's navigation to its start is recorded
 // (NavigationRecord).
-class NavigateStep final : public RobotStep {
+class NavigateStep final : public RobotStep, public Arrival {
  public:
   using Purpose = JourneyPurpose;
   // An attempt still running this many times its edge's longest learned attempt (+ the slack) is
@@ -71,9 +82,9 @@ class NavigateStep final : public RobotStep {
   void start() override;
   void on_edge_finished(const EdgeAttempt& attempt) override;
 
-  Time started() const { return started_; }
-  Duration expected() const { return expected_; }
-  map::NodeIndex target() const { return target_; }
+  Time started() const override { return started_; }
+  Duration expected() const override { return expected_; }
+  map::NodeIndex target() const override { return target_; }
   // What an own journey is for, in its events ("idle: back to the dock").
   const char* errand() const;
 
@@ -127,11 +138,47 @@ class NavigateStep final : public RobotStep {
   std::optional<StepEnd> gave_up_;  // an own journey's monitor fired: how it ends once halted
 };
 
+// A spec task's journey (docs/ltl.md): follows the product policy of its formula node by node from
+// (node, automaton state), re-planning after every edge, and ends done where the formula is
+// satisfied. The policy never sends the robot into a node that would break the formula, whatever
+// the map's shortest way. After every node reached, the automaton state is stored with the task's
+// progress (TaskBook::set_spec_state): a preempted or interrupted task goes on from it. After a
+// failed edge, an edge found blocked (a run of failures the live model did not expect, or the
+// attempts left more likely than not all to fail) is held (FoundBlocked) and left out of the
+// re-plan, so the way goes round it, or to another node that satisfies the formula. Watched by the
+// navigation monitor on the plan's expected time; gives up after `max_failed_edges` failures.
+class SpecStep final : public RobotStep, public Arrival {
+ public:
+  SpecStep(StepContext& ctx, StepHooks hooks, TaskId task);
+  void start() override;
+  void on_edge_finished(const EdgeAttempt& attempt) override;
+
+  Time started() const override { return started_; }
+  Duration expected() const override { return expected_; }
+  map::NodeIndex target() const override { return target_; }
+
+ private:
+  void go_on() override { advance(); }
+  void advance();
+  // The plan from where the robot is, with the edges held blocked now left out.
+  Result<plan::SpecPlan> plan_here(Time now) const;
+  // The end of a journey that cannot go on from here: why (naming the nodes that block it).
+  void cannot(const plan::SpecPlan& plan, bool held);
+
+  TaskId task_;
+  std::uint32_t state_ = 0;
+  Time started_{};
+  Duration expected_{0};
+  map::NodeIndex target_ = 0;
+  int failed_edges_ = 0;
+  std::optional<map::EdgeIndex> edge_;
+};
+
 // At the task's place: runs its actions one after the other, watched by the action monitor. A
 // cancel that waited for an interruptible moment takes effect between two actions.
 class ActStep final : public RobotStep {
  public:
-  ActStep(StepContext& ctx, StepHooks hooks, TaskId task, const NavigateStep& arrival);
+  ActStep(StepContext& ctx, StepHooks hooks, TaskId task, const Arrival& arrival);
   void start() override;
   void on_action_finished(const ActionResult& result) override;
 
@@ -146,7 +193,7 @@ class ActStep final : public RobotStep {
   Monitor::Limit limit(const TaskRecord& r) const;
 
   TaskId task_;
-  const NavigateStep& arrival_;
+  const Arrival& arrival_;
   Time since_{};
   Duration expected_{0};  // the processing time still to spend when it began
   std::size_t index_ = 0;

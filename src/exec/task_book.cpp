@@ -146,6 +146,15 @@ void TaskBook::set_progress(const TaskId& id, std::size_t actions_done) {
     write_errors_.push_back(ok.error().message);
 }
 
+void TaskBook::set_spec_state(const TaskId& id, std::uint32_t state, const std::string& place) {
+  TaskRecord& r = records_.at(id);
+  if (r.spec_state == state && r.spec_place == place) return;
+  r.spec_state = state;
+  r.spec_place = place;
+  if (auto ok = store::set_task_progress(store_, id, progress_json(r)); !ok)
+    write_errors_.push_back(ok.error().message);
+}
+
 void TaskBook::set_not_before(const TaskId& id, Time t) {
   TaskRecord& r = records_.at(id);
   r.not_before = t;
@@ -165,6 +174,8 @@ void TaskBook::set_door_wait(const TaskId& id, std::optional<DoorWait> wait) {
 Json TaskBook::progress_json(const TaskRecord& r) {
   Json j{{"actions_done", r.actions_done}};
   if (r.not_before) j["not_before_ms"] = r.not_before->time_since_epoch().count();
+  if (r.spec_state) j["spec_state"] = *r.spec_state;
+  if (!r.spec_place.empty()) j["spec_place"] = r.spec_place;
   if (r.door_wait)
     j["blocked"] = Json{{"door", r.door_wait->door},
                         {"since_ms", r.door_wait->since.time_since_epoch().count()},
@@ -178,6 +189,11 @@ void TaskBook::read_progress(const Json& progress, TaskRecord& r) {
     r.actions_done = progress["actions_done"].get<std::size_t>();
   if (progress.contains("not_before_ms") && progress["not_before_ms"].is_number_integer())
     r.not_before = Time{Duration{progress["not_before_ms"].get<Duration::rep>()}};
+  if (progress.contains("spec_state") && progress["spec_state"].is_number_unsigned() &&
+      progress["spec_state"].get<std::uint64_t>() <= UINT32_MAX)
+    r.spec_state = progress["spec_state"].get<std::uint32_t>();
+  if (progress.contains("spec_place") && progress["spec_place"].is_string())
+    r.spec_place = progress["spec_place"].get<std::string>();
   if (!progress.contains("blocked") || !progress["blocked"].is_object()) return;
   const Json& b = progress["blocked"];
   const auto text = [&b](const char* key) { return b.contains(key) && b[key].is_string(); };

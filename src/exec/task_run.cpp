@@ -2,18 +2,32 @@
 
 #include <fmt/format.h>
 
+#include "spec_tasks.h"
+
 namespace rondo::exec {
 
 TaskRun::TaskRun(StepContext& ctx, TaskId id, std::optional<Time> wait_until, std::function<void(End)> ended)
     : ctx_(ctx), id_(std::move(id)), ended_(std::move(ended)) {
   const Task& t = task();
   const map::NodeIndex here = ctx_.robot.location();
-  const map::NodeIndex place = t.start_node.empty() ? here : *ctx_.map.find_node(t.start_node);
+  map::NodeIndex place = t.start_node.empty() ? here : *ctx_.map.find_node(t.start_node);
   if (wait_until) {
     auto w = std::make_unique<WaitStep>(ctx_, hooks(), id_, *wait_until);
     wait_ = w.get();
     steps_.push_back(std::move(w));
   }
+  // A spec task follows its formula's policy until it is satisfied, and acts there; once it was
+  // (a re-run after a preemption while acting), it goes back to where it was.
+  const std::optional<map::NodeIndex> satisfied_at = spec_place(ctx_.map, ctx_.book.at(id_));
+  if (t.has_spec() && !satisfied_at) {
+    auto journey = std::make_unique<SpecStep>(ctx_, hooks(), id_);
+    auto act = std::make_unique<ActStep>(ctx_, hooks(), id_, *journey);
+    act_ = act.get();
+    steps_.push_back(std::move(journey));
+    steps_.push_back(std::move(act));
+    return;
+  }
+  if (satisfied_at) place = *satisfied_at;
   auto to_place = std::make_unique<NavigateStep>(ctx_, hooks(), NavigateStep::Purpose::kToStart, id_, place);
   auto act = std::make_unique<ActStep>(ctx_, hooks(), id_, *to_place);
   act_ = act.get();

@@ -31,6 +31,7 @@ namespace rondo::exec {
 class DoorModels;
 class FoundBlocked;
 class LoadingTimes;
+class SpecTasks;
 
 class Building {
  public:
@@ -69,6 +70,7 @@ class Building {
   std::unique_ptr<FoundBlocked> found_blocked;         // failures in a row, edges held blocked
   std::unique_ptr<DoorModels> door_models;             // when doors are open, learned
   std::unique_ptr<learn::WeeklyMemory> weekly_memory;  // null until the first refit
+  std::unique_ptr<SpecTasks> spec_tasks;               // spec tasks' automata and product plans
 
  private:
   void refit_doors();

@@ -55,6 +55,7 @@ enum class Outcome {
   kConfirmed,                 // a person confirmed a load or unload (through the API)
   kCharging,                  // the battery fell below the hard threshold: the robot charges, and a
                               // task was preempted, dropped or failed for it (or it is charged again)
+  kSpecUnsatisfiable,         // a spec task's formula cannot be satisfied (the reason names the blocking nodes)
 };
 
 // The readable name, e.g. "navigation overrun"; "" for kNone.

@@ -32,6 +32,7 @@ namespace rondo::exec {
 
 class TravelCache;
 class FoundBlocked;
+class SpecTasks;
 
 // What a journey (exec::NavigateStep) is for: a task's way to its place or to its end place; the
 // executor's own way to the dock when idle, when out of service, or to charge.
@@ -87,6 +88,7 @@ struct StepContext {
   std::function<void()> before_command;  // called just before every drive() and run_action()
   // What journeys found of the edges (failures in a row, edges held blocked), known to every journey.
   FoundBlocked& found_blocked;
+  const SpecTasks& specs;  // spec tasks' automata and product plans
 
   std::string clock_text(Time t) const { return zone.format_clock(t); }
 };

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <optional>
@@ -64,6 +65,14 @@ struct TaskRecord {
   std::size_t actions_done = 0;
   // Blocked by a door seen closed (stored with the progress, {"blocked": {door, since, seen_at}}).
   std::optional<DoorWait> door_wait{};
+  // A spec task's automaton state after the nodes its journey has reached (none: not begun), kept
+  // when it is preempted or interrupted so that what it has done stays done (stored with the
+  // progress, {"spec_state": q}).
+  std::optional<std::uint32_t> spec_state{};
+  std::string spec_place{};  // where its formula was satisfied, and its actions run (empty: not yet)
+  // The journey that satisfied it: the time its plan expected when it left, and the time it took
+  // (for the report; not stored).
+  std::optional<std::pair<Duration, Duration>> spec_journey{};
   // The processing time learned from experience (loading and unloading times), when the executor
   // knows better than the task's declared duration.
   std::optional<Duration> learned_duration{};
@@ -151,6 +160,8 @@ class TaskBook {
   void transition(const TaskId& id, TaskState state, Outcome outcome, const std::string& reason);
   // Records and stores how many of the task's actions are done.
   void set_progress(const TaskId& id, std::size_t actions_done);
+  // Records and stores a spec task's automaton state (TaskRecord::spec_state).
+  void set_spec_state(const TaskId& id, std::uint32_t state, const std::string& place = {});
   // Records and stores the door the task waits for (none: it waits for nothing).
   void set_door_wait(const TaskId& id, std::optional<DoorWait> wait);
   // Held back for a way found blocked (TaskRecord::not_before), stored with its progress so that a
