@@ -44,6 +44,48 @@ Json task_summary(const fleet::Fleet& fleet) {
   return tasks;
 }
 
+// Tasks written as formulas (docs/ltl.md): how many, satisfied (the journey reached a node that
+// satisfies the formula), succeeded, failed and dropped by code, and the satisfying journeys' mean
+// time against the mean the plan expected when each left. Nothing when the run had none.
+std::optional<Json> spec_summary(const fleet::Fleet& fleet) {
+  int added = 0, satisfied = 0, succeeded = 0, pending = 0, journeys = 0;
+  double taken_s = 0, expected_s = 0;
+  std::map<std::string, std::map<std::string, int>> ended;
+  for (const TaskId& id : fleet.task_order()) {
+    const exec::TaskRecord& r = fleet.tasks().at(id);
+    if (!r.task.has_spec()) continue;
+    ++added;
+    if (!r.spec_place.empty()) ++satisfied;
+    if (r.spec_journey) {
+      ++journeys;
+      expected_s += to_seconds(r.spec_journey->first);
+      taken_s += to_seconds(r.spec_journey->second);
+    }
+    if (r.state == TaskState::kSucceeded)
+      ++succeeded;
+    else if (!is_final(r.state))
+      ++pending;
+    else
+      ++ended[to_string(r.state)][std::string(exec::to_string(r.outcome))];
+  }
+  if (added == 0) return std::nullopt;
+  Json j{{"added", added}, {"satisfied", satisfied}, {"succeeded", succeeded}, {"pending", pending}};
+  for (const char* state : {"failed", "dropped", "cancelled"}) {
+    Json codes = Json::object();
+    for (const auto& [code, n] : ended[state]) codes[code] = n;
+    j[state] = codes;
+  }
+  const auto round1 = [](double x) { return std::round(x * 10) / 10; };
+  Json time{{"journeys", journeys}};
+  if (journeys > 0) {
+    time["mean_s"] = round1(taken_s / journeys);
+    time["mean_expected_s"] = round1(expected_s / journeys);
+    if (expected_s > 0) time["ratio"] = std::round(taken_s / expected_s * 1000) / 1000;
+  }
+  j["journey_time"] = time;
+  return j;
+}
+
 // Delivery jobs by how their drop ended (the job's own drop, not a return made later): delivered,
 // failed or cancelled by code, pending; returns made and done; what is on board at the end.
 // Nothing when the run had no delivery.
@@ -403,6 +445,7 @@ Json run_report(const fleet::Fleet& fleet, const RunFigures& figures) {
   j["tasks"] = task_summary(fleet);
   j["events"] = event_summary(fleet);
   if (std::optional<Json> d = delivery_summary(fleet)) j["deliveries"] = *d;
+  if (std::optional<Json> sp = spec_summary(fleet)) j["spec_tasks"] = *sp;
   if (std::optional<Json> a = assumption_summary(fleet, figures.to)) j["assumptions"] = *a;
   const std::vector<exec::LearnedActionTime> learned = fleet.loading_times();
   if (!learned.empty()) {

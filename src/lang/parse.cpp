@@ -6,6 +6,7 @@
 // cancel task ID).
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <functional>
 #include <map>
 
@@ -16,6 +17,7 @@
 #include "rondo/core/utf8.h"
 #include "rondo/lang/command.h"
 #include "rondo/lang/words.h"
+#include "rondo/ltl/task_formula.h"
 #include "timing.h"
 #include "tokens.h"
 
@@ -336,6 +338,94 @@ class Parser {
 
   std::string object_tag(const std::string& object) const { return slug(object) + "@" + detail::id_tag(ctx_); }
 
+  // A node's name as a formula reads it: bare when it can be, else quoted (docs/ltl.md, grammar).
+  static std::string formula_name(const std::string& node) {
+    static const std::array<std::string_view, 9> kReserved = {"X", "F", "U", "G", "R", "W", "M", "true", "false"};
+    const bool bare = !node.empty() && (std::isalpha(static_cast<unsigned char>(node[0])) || node[0] == '_') &&
+                      std::all_of(node.begin(), node.end(),
+                                  [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }) &&
+                      std::find(kReserved.begin(), kReserved.end(), node) == kReserved.end();
+    if (bare) return node;
+    std::string q = "\"";
+    for (char c : node) {
+      if (c == '"' || c == '\\') q += '\\';
+      q += c;
+    }
+    return q + "\"";
+  }
+
+  // The places of [b, e) joined by "or": any node of any of them.
+  Result<std::string> alternatives(std::size_t b, std::size_t e) const {
+    std::vector<std::string> names;
+    std::size_t from = b;
+    for (std::size_t k = b; k <= e; ++k) {
+      if (k < e && t_[k].word != "or") continue;
+      RONDO_ASSIGN_OR_RETURN(const auto list, place_list(from, k));
+      for (const auto& said : list)
+        for (const auto& node : said.place.nodes) names.push_back(formula_name(node));
+      from = k + 1;
+    }
+    std::sort(names.begin(), names.end());
+    names.erase(std::unique(names.begin(), names.end()), names.end());
+    if (names.size() == 1) return names.front();
+    return "(" + fmt::format("{}", fmt::join(names, " | ")) + ")";
+  }
+
+  // The sentence forms of a task written as a formula (docs/commands.md, docs/ltl.md): "A then B
+  // or C", "A and B in any order", "... without passing D" / "... avoiding D and E". Nothing when
+  // [b, e) has none of their words.
+  Result<std::optional<std::string>> spec_of(std::size_t b, std::size_t e) const {
+    std::size_t body = e;
+    std::optional<std::string> avoid;
+    for (std::size_t k = b; k < e; ++k) {
+      const bool without = t_[k].word == "without" && k + 1 < e && t_[k + 1].word == "passing";
+      if (!without && t_[k].word != "avoiding") continue;
+      std::vector<std::string> names;
+      RONDO_ASSIGN_OR_RETURN(const auto list, place_list(k + (without ? 2 : 1), e));
+      for (const auto& said : list)
+        for (const auto& node : said.place.nodes) names.push_back("!" + formula_name(node));
+      avoid = names.size() == 1 ? names.front() : "(" + fmt::format("{}", fmt::join(names, " & ")) + ")";
+      body = k;
+      break;
+    }
+    bool any_order = false;
+    if (body >= b + 3 && t_[body - 3].word == "in" && t_[body - 2].word == "any" && t_[body - 1].word == "order") {
+      any_order = true;
+      body -= 3;
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> steps;
+    std::size_t from = b;
+    bool has_or = false;
+    for (std::size_t k = b; k <= body; ++k) {
+      if (k < body && t_[k].word == "or") has_or = true;
+      if (k < body && t_[k].word != "then") continue;
+      steps.emplace_back(from, k);
+      from = k + 1;
+    }
+    if (!avoid && !any_order && !has_or && steps.size() == 1) return std::optional<std::string>{};
+    const auto reach = [&](const std::string& goal) { return avoid ? *avoid + " U " + goal : "F " + goal; };
+    if (any_order) {
+      if (steps.size() > 1) return Error::invalid("say either 'then' or 'in any order', not both");
+      RONDO_ASSIGN_OR_RETURN(const auto list, place_list(b, body));
+      std::vector<std::string> parts;
+      for (const auto& said : list) {
+        std::vector<std::string> names;
+        for (const auto& node : said.place.nodes) names.push_back(formula_name(node));
+        const std::string goal =
+            names.size() == 1 ? names.front() : "(" + fmt::format("{}", fmt::join(names, " | ")) + ")";
+        parts.push_back(avoid ? "(" + reach(goal) + ")" : reach(goal));
+      }
+      return std::optional<std::string>{fmt::format("{}", fmt::join(parts, " & "))};
+    }
+    // The last step first: reach(s1 & reach(s2 & ... reach(sn))).
+    std::string formula;
+    for (std::size_t i = steps.size(); i-- > 0;) {
+      RONDO_ASSIGN_OR_RETURN(std::string goal, alternatives(steps[i].first, steps[i].second));
+      formula = formula.empty() ? reach(goal) : reach("(" + goal + " & (" + formula + "))");
+    }
+    return std::optional<std::string>{formula};
+  }
+
   Result<Command> visit(const VisitVerb& v) {
     std::size_t b = verb_ + 1;
     if (v.needs_to) {
@@ -343,6 +433,33 @@ class Parser {
         return Error::invalid(fmt::format("say '{} to PLACE'", t_[verb_].text));
       }
       ++b;
+    }
+    RONDO_ASSIGN_OR_RETURN(const std::optional<std::string> spec, spec_of(b, body_end_));
+    if (spec) {
+      if (auto ok = ltl::check_task_formula(*spec); !ok)
+        return Error::invalid(fmt::format("'{}' means the formula {}, which is refused: {}", text_of(t_, b, body_end_),
+                                          *spec, ok.error().message));
+      // "spec": the routine's name ("check-spec"); its task has no start node but the formula.
+      Job job{std::string(v.action), fmt::format("{} {}", t_[verb_].word, text_of(t_, b, body_end_)), "spec",
+              v.duration};
+      Command c;
+      if (timing_.recurring()) {
+        RONDO_ASSIGN_OR_RETURN(auto r, detail::make_routine(timing_, ctx_, job, priority_));
+        r.task.start_node.clear();
+        r.task.spec = *spec;
+        c.routines.push_back(std::move(r));
+        return check(std::move(c));
+      }
+      Task task;
+      task.id = job.verb + "-spec@" + detail::id_tag(ctx_);
+      task.activity = job.activity;
+      task.duration = timing_.duration.value_or(job.duration);
+      task.priority = priority_;
+      task.spec = *spec;
+      task.actions = {Action{job.verb, {}}};
+      RONDO_RETURN_IF_ERROR(detail::apply_one_off(timing_, ctx_, task));
+      c.tasks.push_back(std::move(task));
+      return check(std::move(c));
     }
     // One task (or, repeated, one routine) per node of each place named.
     RONDO_ASSIGN_OR_RETURN(const auto list, place_list(b, body_end_));

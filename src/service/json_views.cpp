@@ -47,6 +47,12 @@ Json task_json(const exec::TaskRecord& r) {
                                                       {"reason", r.dropped_for_now->second}}
                                                : Json(nullptr)},
          {"task", encode(t)}};
+  // A task written as a formula: its automaton state (what its journey has done) and the node
+  // that satisfied it, once one did.
+  if (t.has_spec())
+    j["spec"] = Json{{"formula", t.spec},
+                     {"state", r.spec_state ? Json(*r.spec_state) : Json(nullptr)},
+                     {"satisfied_at", r.spec_place.empty() ? Json(nullptr) : Json(r.spec_place)}};
   return j;
 }
 

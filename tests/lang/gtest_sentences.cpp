@@ -9,6 +9,8 @@
 
 #include "lang/lang_test_support.h"
 #include "rondo/core/task_codec.h"
+#include "rondo/ltl/formula.h"
+#include "rondo/ltl/parser.h"
 
 namespace rondo::lang {
 namespace {
@@ -497,6 +499,50 @@ TEST(Sentences, WithoutAPlacesFileOnlyNodeNamesResolve) {
   auto c = parse_command("check the desk in room A-123", ctx);
   ASSERT_FALSE(c.ok());
   EXPECT_NE(c.error().message.find("nearest known places: A-123-Desk"), std::string::npos) << c.error().message;
+}
+
+}  // namespace
+}  // namespace rondo::lang
+
+namespace rondo::lang {
+namespace {
+
+// The sentence forms of a task written as a formula (issue 41): the formula each means, compared
+// as the parser reads it (so spacing and redundant parentheses do not matter).
+TEST(Sentences, SpecFormsMeanTheirFormulas) {
+  const auto same = [](const std::string& got, const std::string& want) {
+    auto a = ltl::parse_formula(got);
+    auto b = ltl::parse_formula(want);
+    return a.ok() && b.ok() && ltl::to_string(*a) == ltl::to_string(*b);
+  };
+  const std::pair<const char*, const char*> cases[] = {
+      {"check A-110 then A-114 or A-120", R"(F ("A-110" & F ("A-114" | "A-120")))"},
+      {"check A-110 and A-120 in any order", R"(F "A-110" & F "A-120")"},
+      {"check A-120 without passing Hall-A-114", R"(!"Hall-A-114" U "A-120")"},
+      {"patrol A-110 then A-123 avoiding A-111 and A-114",
+       R"((!"A-111" & !"A-114") U ("A-110" & ((!"A-111" & !"A-114") U "A-123")))"},
+      {"check A-110 or A-120", R"(F ("A-110" | "A-120"))"},
+  };
+  for (const auto& [sentence, formula] : cases) {
+    auto c = parse_command(sentence, test::office_context());
+    ASSERT_TRUE(c.ok()) << sentence << ": " << c.error().message;
+    ASSERT_EQ(c->tasks.size(), 1u) << sentence;
+    const Task& t = c->tasks.front();
+    EXPECT_TRUE(t.start_node.empty()) << sentence;
+    EXPECT_TRUE(same(t.spec, formula)) << sentence << ": " << t.spec;
+    EXPECT_TRUE(validate(t).ok()) << sentence;
+  }
+  auto routine = parse_command("check Exit-West then Exit-East every weekday at 09:00", test::office_context());
+  ASSERT_TRUE(routine.ok()) << routine.error().message;
+  ASSERT_EQ(routine->routines.size(), 1u);
+  EXPECT_TRUE(routine->routines.front().task.start_node.empty());
+  EXPECT_TRUE(same(routine->routines.front().task.spec, R"(F ("Exit-West" & F "Exit-East"))"));
+  // Nine places in any order pass the automaton's limit: refused, saying why.
+  auto nine =
+      parse_command("check A-110, A-111, A-114, A-117, A-120, A-123, Exit-West, Exit-East and Hall-West in any order",
+                    test::office_context());
+  ASSERT_FALSE(nine.ok());
+  EXPECT_NE(nine.error().message.find("which is refused"), std::string::npos) << nine.error().message;
 }
 
 }  // namespace

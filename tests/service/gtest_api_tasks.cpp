@@ -47,6 +47,35 @@ TEST(ApiTasks, SubmissionIsCommittedBeforeTheAnswerAndReadBackWithItsEvents) {
   EXPECT_EQ(body_of(missing)["error"]["code"], "not_found");
 }
 
+// A task written as a formula (issue 41): accepted with its spec and read back with it; outside
+// the fragment, or naming a node the map lacks, refused with 422 naming the field, the position
+// and the reason.
+TEST(ApiTasks, ASpecTaskIsAcceptedAndABadFormulaIsRefusedWithItsPosition) {
+  const auto data = fresh_dir("rondo-service-test", "spec");
+  LiveService s(data);
+  auto cli = s.client();
+  const auto body = [&s](const std::string& id, const std::string& spec) {
+    std::string b = s.task_body(id);
+    const std::string place = R"("start_node": "WayPoint2")";
+    return b.replace(b.find(place), place.size(), R"("spec": ")" + spec + R"(")");
+  };
+  auto ok = cli.Post("/api/v1/tasks", body("round", "F WayPoint13 & F WayPoint19"), "application/json");
+  ASSERT_TRUE(ok);
+  ASSERT_EQ(ok->status, 201) << ok->body;
+  auto one = cli.Get("/api/v1/tasks/round");
+  ASSERT_TRUE(one);
+  EXPECT_EQ(body_of(one)["task"]["spec"], "F WayPoint13 & F WayPoint19") << one->body;
+  auto g = cli.Post("/api/v1/tasks", body("always", "F WayPoint13 & G WayPoint19"), "application/json");
+  ASSERT_TRUE(g);
+  EXPECT_EQ(g->status, 422) << g->body;
+  EXPECT_NE(g->body.find("tasks[0].spec: position 16: 'G' (always) is outside the co-safe fragment"), std::string::npos)
+      << g->body;
+  auto lab = cli.Post("/api/v1/tasks", body("lab", "F Lab"), "application/json");
+  ASSERT_TRUE(lab);
+  EXPECT_EQ(lab->status, 422) << lab->body;
+  EXPECT_NE(lab->body.find("the formula names 'Lab', which is not on the map"), std::string::npos) << lab->body;
+}
+
 TEST(ApiTasks, ListFiltersByStateSourceAndWindowAndPages) {
   LiveService s(fresh_dir("rondo-service-test", "list"));
   auto cli = s.client();
