@@ -70,6 +70,30 @@ TEST(RunCommand, TheSameSeedGivesAByteIdenticalReport) {
 // with idle charging only (idle-charging.yaml) it falls below the reserve (18 % on the second day; it ran
 // flat on the third while every journey tried the closed corridor again: issue 37 point 6). The report
 // says so, and learns the battery's costs; the same seed gives the same report.
+// The spec example (issue 41): tasks written as formulas run for days and the report counts them:
+// satisfied and succeeded ones, the unsatisfiable routine dropped each weekday naming WayPoint11,
+// and the journeys' mean time against the plan's estimate.
+TEST(RunCommand, TheSpecExampleReportsItsSpecTasks) {
+  const auto out = fresh_dir("spec");
+  const auto r = test::run_cli({"run", "examples/spec/deployment.yaml", "--days", "2", "--out", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Json s = Json::parse(slurp(out / "report.json"))["spec_tasks"];
+  ASSERT_TRUE(s.is_object()) << s;
+  EXPECT_GE(s["satisfied"].get<int>(), 4);
+  EXPECT_GE(s["succeeded"].get<int>(), 4);
+  EXPECT_GE(s["dropped"].value("spec unsatisfiable", 0), 2);  // the kitchen rounds; Wednesday's is made at the end
+  EXPECT_GE(s["journey_time"]["journeys"].get<int>(), 4);
+  EXPECT_GT(s["journey_time"]["mean_expected_s"].get<double>(), 0);
+  EXPECT_GT(s["journey_time"]["ratio"].get<double>(), 0.5);
+  EXPECT_LT(s["journey_time"]["ratio"].get<double>(), 2.0);
+  store::Store db = store::Store::open(out / "rondo.sqlite", {.mode = store::OpenMode::kReadOnly}).value();
+  const std::vector<store::Event> events = store::read_events_of(db, "kitchen-avoiding-11@2026-11-23T16:30").value();
+  ASSERT_FALSE(events.empty());
+  EXPECT_EQ(events.back().code, "spec unsatisfiable");
+  EXPECT_THAT(events.back().reason, HasSubstr("'WayPoint11'"));
+  std::filesystem::remove_all(out.parent_path());
+}
+
 TEST(RunCommand, TheBatteryExampleReportsItsBattery) {
   const auto on = fresh_dir("battery-on"), again = fresh_dir("battery-again"), idle = fresh_dir("battery-idle");
   const auto run = [](const char* file, const std::filesystem::path& out) {
