@@ -109,6 +109,8 @@ void Executor::learn_from(const ActionResult& result) {
 std::vector<map::EdgeIndex> Executor::route() {
   const NavigateStep* navigation = trip_.get();
   if (run_) navigation = dynamic_cast<const NavigateStep*>(run_->current());
+  if (const auto* spec = run_ ? dynamic_cast<const SpecStep*>(run_->current()) : nullptr)
+    return spec->planned_route();  // a spec task's journey: the product policy's way to satisfaction
   if (navigation == nullptr) return {};
   std::vector<map::EdgeIndex> edges;
   for (const plan::PolicyStep& s : planner_.policy(navigation->target(), clock_.now()).route(robot_.location()))

@@ -61,6 +61,14 @@ void SpecStep::start() {
   advance();
 }
 
+std::vector<map::EdgeIndex> SpecStep::planned_route() const {
+  std::vector<map::EdgeIndex> edges;
+  const Result<plan::SpecPlan> plan = plan_here(ctx_.clock.now());
+  if (!plan || plan->unsatisfiable) return edges;
+  for (const plan::ProductStep& s : plan->policy().route(ctx_.robot.location(), state_)) edges.push_back(s.edge);
+  return edges;
+}
+
 void SpecStep::cannot(const plan::SpecPlan& plan, bool held) {
   monitor_.cancel();
   const std::string why = plan.unsatisfiable ? plan.unsatisfiable->reason : "the formula cannot be satisfied";

@@ -156,6 +156,9 @@ class SpecStep final : public RobotStep, public Arrival {
   Time started() const override { return started_; }
   Duration expected() const override { return expected_; }
   map::NodeIndex target() const override { return target_; }
+  // The edges the product policy expects to take from where the robot is until the formula is
+  // satisfied (the dashboard's route); empty when it is, or cannot be.
+  std::vector<map::EdgeIndex> planned_route() const;
 
  private:
   void go_on() override { advance(); }

@@ -84,6 +84,10 @@ TEST(SpecTasks, AvoidingANodeTakesTheLongWayAlthoughTheShortWayCrossesIt) {
   s.fleet().start();
   s.settle();
   const Time long_start = s.executor().tasks().at("S").planned_start.value_or(Time{});
+  // The planned route (GET /api/v1/robot's, drawn on the dashboard's map) is the long way.
+  std::vector<std::string> planned;
+  for (map::EdgeIndex e : s.executor().route()) planned.push_back(s.map().edge(e).id);
+  EXPECT_EQ(planned, (std::vector<std::string>{"Dock_Up2", "Up2_Up1", "Up1_Up3", "Up3_Goal"}));
   Drive d(s);
   d.until_still();
   EXPECT_EQ(d.visited, (std::vector<std::string>{"Up2", "Up1", "Up3", "Goal"}));

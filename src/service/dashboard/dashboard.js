@@ -233,7 +233,8 @@ async function refreshTasks() {
   body.replaceChildren();
   for (const task of t.tasks.slice().reverse()) {
     const row = el("tr", { "data-task": task.id, "data-name": taskName(task) });
-    row.append(el("td", {}, taskName(task)), el("td", {}, task.start_node || "where the robot is"));
+    const place = task.start_node || (task.spec ? `the way that satisfies ${task.spec.formula}` : "where the robot is");
+    row.append(el("td", {}, taskName(task)), el("td", {}, place));
     row.append(el("td", {}, task.window ? `${dayAndClock(task.window.release)} to ${clock(task.window.deadline)}` : "now"));
     row.append(el("td", { class: "state s-" + task.state }, STATE_WORDS[task.state] || task.state));
     row.append(el("td", { class: "reason" }, plainReason(task)));
