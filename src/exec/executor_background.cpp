@@ -96,6 +96,9 @@ void Executor::launch_background() {
   bg.changed = false;
   std::vector<TaskId> new_ids = std::move(bg.new_ids);
   bg.new_ids.clear();
+  // A task asked for while the worker was busy may have ended since (cancelled, or its delivery
+  // cancelled) and, with forget_finished, left the book: it is no longer the scheduler's.
+  std::erase_if(new_ids, [this](const TaskId& id) { return book_.finished(id); });
   const std::string why = merged_why(bg.whys);
   bg.whys.clear();
   std::optional<ScheduleCall> call = prepare_schedule(new_ids, why);

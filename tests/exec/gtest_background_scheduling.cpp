@@ -55,17 +55,19 @@ class GatedScheduler final : public schedule::Scheduler {
   schedule::DefaultScheduler inner_;
 };
 
-ExecutorOptions background() {
+ExecutorOptions background(bool forget_finished = false) {
   ExecutorOptions o;
   o.background_scheduling = true;
   o.background_interval = Duration{0};  // the test decides what is merged
+  o.forget_finished = forget_finished;
   return o;
 }
 
 class Background : public ScriptedExecutor {
  public:
-  explicit Background(GatedScheduler*& gate)
-      : ScriptedExecutor(background(), scenario_map(), ExecutorParts{.scheduler = make_gate(gate)}) {}
+  // `forget_finished`: as rondo serve, finished tasks leave the book.
+  explicit Background(GatedScheduler*& gate, bool forget_finished = false)
+      : ScriptedExecutor(background(forget_finished), scenario_map(), ExecutorParts{.scheduler = make_gate(gate)}) {}
   SimClock& clock() { return clock_; }
   // Delivers what the worker posts until `done`, for 60 s of wall time at most.
   bool settle_until(const std::function<bool()>& done) {
@@ -162,6 +164,30 @@ TEST(BackgroundScheduling, AChangeMeanwhileMakesTheAnswerStale) {
   ASSERT_TRUE(s.settle_until([&] { return s.stats().background_runs >= 2 && s.planned("A"); }));
   EXPECT_EQ(s.stats().background_stale, 1);
   EXPECT_GE(*s.executor().tasks().at("A").planned_start, s.at("14:00"));
+}
+
+// A task added while the worker is busy waits to join the next problem; cancelled meanwhile and
+// swept from the book (forget_finished, as rondo serve), it must not be in that problem. This is
+// what a takeover under load met: the restore's first problem took seconds, tasks cancelled 2 s
+// after acceptance left the book before it came back, and building the next problem looked them
+// up (std::out_of_range, "map::at", ended the new active).
+TEST(BackgroundScheduling, ATaskThatLeftTheBookBeforeItsProblemWasBuiltIsNotInIt) {
+  GatedScheduler* gate = nullptr;
+  Background s(gate, /*forget_finished=*/true);
+  ASSERT_TRUE(s.fleet().add_task(task("A", "Office", s.at("10:00"), s.at("11:00"), minutes(5)), "test").ok());
+  gate->set_open(false);
+  s.fleet().start();
+  ASSERT_TRUE(s.settle_until([&] { return gate->holding_a_solve(); }));  // A's problem in flight
+  ASSERT_TRUE(s.fleet().add_task(task("B", "Lab", s.at("12:00"), s.at("13:00"), minutes(5)), "api").ok());
+  ASSERT_TRUE(s.fleet().add_task(task("C", "Kitchen", s.at("12:00"), s.at("14:00"), minutes(5)), "api").ok());
+  ASSERT_TRUE(s.executor().cancel_task("B", "not needed").ok());
+  s.settle();  // the sweep: B leaves the book
+  ASSERT_FALSE(s.executor().book().contains("B"));
+  gate->set_open(true);
+  ASSERT_TRUE(s.settle_until([&] { return s.planned("C"); }));
+  EXPECT_EQ(s.state("B"), "cancelled");
+  EXPECT_EQ(s.code_of("B", "scheduled"), "");
+  EXPECT_TRUE(s.planned("A"));
 }
 
 }  // namespace
