@@ -125,17 +125,22 @@ void Executor::background_answered(ScheduleAnswer answer) {
   Background::InFlight f = std::move(*bg.in_flight);
   bg.in_flight.reset();
   ++stats_.background_runs;
-  // Still valid: the same task runs (or is waited for), each of its tasks still waits to run, and
-  // no change it does not cover came meanwhile. New tasks added meanwhile are not in it; the
-  // reschedule they asked for follows.
+  // Still valid: the same task runs (or is waited for), each of its tasks that has not ended
+  // still waits to run, and no change it does not cover came meanwhile. New tasks added meanwhile
+  // are not in it; the reschedule they asked for follows. A task that ended meanwhile (cancelled,
+  // failed) is left out when the answer is applied: the others' times stay reachable without it,
+  // and its end asked for a reschedule of its own. Were it to make the answer stale, a load that
+  // cancels tasks within a solve's time of their acceptance would make every answer stale, and a
+  // takeover, which starts with no schedule, would never send the robot anywhere.
   const bool waiting = run_ && run_->waiting();
   bool valid = !bg.changed && current_task() == f.current && waiting == f.waiting;
   for (const TaskId& id : f.ids) {
     if (!valid) break;
-    const TaskRecord* r = book_.contains(id) ? &book_.at(id) : nullptr;
+    if (book_.finished(id)) continue;
     // A task blocked by a door seen closed meanwhile is no longer the scheduler's to place.
-    valid = r && !is_final(r->state) && !blocked(id) && (current_task() != id || waiting);
+    valid = !blocked(id) && (current_task() != id || waiting);
   }
+  std::erase_if(f.new_ids, [this](const TaskId& id) { return book_.finished(id); });
   if (!valid) {
     ++stats_.background_stale;
     // Asked again, with what came meanwhile (the ready callback launches it).

@@ -172,7 +172,8 @@ void Executor::apply_charges(const std::vector<TaskId>& ids, const PlannedAnswer
     PlannedCharge c{.start = entries[pos].start, .end = entries[pos].end,
                     .target = pos < answer.levels.size() ? std::min(answer.levels[pos], 1.0) : 1.0};
     for (std::size_t next = pos + 1; next < entries.size() && !c.before; ++next)
-      if (entries[next].task < ids.size()) c.before = ids[entries[next].task];
+      if (entries[next].task < ids.size() && !book_.finished(ids[entries[next].task]))
+        c.before = ids[entries[next].task];
     charges.push_back(c);
   }
   const std::vector<PlannedCharge>& old = dispatcher_->charges();
@@ -197,6 +198,7 @@ void Executor::apply_schedule(const std::vector<TaskId>& ids, const PlannedAnswe
   for (const schedule::ScheduledTask& e : s.entries) {
     if (e.task >= ids.size()) continue;  // a charge
     const TaskId& id = ids[e.task];
+    if (book_.finished(id)) continue;  // ended while a background solve was under way
     TaskRecord& r = book_.at(id);
     // The event log shows every (re)scheduling that moved a task, and why it happened.
     if (r.planned_start != e.start)
@@ -217,6 +219,7 @@ void Executor::apply_schedule(const std::vector<TaskId>& ids, const PlannedAnswe
   for (const schedule::DroppedTask& d : s.dropped) {
     if (d.task >= ids.size()) continue;  // a charge
     const TaskId& id = ids[d.task];
+    if (book_.finished(id)) continue;
     if (run_ && run_->waiting() && run_->id() == id) end_wait();
     TaskRecord& r = book_.at(id);
     r.planned_start.reset();
