@@ -101,7 +101,13 @@ void Executor::launch_background() {
   std::erase_if(new_ids, [this](const TaskId& id) { return book_.finished(id); });
   const std::string why = merged_why(bg.whys);
   bg.whys.clear();
-  std::optional<ScheduleCall> call = prepare_schedule(new_ids, why);
+  std::vector<TaskId> held_over;
+  std::optional<ScheduleCall> call = prepare_schedule(new_ids, why, &held_over);
+  if (!held_over.empty()) {  // the next problem takes them (the ready callback launches it)
+    for (TaskId& id : held_over) bg.new_ids.push_back(std::move(id));
+    bg.whys.push_back(why);
+    bg.wanted = true;
+  }
   if (!call) return;
   bg.in_flight = Background::InFlight{.ids = call->pending.ids,
                                       .new_ids = std::move(new_ids),

@@ -44,6 +44,43 @@ std::pair<map::NodeIndex, Time> Executor::free_at() const {
   return {here, t};
 }
 
+namespace {
+
+// Keeps at most `limit` of the new and offered-again tasks, the soonest due first (tasks of a
+// delivery or chained by `after` always stay: the problem needs their partners); the new ones left
+// out go to `held_over`, the offered-again ones stay dropped for now until the next reschedule.
+void hold_over(const TaskBook& book, std::vector<TaskId>& new_ids, std::vector<TaskId>& offered_again,
+               std::size_t limit, std::vector<TaskId>& held_over) {
+  if (new_ids.size() + offered_again.size() <= limit) return;
+  struct Candidate {
+    Time latest;
+    bool is_new;
+    TaskId id;
+  };
+  std::vector<Candidate> all;
+  std::size_t pinned = 0;
+  const auto due = [&](const TaskId& id, bool is_new) {
+    const TaskRecord& r = book.at(id);
+    const bool tied = r.task.delivery.has_value() || !r.task.after.empty() || !r.task.window;
+    if (tied) ++pinned;
+    all.push_back({tied ? Time::min() : r.latest_start(Duration{0}), is_new, id});
+  };
+  for (const TaskId& id : new_ids) due(id, true);
+  for (const TaskId& id : offered_again) due(id, false);
+  std::stable_sort(all.begin(), all.end(), [](const Candidate& a, const Candidate& b) { return a.latest < b.latest; });
+  new_ids.clear();
+  offered_again.clear();
+  const std::size_t keep = std::max(limit, pinned);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (i < keep)
+      (all[i].is_new ? new_ids : offered_again).push_back(std::move(all[i].id));
+    else if (all[i].is_new)
+      held_over.push_back(std::move(all[i].id));
+  }
+}
+
+}  // namespace
+
 std::vector<TaskId> Executor::reoffer_deferred() {
   std::vector<TaskId> still;
   const Time now = clock_.now();
@@ -69,9 +106,12 @@ void Executor::reschedule(std::vector<TaskId> new_ids, const std::string& why) {
   finish_schedule(call->pending.ids, std::move(new_ids), answer, why);
 }
 
-std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_ids, const std::string& why) {
-  const std::vector<TaskId> offered_again = reoffer_deferred();
+std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_ids, const std::string& why,
+                                                       std::vector<TaskId>* held_over) {
+  std::vector<TaskId> offered_again = reoffer_deferred();
   for (TaskId& back : settle_jobs()) new_ids.push_back(std::move(back));
+  if (held_over && options_.background_offered > 0)
+    hold_over(book_, new_ids, offered_again, options_.background_offered, *held_over);
   PendingTasks pending;
   std::vector<TaskId>& ids = pending.ids;
   const auto add = [this, &ids](const TaskId& id) {  // a task waiting for its door stays out

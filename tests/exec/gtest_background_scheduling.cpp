@@ -65,8 +65,9 @@ class GatedScheduler final : public schedule::Scheduler {
   schedule::DefaultScheduler inner_;
 };
 
-ExecutorOptions background(bool forget_finished = false) {
+ExecutorOptions background(bool forget_finished = false, std::size_t offered = 64) {
   ExecutorOptions o;
+  o.background_offered = offered;
   o.background_scheduling = true;
   o.background_interval = Duration{0};  // the test decides what is merged
   o.forget_finished = forget_finished;
@@ -76,8 +77,9 @@ ExecutorOptions background(bool forget_finished = false) {
 class Background : public ScriptedExecutor {
  public:
   // `forget_finished`: as rondo serve, finished tasks leave the book.
-  explicit Background(GatedScheduler*& gate, bool forget_finished = false)
-      : ScriptedExecutor(background(forget_finished), scenario_map(), ExecutorParts{.scheduler = make_gate(gate)}) {}
+  explicit Background(GatedScheduler*& gate, bool forget_finished = false, std::size_t offered = 64)
+      : ScriptedExecutor(background(forget_finished, offered), scenario_map(),
+                         ExecutorParts{.scheduler = make_gate(gate)}) {}
   SimClock& clock() { return clock_; }
   // Delivers what the worker posts until `done`, for 60 s of wall time at most.
   bool settle_until(const std::function<bool()>& done) {
@@ -233,6 +235,40 @@ TEST(BackgroundScheduling, ATaskThatLeftTheBookBeforeItsProblemWasBuiltIsNotInIt
   EXPECT_EQ(s.state("B"), "cancelled");
   EXPECT_EQ(s.code_of("B", "scheduled"), "");
   EXPECT_TRUE(s.planned("A"));
+}
+
+// A restore (a restart, a takeover) brings every queued task back as new to the scheduler. A
+// problem takes at most background_offered of them, the soonest due first, and the next ones take
+// the rest: the task due now is planned in the first problem, however many wait for tomorrow.
+TEST(BackgroundScheduling, AtStartTheSoonestDueTasksComeFirstAndTheRestInLaterProblems) {
+  GatedScheduler* gate = nullptr;
+  Background s(gate, /*forget_finished=*/true, /*offered=*/3);
+  const char* nodes[] = {"Office", "Lab", "Kitchen", "Hall"};
+  for (int i = 0; i < 9; ++i)
+    ASSERT_TRUE(
+        s.fleet()
+            .add_task(task("later-" + std::to_string(i), nodes[i % 4], s.at("13:00"), s.at("18:00"), minutes(5)),
+                      "test")
+            .ok());
+  ASSERT_TRUE(s.fleet().add_task(task("due", "Kitchen", s.at("08:00"), s.at("08:30"), minutes(5)), "test").ok());
+  gate->set_open(false);
+  s.fleet().start();
+  ASSERT_TRUE(s.settle_until([&] { return gate->holding_a_solve(); }));
+  gate->pass_one();
+  ASSERT_TRUE(s.settle_until([&] { return s.stats().background_runs >= 1; }));
+  EXPECT_TRUE(s.planned("due") || s.executor().current_task() == "due");
+  int planned = 0;
+  for (int i = 0; i < 9; ++i) planned += s.planned("later-" + std::to_string(i)) ? 1 : 0;
+  EXPECT_EQ(planned, 2);  // three in the first problem
+  gate->set_open(true);
+  ASSERT_TRUE(s.settle_until([&] {
+    for (int i = 0; i < 9; ++i)
+      if (!s.planned("later-" + std::to_string(i))) return false;
+    return true;
+  }));
+  EXPECT_GE(s.stats().background_runs, 4);
+  EXPECT_EQ(s.stats().background_stale, 0);
+  EXPECT_EQ(s.executor().current_task(), "due");
 }
 
 }  // namespace

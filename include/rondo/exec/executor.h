@@ -307,7 +307,10 @@ class Executor final : public RobotListener {
   std::vector<TaskId> reoffer_deferred();
   // reschedule() in two halves: the problem from the book (nothing when there is nothing to
   // solve), and the scheduler's answer carried out.
-  std::optional<ScheduleCall> prepare_schedule(std::vector<TaskId>& new_ids, const std::string& why);
+  // `held_over` (background scheduling): the new tasks beyond options_.background_offered, left
+  // out of this problem for the next one.
+  std::optional<ScheduleCall> prepare_schedule(std::vector<TaskId>& new_ids, const std::string& why,
+                                               std::vector<TaskId>* held_over = nullptr);
   void finish_schedule(const std::vector<TaskId>& ids, std::vector<TaskId> new_ids,
                        const PlannedAnswer& answer, const std::string& why);
 

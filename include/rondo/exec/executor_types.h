@@ -125,6 +125,12 @@ struct ExecutorOptions {
   bool forget_finished = false;
   Duration background_interval = milliseconds(100);
   Duration background_budget = seconds(2);
+  // At most this many tasks new to the scheduler (added, or dropped for now and offered again)
+  // in one background problem, the soonest due first; the others wait for the next one (0: no
+  // limit). A restore brings back every queued task as new, and thousands of them in one
+  // problem outlast the budget: the drop loop then found no schedule for any subset and dropped
+  // them all, the task due now with the ones for tomorrow (docs/executor.md).
+  std::size_t background_offered = 64;
 };
 
 // Figures of the run so far, for the report.
