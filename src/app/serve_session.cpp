@@ -321,8 +321,11 @@ Result<ActiveEnd> serve_active(const ServeRequest& request, const store::StoreLo
                           "the takeover began)",
                           lease->holder(), *lease->epoch(), before.holder, before.epoch,
                           std::chrono::duration<double>(before.age).count());
+    // The schedule's subject (the executive's), named after the new holder: the events table knows
+    // no subject for the process itself.
     RONDO_RETURN_IF_ERROR(store::append_event(db, {.time = clock.now(),
                                                    .subject = store::Subject::kSchedule,
+                                                   .about = lease->holder(),
                                                    .event = "takeover",
                                                    .code = "takeover",
                                                    .reason = reason}));

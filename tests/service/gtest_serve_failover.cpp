@@ -148,6 +148,9 @@ TEST_F(ServeFailoverPostgres, TheStandbyTakesOverWhenTheActiveIsKilled) {
                    .empty())
       << standby_->seen;
   EXPECT_EQ(one_value(url_, "SELECT COUNT(*) FROM events WHERE event = 'takeover' AND epoch = 2"), "1");
+  // Named after the new holder, the one the lease row names.
+  EXPECT_EQ(one_value(url_, "SELECT about FROM events WHERE event = 'takeover' AND epoch = 2"),
+            one_value(url_, "SELECT holder FROM lease"));
   EXPECT_EQ(one_value(url_, "SELECT COUNT(*) FROM tasks WHERE id LIKE 'b%'"), "10");
   const auto r = standby.Post("/api/v1/tasks", tasks_body("after", 1), "application/json");
   ASSERT_TRUE(r);
