@@ -5,7 +5,7 @@
 namespace rondo::exec {
 namespace {
 
-constexpr NameTable<EventKind, 41> kNames{{{
+constexpr NameTable<EventKind, 42> kNames{{{
     {EventKind::kScheduled, "scheduled"},
     {EventKind::kReOffered, "re-offered"},
     {EventKind::kDroppedForNow, "dropped for now"},
@@ -24,6 +24,7 @@ constexpr NameTable<EventKind, 41> kNames{{{
     {EventKind::kStaysOnBoard, "stays on board"},
     {EventKind::kReturnPlanned, "return planned"},
     {EventKind::kEdge, "edge"},
+    {EventKind::kAllocated, "allocated"},
     {EventKind::kReallocated, "re-allocated"},
     {EventKind::kDeparted, "departed"},
     {EventKind::kArrived, "arrived"},

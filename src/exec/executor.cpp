@@ -198,4 +198,9 @@ std::optional<TaskId> Executor::current_task() const {
   return std::nullopt;
 }
 
+std::optional<TaskId> Executor::preemptible_run() const {
+  if (running_standard() && interruptible_now()) return run_->id();
+  return std::nullopt;
+}
+
 }  // namespace rondo::exec

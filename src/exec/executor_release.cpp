@@ -12,6 +12,14 @@ std::vector<TaskId> Executor::release() {
   std::vector<TaskId> queued(dispatcher_->planned().begin(), dispatcher_->planned().end());
   queued.insert(queued.end(), dispatcher_->on_demand().begin(), dispatcher_->on_demand().end());
   queued.insert(queued.end(), dispatcher_->deferred().begin(), dispatcher_->deferred().end());
+  return release(queued);
+}
+
+const std::vector<TaskId>& Executor::deferred() const {
+  return dispatcher_->deferred();
+}
+
+std::vector<TaskId> Executor::release(const std::vector<TaskId>& queued) {
   // A delivery job stays whole with the robot that began it.
   std::set<std::string> begun;
   for (const std::string& job : deliveries_->open()) {
@@ -21,13 +29,15 @@ std::vector<TaskId> Executor::release() {
   }
   std::vector<TaskId> released;
   for (const TaskId& id : queued) {
-    const TaskRecord& r = book_.at(id);
-    if (is_final(r.state) || r.task.robot == name()) continue;
-    if (r.task.delivery && begun.contains(r.task.delivery->job)) continue;
+    const TaskRecord* r = book_.find(id);
+    if (!r || is_final(r->state) || r->robot != name() || r->task.robot == name()) continue;
+    if (run_ && run_->id() == id) continue;  // started
+    if (r->task.delivery && begun.contains(r->task.delivery->job)) continue;
     released.push_back(id);
   }
   for (const TaskId& id : released) {
     dispatcher_->forget(id);
+    book_.at(id).dropped_for_now.reset();  // its next robot drops it afresh, or plans it
     if (const auto& d = book_.at(id).task.delivery) deliveries_->hand_over(d->job);
   }
   return released;

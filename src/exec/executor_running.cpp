@@ -51,8 +51,12 @@ void Executor::next() {
         book_.transition(d.task, TaskState::kFailed, d.outcome, d.reason);
         reschedule({}, "task " + d.task + " failed");
         continue;
-      case Decision::Kind::kDock: return go_to_dock(JourneyPurpose::kDock);
-      case Decision::Kind::kIdleUntil: return look_again_at(d.until);
+      case Decision::Kind::kDock:
+        if (free_) free_();
+        return go_to_dock(JourneyPurpose::kDock);
+      case Decision::Kind::kIdleUntil:
+        if (free_) free_();
+        return look_again_at(d.until);
       case Decision::Kind::kCharge:
         // The battery already holds what the charge is for (full, say): nothing to charge. Started,
         // it would end at once, and the reschedule after it could plan it again at the same moment,

@@ -256,6 +256,7 @@ void Executor::apply_schedule(const std::vector<TaskId>& ids, const PlannedAnswe
     planned.push_back(id);  // a task being waited for too: kick() reconsiders it
   }
   dispatcher_->follow_schedule(std::move(planned));
+  std::vector<TaskId> dropped_now;  // for the fleet, which may find them room on another robot
   for (const schedule::DroppedTask& d : s.dropped) {
     if (d.task >= ids.size()) continue;  // a charge
     const TaskId& id = ids[d.task];
@@ -279,6 +280,7 @@ void Executor::apply_schedule(const std::vector<TaskId>& ids, const PlannedAnswe
     if (r.state != TaskState::kQueued) book_.transition(id, TaskState::kQueued, outcome, reason);
     if (!r.dropped_for_now) {
       book_.note(id, EventKind::kDroppedForNow, outcome, reason);
+      dropped_now.push_back(id);
       // When its window can no longer be met it is dropped for good, whatever else happens.
       clock_.schedule_at(r.task.window->deadline - r.remaining() + milliseconds(1),
                          [this] { (void)reoffer_deferred(); });
@@ -286,6 +288,7 @@ void Executor::apply_schedule(const std::vector<TaskId>& ids, const PlannedAnswe
     r.dropped_for_now = std::make_pair(outcome, reason);
     dispatcher_->defer(id);
   }
+  if (!dropped_now.empty() && dropped_) dropped_(dropped_now);
 }
 
 }  // namespace rondo::exec

@@ -33,6 +33,19 @@ exec::Executor& Fleet::add_robot(exec::Robot& robot, exec::ExecutorOptions optio
                                  std::unique_ptr<schedule::Scheduler> scheduler) {
   robots_.push_back(std::make_unique<exec::Executor>(building_, robot, std::move(options), std::move(scheduler)));
   watch(*robots_.back());
+  exec::Executor& added = *robots_.back();
+  // Posted: the robot is in the middle of its schedule when it calls, and a move calls back into it.
+  added.on_dropped([this, &added](const std::vector<TaskId>& ids) {
+    if (robots_.size() > 1)
+      building_.clock.schedule_after(Duration{0}, [this, &added, ids] { offer_dropped(added, ids); });
+  });
+  added.on_free([this, &added] {
+    if (robots_.size() > 1 && free_posted_.insert(added.name()).second)
+      building_.clock.schedule_after(Duration{0}, [this, &added] {
+        free_posted_.erase(added.name());
+        offer_to_free(added);
+      });
+  });
   return *robots_.back();
 }
 
@@ -99,7 +112,7 @@ std::vector<std::size_t> Fleet::eligible(const Task& task) const {
   return working.empty() ? can : working;
 }
 
-std::vector<std::string> Fleet::allocate(const std::vector<Task>& tasks) {
+std::vector<Allocation> Fleet::allocate(const std::vector<Task>& tasks, const Skip& skip) {
   std::vector<AllocationUnit> units;
   std::vector<std::size_t> unit_of(tasks.size());
   std::map<std::string, std::size_t> unit_of_job;  // a delivery job's halves go together
@@ -125,16 +138,28 @@ std::vector<std::string> Fleet::allocate(const std::vector<Task>& tasks) {
       }
       unit_of_job[t.delivery->job] = units.size();
     }
+    if (skip) std::erase_if(may, [&](std::size_t r) { return skip(t, r); });
     unit_of[i] = units.size();
     units.push_back({.tasks = {&t}, .eligible = std::move(may)});
   }
+  // Units no robot may take are left out of the allocator's question.
+  std::vector<AllocationUnit> asked;
+  std::vector<std::size_t> answer_of(units.size(), units.size());
+  for (std::size_t u = 0; u < units.size(); ++u)
+    if (!units[u].eligible.empty()) {
+      answer_of[u] = asked.size();
+      asked.push_back(units[u]);
+    }
   std::vector<const exec::Executor*> robots;
   for (const auto& r : robots_) robots.push_back(r.get());
-  const std::vector<std::size_t> chosen = allocator_->allocate(units, robots, building_);
-  std::vector<std::string> names;
-  names.reserve(tasks.size());
-  for (std::size_t i = 0; i < tasks.size(); ++i) names.push_back(robots_[chosen[unit_of[i]]]->name());
-  return names;
+  const std::vector<Allocation> chosen = allocator_->allocate(asked, robots, building_);
+  std::vector<Allocation> out;
+  out.reserve(tasks.size());
+  for (std::size_t i = 0; i < tasks.size(); ++i) {
+    const std::size_t a = answer_of[unit_of[i]];
+    out.push_back(a < chosen.size() ? chosen[a] : Allocation{.robot = robots_.size(), .why = "no robot may take it"});
+  }
+  return out;
 }
 
 void Fleet::hand_out(const std::vector<TaskId>& ids) {
@@ -153,8 +178,11 @@ Status Fleet::add_tasks(std::vector<Task> tasks, std::string_view source, const 
   for (const Task& t : tasks)
     if (ok) ok = accept(t);
   std::vector<TaskId> added;
+  std::vector<Allocation> to;
   if (ok) {
-    const std::vector<std::string> robots = allocate(tasks);
+    to = allocate(tasks);
+    std::vector<std::string> robots;
+    for (const Allocation& a : to) robots.push_back(robots_[a.robot]->name());
     for (const Task& t : tasks) added.push_back(t.id);
     ok = building_.book.add(std::move(tasks), source, taken, robots);
   }
@@ -167,6 +195,11 @@ Status Fleet::add_tasks(std::vector<Task> tasks, std::string_view source, const 
                                 refused ? &*refused : nullptr);
     return ok;
   }
+  // A fleet says why it chose each robot (a fleet of one has nothing to say).
+  if (robots_.size() > 1)
+    for (std::size_t i = 0; i < added.size(); ++i)
+      building_.book.note(added[i], exec::EventKind::kAllocated, exec::Outcome::kNone,
+                          fmt::format("to {}: {}", robots_[to[i].robot]->name(), to[i].why));
   hand_out(added);
   return Status{};
 }

@@ -21,16 +21,18 @@ void Fleet::reallocate_from(exec::Executor& robot) {
   if (ids.empty()) return;
   std::vector<Task> tasks;
   for (const TaskId& id : ids) tasks.push_back(building_.book.at(id).task);
-  const std::vector<std::string> to = allocate(tasks);
+  const std::vector<Allocation> to = allocate(tasks);
   const std::string why = robot.paused() ? "a fault" : "out of service";
   const Duration after = robot.reallocate_after();
   for (std::size_t i = 0; i < ids.size(); ++i) {
-    if (to[i] == robot.name()) continue;
-    if (!building_.book.allocate(ids[i], to[i])) continue;  // the store refused: it goes back to its robot
+    if (to[i].robot >= robots_.size()) continue;
+    const std::string& name = robots_[to[i].robot]->name();
+    if (name == robot.name()) continue;
+    if (!building_.book.allocate(ids[i], name)) continue;  // the store refused: it goes back to its robot
     building_.book.note(ids[i], exec::EventKind::kReallocated,
                         robot.paused() ? exec::Outcome::kRobotFault : exec::Outcome::kNone,
-                        fmt::format("from {} ({} for {}) to {}", robot.name(), why,
-                                    format_duration(std::chrono::round<std::chrono::seconds>(after)), to[i]));
+                        fmt::format("from {} ({} for {}) to {}: {}", robot.name(), why,
+                                    format_duration(std::chrono::round<std::chrono::seconds>(after)), name, to[i].why));
   }
   hand_out(ids);  // each to the robot the book now names
 }

@@ -36,7 +36,8 @@ Status Fleet::restore() {
     const exec::TaskRecord& r = book.at(id);
     if (is_final(r.state) || index_of(r.robot) < robots_.size()) continue;
     if (runs_here(r.task) && !cannot_run(r.task)) {
-      if (auto moved = book.allocate(id, allocate({r.task}).front()); !moved) book.write_error(moved.error().message);
+      if (auto moved = book.allocate(id, robots_[allocate({r.task}).front().robot]->name()); !moved)
+        book.write_error(moved.error().message);
     }
   }
   // What each robot knew of its tasks (what is on board follows from the restored states); a

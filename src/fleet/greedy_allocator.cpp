@@ -2,6 +2,9 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <string>
+
+#include <fmt/format.h>
 
 #include "rondo/fleet/allocator.h"
 
@@ -71,12 +74,55 @@ std::optional<std::pair<std::size_t, Duration>> best_insertion(const Way& way, c
   return best;
 }
 
-// When the robot could be at the task's place: when it is next free, plus its way there.
+// When the robot could be at the task's place: when it is next free (at `from` at `free`), plus
+// its way there.
+Duration soonest_there(const Task& t, map::NodeIndex from, Time free, const exec::Building& building) {
+  const auto node = t.start_node.empty() ? std::optional<map::NodeIndex>(from) : building.map.find_node(t.start_node);
+  const Duration to = node ? building.travel.travel(from, *node, free) : exec::kUnreachable;
+  return (free - building.clock.now()) + to;
+}
 Duration soonest_there(const Task& t, const Way& way, const exec::Building& building) {
-  const auto node =
-      t.start_node.empty() ? std::optional<map::NodeIndex>(way.from) : building.map.find_node(t.start_node);
-  const Duration to = node ? building.travel.travel(way.from, *node, way.free) : exec::kUnreachable;
-  return (way.free - building.clock.now()) + to;
+  return soonest_there(t, way.from, way.free, building);
+}
+
+// How an on-demand task would start on a robot, best first: a free robot (0) goes now; one running
+// an interruptible standard task (1) interrupts it, the lowest priority first; any other (2) starts
+// it when it is next free. Then by how soon the robot could be at the task's place.
+struct OnDemandRank {
+  int how = 2;
+  int priority = 0;  // of the task it would interrupt
+  Duration arrival{0};
+  auto operator<=>(const OnDemandRank&) const = default;
+};
+OnDemandRank on_demand_rank(const Task& t, const exec::Executor& robot, const Way& way,
+                            const exec::Building& building) {
+  if (robot.activity().on_demand.empty()) {
+    if (const std::optional<TaskId> run = robot.preemptible_run()) {
+      const exec::TaskRecord* r = building.book.find(*run);
+      return {1, r ? r->task.priority : 0, soonest_there(t, robot.robot().location(), building.clock.now(), building)};
+    }
+    if (!robot.current_task() || robot.phase() == exec::ExecutorPhase::kWaiting)
+      return {0, 0, soonest_there(t, way, building)};
+  }
+  return {2, 0, soonest_there(t, way, building)};
+}
+
+// Whether the robot can take on the unit's pickup beside what it carries now: no object on board
+// looks like it, and the loads fit its capacity. An object that stays on board (its returns failed)
+// would otherwise draw every look-alike job to a robot that must drop each of them.
+bool room_on_board(const AllocationUnit& unit, const exec::Executor& robot) {
+  int load = 0;
+  for (const Task* t : unit.tasks)
+    if (t->delivery && t->delivery->role == DeliveryRole::kPickup) load += t->delivery->load;
+  if (load == 0) return true;
+  const std::vector<exec::OnBoard> on_board = robot.on_board();
+  int carried = 0;
+  for (const exec::OnBoard& o : on_board) {
+    carried += o.load;
+    for (const Task* t : unit.tasks)
+      if (t->delivery && !t->delivery->appearance.empty() && t->delivery->appearance == o.appearance) return false;
+  }
+  return robot.capacity() <= 0 || carried + load <= robot.capacity();
 }
 
 // What a unit costs on a robot's way: the expected travel it adds at its best positions (a drop
@@ -104,11 +150,48 @@ std::optional<Insertion> insertion(const AllocationUnit& unit, const Way& way, c
   return out;
 }
 
+// Why `chosen` over the others: its cost, and the next robots' (at most three), fitting ones first.
+struct Option {
+  std::size_t robot = 0;
+  bool fits = false;
+  Duration cost{0};
+  OnDemandRank rank{};  // an on-demand task's
+};
+std::string explain(const Option& chosen, std::vector<Option> others, bool on_demand,
+                    const std::vector<const exec::Executor*>& robots) {
+  std::stable_sort(others.begin(), others.end(), [on_demand](const Option& a, const Option& b) {
+    if (on_demand) return a.rank < b.rank;
+    return a.fits != b.fits ? a.fits : a.cost < b.cost;
+  });
+  std::string rest;
+  for (std::size_t i = 0; i < others.size() && i < 3; ++i) {
+    const Option& o = others[i];
+    const bool unreachable = o.cost >= exec::kUnreachable;
+    rest += fmt::format(
+        "{}{}: {}", rest.empty() ? "" : ", ", robots[o.robot]->name(),
+        o.fits || on_demand ? (unreachable ? "cannot get there" : format_duration(o.cost)) : "does not fit");
+  }
+  if (others.size() > 3) rest += fmt::format(", {} more", others.size() - 3);
+  const std::optional<TaskId> interrupts = on_demand ? robots[chosen.robot]->preemptible_run() : std::nullopt;
+  const bool idle = on_demand && chosen.rank.how == 0;
+  const std::string head =
+      on_demand ? fmt::format("{} can be there soonest, in {}",
+                              idle         ? "of the free robots it"
+                              : interrupts ? fmt::format("no robot is free; interrupting task {} (priority {}), it",
+                                                         *interrupts, chosen.rank.priority)
+                                           : "no robot is free or can be interrupted; it",
+                              format_duration(chosen.cost))
+      : chosen.fits
+          ? fmt::format("it adds least travel to its schedule, {}", format_duration(chosen.cost))
+          : fmt::format("it fits no robot's schedule and could be there soonest, in {}", format_duration(chosen.cost));
+  return rest.empty() ? head : fmt::format("{} ({})", head, rest);
+}
+
 }  // namespace
 
-std::vector<std::size_t> GreedyAllocator::allocate(const std::vector<AllocationUnit>& units,
-                                                   const std::vector<const exec::Executor*>& robots,
-                                                   const exec::Building& building) {
+std::vector<Allocation> GreedyAllocator::allocate(const std::vector<AllocationUnit>& units,
+                                                  const std::vector<const exec::Executor*>& robots,
+                                                  const exec::Building& building) {
   std::map<std::size_t, Way> ways;  // built when a unit has a choice to make
   auto way_of = [&](std::size_t r) -> Way& {
     auto it = ways.find(r);
@@ -123,39 +206,48 @@ std::vector<std::size_t> GreedyAllocator::allocate(const std::vector<AllocationU
     return ways.emplace(r, std::move(w)).first->second;
   };
 
-  std::vector<std::size_t> chosen;
+  std::vector<Allocation> chosen;
   chosen.reserve(units.size());
+  if (robots.size() == 1) {  // a fleet of one: nothing to choose, nothing to move
+    chosen.assign(units.size(), Allocation{.robot = 0, .fits = true, .why = "the only robot"});
+    return chosen;
+  }
   for (const AllocationUnit& unit : units) {
-    if (unit.eligible.size() == 1) {
-      chosen.push_back(unit.eligible.front());
-      continue;
-    }
     const bool on_demand =
         std::any_of(unit.tasks.begin(), unit.tasks.end(), [](const Task* t) { return t->kind == TaskKind::kOnDemand; });
-    // The best robot so far: one the unit fits ranks before every one it does not; then by cost
-    // (added travel where it fits, else how soon the robot could be there).
+    // Every eligible robot's cost: one the unit fits ranks before every one it does not; then by
+    // cost (added travel where it fits, else how soon the robot could be there).
+    std::vector<Option> options;
     std::optional<std::size_t> best;
-    Duration best_cost = Duration::max();
-    bool best_fits = false;
     std::vector<std::pair<std::size_t, Stop>> best_inserts;
     for (const std::size_t r : unit.eligible) {
       const Way& way = way_of(r);
-      std::optional<Insertion> fit = on_demand ? std::nullopt : insertion(unit, way, building);
+      std::optional<Insertion> fit =
+          on_demand || !room_on_board(unit, *robots[r]) ? std::nullopt : insertion(unit, way, building);
       const bool fits = fit.has_value();
-      const Duration cost = fits ? fit->cost : soonest_there(*unit.tasks.front(), way, building);
-      if (!best || (fits && !best_fits) || (fits == best_fits && cost < best_cost)) {
-        best = r;
-        best_cost = cost;
-        best_fits = fits;
+      const OnDemandRank rank =
+          on_demand ? on_demand_rank(*unit.tasks.front(), *robots[r], way, building) : OnDemandRank{};
+      const Duration cost = fits        ? fit->cost
+                            : on_demand ? rank.arrival
+                                        : soonest_there(*unit.tasks.front(), way, building);
+      options.push_back({r, fits, cost, rank});
+      const Option* b = best ? &options[*best] : nullptr;
+      const bool better =
+          !b || (on_demand ? rank < b->rank : (fits && !b->fits) || (fits == b->fits && cost < b->cost));
+      if (better) {
+        best = options.size() - 1;
         best_inserts = fits ? std::move(fit->inserts) : decltype(best_inserts){};
       }
     }
-    const std::size_t r = best.value_or(unit.eligible.front());
+    const Option pick = best ? options[*best] : Option{unit.eligible.front(), false, Duration{0}};
+    options.erase(options.begin() + static_cast<std::ptrdiff_t>(best.value_or(0)));
     // The unit is on that robot's way now, for the units after it.
-    Way& way = way_of(r);
+    Way& way = way_of(pick.robot);
     for (const auto& [at, stop] : best_inserts)
       way.stops.insert(way.stops.begin() + static_cast<std::ptrdiff_t>(at), stop);
-    chosen.push_back(r);
+    const std::string why = unit.eligible.size() == 1 ? "the only robot that may take it"
+                                                      : explain(pick, std::move(options), on_demand, robots);
+    chosen.push_back({.robot = pick.robot, .fits = pick.fits || on_demand, .why = why});
   }
   return chosen;
 }

@@ -15,10 +15,11 @@ Task with_action(Task t, const std::string& action) {
   return t;
 }
 
-Task delivery_half(const std::string& id, const std::string& node, DeliveryRole role, Time from, Time to) {
+Task delivery_half(const std::string& id, const std::string& node, DeliveryRole role, Time from, Time to,
+                   const std::string& job = "job1") {
   Task t = task(id, node, from, to, minutes(2));
   t.actions = {Action{.name = role == DeliveryRole::kPickup ? "load" : "unload", .args = {{"object", "book"}}}};
-  t.delivery = Delivery{.job = "job1", .role = role, .object = "book", .appearance = "a green book"};
+  t.delivery = Delivery{.job = job, .role = role, .object = "book", .appearance = "a green book"};
   return t;
 }
 
@@ -79,6 +80,31 @@ TEST(FleetAllocation, BothHalvesOfADeliveryGoToOneRobot) {
                   .ok());
   EXPECT_EQ(f.robot_of("p"), f.robot_of("d"));
   EXPECT_FALSE(f.robot_of("p").empty());
+}
+
+TEST(FleetAllocation, ADeliveryPassesOverARobotCarryingALookAlike) {
+  ScriptedFleet f({{"r1", "Kitchen"}, {"r2", "Dock"}});
+  f.fleet().start();
+  ASSERT_TRUE(f.fleet()
+                  .add_tasks({delivery_half("p1", "Kitchen", DeliveryRole::kPickup, f.at("08:00"), f.at("12:00")),
+                              delivery_half("d1", "Lab", DeliveryRole::kDrop, f.at("08:00"), f.at("12:00"))},
+                             "test")
+                  .ok());
+  ASSERT_EQ(f.robot_of("p1"), "r1");
+  f.settle();
+  ASSERT_TRUE(f.robot(0).acting());
+  f.robot(0).finish_action(exec::ActionOutcome::kSucceeded);
+  f.settle();
+  ASSERT_EQ(f.fleet().find_robot("r1")->on_board().size(), 1u) << "a green book on board, on its way to the Lab";
+  // A second green book waits at the Kitchen too: r1 could be there soonest, but may not carry both.
+  ASSERT_TRUE(
+      f.fleet()
+          .add_tasks({delivery_half("p2", "Kitchen", DeliveryRole::kPickup, f.at("08:00"), f.at("12:00"), "job2"),
+                      delivery_half("d2", "Office", DeliveryRole::kDrop, f.at("08:00"), f.at("12:00"), "job2")},
+                     "test")
+          .ok());
+  EXPECT_EQ(f.robot_of("p2"), "r2");
+  EXPECT_EQ(f.robot_of("d2"), "r2");
 }
 
 TEST(FleetAllocation, TheRobotOfEveryTaskIsStoredAndComesBackAfterARestart) {

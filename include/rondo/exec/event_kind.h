@@ -32,7 +32,8 @@ enum class EventKind {
   kStaysOnBoard,         // its drop did not happen and the object stays on board
   kReturnPlanned,        // its drop did not happen: a new task takes the object back
   kEdge,                 // an edge attempt cancelled or cut by a fault (a task's or the robot's)
-  kReallocated,          // the fleet gave it to another robot (its robot could not work)
+  kAllocated,            // the fleet chose its robot, and says why (a fleet of more than one)
+  kReallocated,          // the fleet gave it to another robot (its robot could not work, or dropped it for now)
   // the robot's
   kDeparted,              // a journey without a task left
   kArrived,               // ... and arrived

@@ -125,11 +125,22 @@ class Executor final : public RobotListener {
   // (a task naming this robot, and every task of a delivery job that has begun here: its item is
   // on board, or its pickup runs). They leave every queue of this robot.
   std::vector<TaskId> release();
+  // The same for the given tasks only: those of them the robot holds, has not started, and may hand
+  // back.
+  std::vector<TaskId> release(const std::vector<TaskId>& ids);
   // The fleet's call when the robot stops being able to work: a fault begins, or it is put out of
   // service. It may release() the robot's tasks.
   void on_unable(std::function<void()> call) { unable_ = std::move(call); }
+  // The fleet's call when a schedule drops tasks for now that were not dropped before (the ids), and
+  // when the robot finds nothing to start now (it docks, or idles until a later task). The fleet
+  // offers them to other robots (fleet_drops.cpp); it must not call back into this robot at once.
+  void on_dropped(std::function<void(const std::vector<TaskId>&)> call) { dropped_ = std::move(call); }
+  void on_free(std::function<void()> call) { free_ = std::move(call); }
+  // The tasks dropped for now that the robot offers again to its scheduler.
+  const std::vector<TaskId>& deferred() const;
   bool able() const { return !in_fault_ && !out_of_service_; }
   Duration reallocate_after() const { return options_.reallocate_after; }
+  int capacity() const { return options_.capacity; }  // load units it carries (0 = unlimited)
   // Where and when the robot is next free: after its running task and its on-demand queue.
   std::pair<map::NodeIndex, Time> free_at() const;
   // After a restart (fleet_restore.cpp): a task of this robot read back (what is on board follows
@@ -178,6 +189,9 @@ class Executor final : public RobotListener {
   // The objects on board now (delivery jobs picked up and not yet dropped).
   std::vector<OnBoard> on_board() const;
   std::optional<TaskId> current_task() const;
+  // The running standard task that an on-demand task given now would interrupt (it is interruptible
+  // now); nothing when the robot runs no task, waits for one, or cannot be interrupted.
+  std::optional<TaskId> preemptible_run() const;
   // What the current schedule assumes (doors open, edges passable; docs/executor.md), and what
   // broken assumptions and opportunities did so far.
   const std::vector<Assumption>& assumptions() const { return assumptions_; }
@@ -396,6 +410,8 @@ class Executor final : public RobotListener {
   bool started_ = false;
   bool out_of_service_ = false;  // set_out_of_service(): next() starts nothing
   std::function<void()> unable_;        // on_unable()
+  std::function<void(const std::vector<TaskId>&)> dropped_;  // on_dropped()
+  std::function<void()> free_;                               // on_free()
   std::unique_ptr<Charging> charging_;  // the battery: readings, thresholds, charges
   // assumptions and opportunities
   std::unique_ptr<AssumptionMap> assumption_map_;

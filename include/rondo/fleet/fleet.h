@@ -16,8 +16,11 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
+#include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -137,8 +140,10 @@ class Fleet {
   // Why no robot (or not the robot it names) can run these actions; nothing when one can.
   std::optional<std::string> cannot_run(const Task& task) const;
   std::optional<std::string> cannot_run(const std::vector<Action>& actions) const;
-  // The robot of each task (by name), a delivery job's halves together, with one a job already has.
-  std::vector<std::string> allocate(const std::vector<Task>& tasks);
+  // The robot of each task, a delivery job's halves together, with one a job already has. `skip`:
+  // robots left out for a task (as indices); a task left with none gets robots_.size().
+  using Skip = std::function<bool(const Task& task, std::size_t robot)>;
+  std::vector<Allocation> allocate(const std::vector<Task>& tasks, const Skip& skip = {});
   std::size_t index_of(const std::string& robot) const;  // robots_.size() when none
   exec::Executor& robot_of(const TaskId& id) const;      // the robot that holds the task
   // Gives recorded tasks to their robots, in the order of the robots.
@@ -148,6 +153,13 @@ class Fleet {
   // unstarted tasks, which go to the robots that can work, each with a `re-allocated` event.
   void watch(exec::Executor& robot);
   void reallocate_from(exec::Executor& robot);
+  // Drops for now, fleet-wide (fleet_drops.cpp): a task a robot drops for now goes to another robot
+  // whose schedule it fits, one that has not dropped it within a slot; a robot that finds itself
+  // free takes what fits it of the others' drops.
+  void offer_dropped(exec::Executor& from, const std::vector<TaskId>& ids);
+  void offer_to_free(exec::Executor& robot);
+  // Moves those of `tasks` (all held by `from`) that the allocator fits on another robot.
+  void move_if_fits(exec::Executor& from, const std::vector<Task>& tasks, const Skip& skip);
 
   // Daily (fleet_daily.cpp).
   void create_routine_tasks(std::chrono::year_month_day day);
@@ -161,6 +173,10 @@ class Fleet {
   std::unique_ptr<Allocator> allocator_;
   std::vector<std::unique_ptr<exec::Executor>> robots_;
   std::vector<Routine> routines_;
+  // When each robot last dropped each task for now (fleet_drops.cpp): it is not offered the task
+  // again within a slot.
+  std::map<TaskId, std::map<std::string, Time>> dropped_by_;
+  std::set<std::string> free_posted_;  // robots with an offer_to_free() waiting on the clock
   int refits_ = 0;
   bool started_ = false;
 };
