@@ -120,8 +120,16 @@ std::vector<Allocation> Fleet::allocate(const std::vector<Task>& tasks, const Sk
     const Task& t = tasks[i];
     if (t.delivery) {
       if (auto it = unit_of_job.find(t.delivery->job); it != unit_of_job.end()) {
-        units[it->second].tasks.push_back(&t);
+        AllocationUnit& unit = units[it->second];
+        unit.tasks.push_back(&t);
         unit_of[i] = it->second;
+        // Only a robot that runs both halves' actions (a robot that loads may not unload); when
+        // none does, the first half's robots, as before.
+        const std::vector<std::size_t> also = eligible(t);
+        std::vector<std::size_t> both;
+        for (const std::size_t r : unit.eligible)
+          if (std::find(also.begin(), also.end(), r) != also.end()) both.push_back(r);
+        if (!both.empty()) unit.eligible = std::move(both);
         continue;
       }
     }

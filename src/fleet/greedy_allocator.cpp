@@ -107,24 +107,6 @@ OnDemandRank on_demand_rank(const Task& t, const exec::Executor& robot, const Wa
   return {2, 0, soonest_there(t, way, building)};
 }
 
-// Whether the robot can take on the unit's pickup beside what it carries now: no object on board
-// looks like it, and the loads fit its capacity. An object that stays on board (its returns failed)
-// would otherwise draw every look-alike job to a robot that must drop each of them.
-bool room_on_board(const AllocationUnit& unit, const exec::Executor& robot) {
-  int load = 0;
-  for (const Task* t : unit.tasks)
-    if (t->delivery && t->delivery->role == DeliveryRole::kPickup) load += t->delivery->load;
-  if (load == 0) return true;
-  const std::vector<exec::OnBoard> on_board = robot.on_board();
-  int carried = 0;
-  for (const exec::OnBoard& o : on_board) {
-    carried += o.load;
-    for (const Task* t : unit.tasks)
-      if (t->delivery && !t->delivery->appearance.empty() && t->delivery->appearance == o.appearance) return false;
-  }
-  return robot.capacity() <= 0 || carried + load <= robot.capacity();
-}
-
 // What a unit costs on a robot's way: the expected travel it adds at its best positions (a drop
 // after its pickup), where every stop still starts in its window; nothing when it fits nowhere.
 struct Insertion {
@@ -188,6 +170,24 @@ std::string explain(const Option& chosen, std::vector<Option> others, bool on_de
 }
 
 }  // namespace
+
+// An object that stays on board (its returns failed) would otherwise draw every look-alike job to a
+// robot that must drop each of them.
+bool room_on_board(const AllocationUnit& unit, const exec::Executor& robot) {
+  int load = 0;
+  for (const Task* t : unit.tasks)
+    if (t->delivery && t->delivery->role == DeliveryRole::kPickup) load += t->delivery->load;
+  if (load == 0) return true;
+  const std::vector<exec::OnBoard> on_board = robot.on_board();
+  int carried = 0;
+  for (const exec::OnBoard& o : on_board) {
+    carried += o.load;
+    for (const Task* t : unit.tasks)
+      if (t->delivery && !t->delivery->appearance.empty() && t->delivery->appearance == o.appearance) return false;
+  }
+  return robot.capacity() <= 0 || carried + load <= robot.capacity();
+}
+
 
 std::vector<Allocation> GreedyAllocator::allocate(const std::vector<AllocationUnit>& units,
                                                   const std::vector<const exec::Executor*>& robots,

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,8 +23,10 @@ class ScriptedFleet {
     std::string name;
     std::string node;
   };
-  explicit ScriptedFleet(const std::vector<RobotAt>& robots)
-      : map_(exec::testing::scenario_map()),
+  // `allocator` makes the fleet's allocator (again at each restart); empty: the fleet's default.
+  explicit ScriptedFleet(const std::vector<RobotAt>& robots, std::function<std::unique_ptr<Allocator>()> allocator = {})
+      : allocator_(std::move(allocator)),
+        map_(exec::testing::scenario_map()),
         zone_(TimeZone::named("Europe/London").value()),
         clock_(zone_.parse_time("2026-11-23T08:00").value()),
         db_(exec::testing::fresh_db_path()),
@@ -69,7 +72,8 @@ class ScriptedFleet {
     exec::ExecutorOptions shared;
     shared.dock = *map_.find_node("Dock");
     shared.refit_at.reset();
-    fleet_ = std::make_unique<Fleet>(clock_, map_, store_, zone_, shared);
+    fleet_ = std::make_unique<Fleet>(clock_, map_, store_, zone_, shared, nullptr,
+                                     allocator_ ? allocator_() : std::unique_ptr<Allocator>{});
     for (std::size_t i = 0; i < robots_.size(); ++i) {
       exec::ExecutorOptions own = shared;
       own.robot_name = names_[i];
@@ -77,6 +81,7 @@ class ScriptedFleet {
     }
   }
 
+  std::function<std::unique_ptr<Allocator>()> allocator_;
   map::TopoMap map_;
   TimeZone zone_;
   exec::SimClock clock_;

@@ -139,8 +139,10 @@ class Executor final : public RobotListener {
   // The tasks dropped for now that the robot offers again to its scheduler.
   const std::vector<TaskId>& deferred() const;
   bool able() const { return !in_fault_ && !out_of_service_; }
+  // What the fleet's allocator plans this robot with: its dock and its capacity (0 = unlimited).
+  map::NodeIndex dock() const { return options_.dock; }
+  int capacity() const { return options_.capacity; }
   Duration reallocate_after() const { return options_.reallocate_after; }
-  int capacity() const { return options_.capacity; }  // load units it carries (0 = unlimited)
   // Where and when the robot is next free: after its running task and its on-demand queue.
   std::pair<map::NodeIndex, Time> free_at() const;
   // After a restart (fleet_restore.cpp): a task of this robot read back (what is on board follows

@@ -34,6 +34,10 @@ struct Allocation {
   std::string why;  // why this robot over the others, for the event log and the API
 };
 
+// Whether `robot` can take on the unit's pickups beside what it carries now: no object on board
+// looks like one of them, and the loads fit its capacity.
+bool room_on_board(const AllocationUnit& unit, const exec::Executor& robot);
+
 class Allocator {
  public:
   virtual ~Allocator() = default;
