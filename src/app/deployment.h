@@ -22,6 +22,7 @@
 //     - {name: r1, kind: sim, dock: Dock1, start: Hall, actions: [load, unload], capacity: 2,
 //        speed: 0.8, battery: {...}}
 //   docks: [{node: Dock1, capacity: 2}]   # optional: a dock not listed has room for one robot
+//   allocator: fleet               # optional: fleet (the fleet scheduler, default) or greedy
 //   store: {kind: postgresql, url: "postgresql://rondo@db/fleet", password_file: pw}  # optional;
 //                                   # rondo serve's store (default: rondo.sqlite in its data folder)
 #pragma once
@@ -60,6 +61,12 @@ struct RobotSpec {
   double speed = 1.0;
 };
 
+// Which allocator decides the robot of each task (`allocator:`, docs/fleet.md, "Allocation").
+enum class AllocatorKind {
+  kFleet,   // fleet::FleetSchedulerAllocator: the fleet scheduler over every robot's plan
+  kGreedy,  // fleet::GreedyAllocator: cheapest insertion into each robot's schedule
+};
+
 // A place where robots dock and charge, and how many robots it has room for at once.
 struct DockSpec {
   std::string node;
@@ -90,6 +97,7 @@ struct Deployment {
   // Docks with room for more than one robot (or listed for clarity); `dock` and every robot's dock
   // not listed here has room for one.
   std::vector<DockSpec> docks;
+  AllocatorKind allocator = AllocatorKind::kFleet;
   // `store:`: where `rondo serve` keeps its store; none: rondo.sqlite in its data folder
   // (docs/deployment.md, "The store").
   std::optional<store::StoreLocation> store;

@@ -140,6 +140,13 @@ Status check_dock_room(const Field& root, const Deployment& d) {
   return Status{};
 }
 
+Result<AllocatorKind> decode_allocator(const Field& f) {
+  RONDO_ASSIGN_OR_RETURN(const std::string kind, f.as_string());
+  if (kind == "fleet") return AllocatorKind::kFleet;
+  if (kind == "greedy") return AllocatorKind::kGreedy;
+  return f.error(fmt::format("'{}' is not an allocator (fleet or greedy)", kind));
+}
+
 }  // namespace
 
 bool Deployment::has_vehicle() const {
@@ -171,6 +178,9 @@ Status decode_robots(const Field& root, Deployment& d) {
     return root.error_at("robots", "robot and robots are both given: a fleet lists every robot under robots");
   if (auto f = root.optional("docks")) {
     RONDO_ASSIGN_OR_RETURN(d.docks, decode_docks(*f));
+  }
+  if (auto f = root.optional("allocator")) {
+    RONDO_ASSIGN_OR_RETURN(d.allocator, decode_allocator(*f));
   }
   if (auto f = root.optional("robots")) {
     if (root.has("battery"))

@@ -11,8 +11,8 @@
 
 namespace rondo::app {
 
-// Reads robot, robots, docks and battery of the deployment's root mapping into d.robots and
-// d.docks; d.dock must be read already.
+// Reads robot, robots, docks, allocator and battery of the deployment's root mapping into d.robots,
+// d.docks and d.allocator; d.dock must be read already.
 Status decode_robots(const Field& root, Deployment& d);
 
 }  // namespace rondo::app

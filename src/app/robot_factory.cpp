@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "rondo/fleet/fleet_scheduler_allocator.h"
 #include "rondo/sim/sim_robot.h"
 #include "rondo/vda5050/vda5050_robot.h"
 
@@ -39,6 +40,14 @@ exec::ExecutorOptions robot_options(const Deployment& d, const RobotSpec& spec, 
   options.robot_name = spec.name;
   if (spec.capacity) options.capacity = *spec.capacity;
   return options;
+}
+
+std::unique_ptr<fleet::Allocator> make_allocator(const Deployment& d) {
+  if (d.allocator == AllocatorKind::kGreedy) return std::make_unique<fleet::GreedyAllocator>();
+  fleet::FleetSchedulerAllocatorOptions options{.seed = d.seed};
+  for (const RobotSpec& r : d.robots)
+    if (!r.vda5050 && r.speed != 1.0) options.speed_factors[r.name] = r.speed;
+  return std::make_unique<fleet::FleetSchedulerAllocator>(std::move(options));
 }
 
 }  // namespace rondo::app

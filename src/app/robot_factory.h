@@ -4,6 +4,7 @@
 //   Result<DeploymentRobot> r = make_robot(deployment, deployment.robots[i], parts, clock, start, seed);
 //   fleet.add_robot(*r->robot, options);
 //   r->charging_time();
+//   fleet::Fleet fleet(clock, map, store, zone, options, {}, make_allocator(deployment));
 #pragma once
 
 #include <cstdint>
@@ -15,6 +16,7 @@
 #include "rondo/core/result.h"
 #include "rondo/exec/clock.h"
 #include "rondo/exec/robot.h"
+#include "rondo/fleet/allocator.h"
 
 namespace rondo::app {
 
@@ -31,6 +33,10 @@ Result<DeploymentRobot> make_robot(const Deployment& deployment, const RobotSpec
 
 // The executor's options for `spec`: the deployment's, with the robot's name, dock and capacity.
 exec::ExecutorOptions robot_options(const Deployment& deployment, const RobotSpec& spec, const RobotNodes& nodes);
+
+// The deployment's allocator (`allocator:`): the fleet scheduler with each simulated robot's speed
+// as its speed factor (a vehicle's is 1: it reports none) and the deployment's seed, or the greedy.
+std::unique_ptr<fleet::Allocator> make_allocator(const Deployment& deployment);
 
 // A VDA 5050 vehicle moves in real time: it needs the system clock (rondo run --realtime).
 inline bool needs_realtime(const Deployment& deployment) {

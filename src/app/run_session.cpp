@@ -235,7 +235,7 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
     chargers.push_back(std::make_unique<ChargerSpans>(clock, *robot.robot));
     deployed.push_back(std::move(robot));
   }
-  fleet::Fleet fleet(clock, map, db, d.zone, shared);
+  fleet::Fleet fleet(clock, map, db, d.zone, shared, {}, make_allocator(d));
   for (std::size_t i = 0; i < d.robots.size(); ++i)
     fleet.add_robot(*deployed[i].robot, robot_options(d, d.robots[i], s.parts.robots[i]));
   exec::Executor& executor = fleet.robot();

@@ -281,7 +281,7 @@ Result<ActiveEnd> serve_active(const ServeRequest& request, const store::StoreLo
           fenced.emplace_back(std::make_unique<FencedRobot>(*robot.robot, gate, *lease->epoch(), log)).get();
     deployed.push_back(std::move(robot));
   }
-  fleet::Fleet fleet(clock, parts.map, db, d.zone, shared);
+  fleet::Fleet fleet(clock, parts.map, db, d.zone, shared, {}, make_allocator(d));
   for (std::size_t i = 0; i < d.robots.size(); ++i) {
     exec::ExecutorOptions options = robot_options(d, d.robots[i], parts.robots[i]);
     options.background_scheduling = shared.background_scheduling;

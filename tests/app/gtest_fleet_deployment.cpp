@@ -62,6 +62,14 @@ TEST(FleetDeployment, RobotsAreReadWithTheirDocksStartsActionsAndSpeeds) {
   EXPECT_EQ(*d->robots[2].actions, std::vector<std::string>{"door_check"});
   EXPECT_DOUBLE_EQ(d->robots[2].speed, 0.8);
   EXPECT_FALSE(d->has_vehicle());
+  EXPECT_EQ(d->allocator, app::AllocatorKind::kFleet);  // the default
+}
+
+TEST(FleetDeployment, TheAllocatorIsChosenByName) {
+  const auto dir = fresh_dir("allocator");
+  const auto d = app::load_deployment(fleet_example(dir, kRobots + "allocator: greedy\n"));
+  ASSERT_TRUE(d.ok()) << d.error().message;
+  EXPECT_EQ(d->allocator, app::AllocatorKind::kGreedy);
 }
 
 TEST(FleetDeployment, OneRobotIsAFleetOfOneNamedRobot) {
@@ -157,7 +165,13 @@ INSTANTIATE_TEST_SUITE_P(
                               "deployment.yaml",
                               "- {name: r1}",
                               "robot and robots are both given"},
-                      Mistake{"no-robots", "robots: []\n", {}, "deployment.yaml", "robots:", "lists no robot"}),
+                      Mistake{"no-robots", "robots: []\n", {}, "deployment.yaml", "robots:", "lists no robot"},
+                      Mistake{"unknown-allocator",
+                              kRobots + "allocator: best\n",
+                              {},
+                              "deployment.yaml",
+                              "allocator: best",
+                              "allocator: 'best' is not an allocator (fleet or greedy)"}),
     [](const ::testing::TestParamInfo<Mistake>& param) {
       std::string n = param.param.name;
       std::replace(n.begin(), n.end(), '-', '_');
