@@ -1,12 +1,15 @@
 // Allocation by the fleet scheduler (FleetSchedulerAllocator) on scripted robots: a task at a
 // robot's place, a named robot, an action only some robots run, a delivery's halves as one pair, a
 // robot whose schedule is full, on-demand tasks by the greedy's rule; every plan it builds passes
-// check_fleet_plan; property: its answers are always among each unit's eligible robots, and the
-// same for the same seed.
+// check_fleet_plan, and on small batches it is the brute force's optimum; property: its answers
+// are always among each unit's eligible robots, and the same for the same seed.
 #include <gtest/gtest.h>
 #include <rapidcheck.h>
 #include <rapidcheck/gtest.h>
 
+#include <random>
+
+#include "fleet_brute_force.h"
 #include "fleet_fixture.h"
 #include "rondo/fleet/fleet_scheduler_allocator.h"
 #include "rondo/schedule/fleet_checker.h"
@@ -193,6 +196,34 @@ TEST(FleetSchedulerAllocator, ATaskThePlanCannotHoldGoesWhereTheGreedyPutsIt) {
   EXPECT_EQ(chosen[0].robot, greedy[0].robot);
   EXPECT_EQ(chosen[0].fits, greedy[0].fits);
   EXPECT_EQ(chosen[0].why, greedy[0].why);
+}
+
+// Small batches on two scripted robots, some with work planned: the plan the allocation builds is
+// as good as the slow, obviously correct brute force's on the same problem.
+TEST(FleetSchedulerAllocator, SmallAllocationsAreOptimal) {
+  const std::vector<std::string> places{"Dock", "Hall", "Office", "Kitchen", "Lab"};
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    std::mt19937_64 rng(seed);
+    const auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    SchedulerFleet s(
+        {{"r1", places[static_cast<std::size_t>(pick(0, 4))]}, {"r2", places[static_cast<std::size_t>(pick(0, 4))]}});
+    ScriptedFleet& f = s.fleet;
+    f.fleet().start();
+    for (const std::string batch : {"a", "b"}) {
+      std::vector<Task> tasks;
+      for (int i = 0, n = pick(1, 3); i < n; ++i) {
+        const Time release = f.at("08:30") + minutes(pick(0, 60));
+        tasks.push_back(task(batch + std::to_string(i), places[static_cast<std::size_t>(pick(0, 4))], release,
+                             release + minutes(pick(8, 60)), minutes(pick(1, 6))));
+      }
+      ASSERT_TRUE(f.fleet().add_tasks(tasks, "test").ok());
+      s.expect_checked();
+      const schedule::FleetProblem& p = s.allocator->last_problem()->problem;
+      const auto truth = schedule::testing::FleetBruteForce(p).solve();
+      ASSERT_TRUE(truth);
+      EXPECT_NEAR(s.allocator->last_plan()->objective, truth->first, 1e-6) << "seed " << seed << " batch " << batch;
+    }
+  }
 }
 
 // Random batches on three scripted robots with random actions: every answer is one of the unit's
