@@ -110,8 +110,11 @@ Schedule DefaultScheduler::solve(const Problem& problem, const StopCondition& st
       if (width < options_.max_beam_width) {
         width *= 2;
         beam(width, stop);
-      } else if (!budgeted) {
-        break;  // no time budget: stop once the widest program has run
+      } else if (!budgeted || !best.found()) {
+        // No time budget: stop once the widest program has run. No schedule after the widest
+        // program: nothing is left to improve, and waiting for the deadline (a problem that does
+        // not fit) would spend the whole budget of a caller that drops tasks and asks again.
+        break;
       }
     }
   }

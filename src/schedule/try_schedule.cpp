@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "instance.h"
+
 namespace rondo::schedule {
 
 namespace {
@@ -48,6 +50,72 @@ void close_drops(const Problem& p, std::vector<bool>& keep) {
           keep[i] = false, changed = true;
     }
   }
+}
+
+// Cheap and bounded, for when the budget ends before the solver has answered (a takeover that
+// brings many new tasks at once): `order` (indices into p.tasks, feasible) with each candidate
+// inserted in turn, the highest priority first, where it delays the tasks least, if anywhere that
+// keeps every task in its window and the item and precedence rules. No solver call: O(k n^2) timing
+// checks for k candidates. Marks what it placed in `keep`. Nothing when `order` itself is infeasible.
+std::optional<std::vector<std::size_t>> insert_where_they_fit(const Problem& p, std::vector<std::size_t> order,
+                                                              std::vector<std::size_t> candidates,
+                                                              std::vector<bool>& keep) {
+  const detail::Instance in(p);
+  if (!in.time(order).feasible || !in.order_respects_rules(order)) return std::nullopt;
+  std::stable_sort(candidates.begin(), candidates.end(), [&](std::size_t a, std::size_t b) {
+    if (p.tasks[a].priority != p.tasks[b].priority) return p.tasks[a].priority > p.tasks[b].priority;
+    return in.latest(a) < in.latest(b);
+  });
+  std::vector<std::size_t> placed;
+  for (std::size_t c : candidates) {
+    std::optional<std::size_t> best_at;
+    std::int64_t best_objective = 0;
+    std::vector<std::size_t> trial{c};  // c at each place in turn: 0, then swapped one on
+    trial.reserve(order.size() + 1);
+    for (std::size_t i : order) trial.push_back(i);
+    for (std::size_t at = 0;; ++at) {
+      const detail::Instance::Timing t = in.time(trial);
+      if (t.feasible && (!best_at || t.objective < best_objective) && in.order_respects_rules(trial)) {
+        best_at = at;
+        best_objective = t.objective;
+      }
+      if (at == order.size()) break;
+      std::swap(trial[at], trial[at + 1]);
+    }
+    if (!best_at) continue;
+    std::vector<std::size_t> longer;
+    longer.reserve(order.size() + 1);
+    for (std::size_t k = 0; k <= order.size(); ++k) {
+      if (k == *best_at) longer.push_back(c);
+      if (k < order.size()) longer.push_back(order[k]);
+    }
+    order = std::move(longer);
+    placed.push_back(c);
+  }
+  // A pickup placed without its drop (or a task without what it comes after) goes again.
+  std::vector<bool> closed(p.tasks.size(), false);
+  for (std::size_t i : order) closed[i] = true;
+  close_drops(p, closed);
+  std::vector<std::size_t> kept_order;
+  for (std::size_t i : order)
+    if (closed[i]) kept_order.push_back(i);
+  if (kept_order.size() != order.size() && (!in.time(kept_order).feasible || !in.order_respects_rules(kept_order)))
+    return std::nullopt;
+  for (std::size_t i : placed)
+    if (closed[i]) keep[i] = true;
+  return kept_order;
+}
+
+// The schedule of `order` (indices into p.tasks) as the solver would give it for the subproblem of
+// the kept tasks, with `index` mapping back.
+Schedule schedule_of(const Problem& p, const std::vector<std::size_t>& order, const std::vector<bool>& keep,
+                     std::vector<std::size_t>& index) {
+  const Problem q = subproblem(p, keep, index);
+  std::vector<std::size_t> to_q(p.tasks.size(), SIZE_MAX);
+  for (std::size_t k = 0; k < index.size(); ++k) to_q[index[k]] = k;
+  std::vector<std::size_t> q_order;
+  for (std::size_t i : order) q_order.push_back(to_q[i]);
+  return detail::Instance(q).to_schedule(q_order, SolveStatus::kFeasible);
 }
 
 // Local clock times, the zone named once: "10:00–10:15 GMT".
@@ -112,7 +180,35 @@ TryScheduleResult try_schedule(const TryScheduleRequest& request, Scheduler& sol
     return complete(found);
   };
 
+  // The budget ended before the solver answered: a failed attempt then says nothing about what
+  // fits, and every further one would fail at once and drop every new task. Instead keep the old
+  // tasks in the order they came in (the plan they are from; by latest start if that no longer
+  // holds) and insert the new ones where they fit; the rest are dropped (for now, to the executor).
+  const auto settle_by_insertion = [&]() {
+    std::vector<std::size_t> old_order;
+    for (std::size_t i = 0; i < p.tasks.size(); ++i)
+      if (std::find(request.new_tasks.begin(), request.new_tasks.end(), i) == request.new_tasks.end())
+        old_order.push_back(i);
+    std::fill(keep.begin(), keep.end(), false);
+    for (std::size_t i : old_order) keep[i] = true;
+    std::optional<std::vector<std::size_t>> order = insert_where_they_fit(p, old_order, request.new_tasks, keep);
+    if (!order) {
+      std::stable_sort(old_order.begin(), old_order.end(), [&](std::size_t a, std::size_t b) {
+        return p.tasks[a].latest_start() < p.tasks[b].latest_start();
+      });
+      order = insert_where_they_fit(p, old_order, request.new_tasks, keep);
+    }
+    if (order) found = schedule_of(p, *order, keep, index);
+    return order.has_value() && complete(found);
+  };
+  bool by_insertion = false;
   while (!attempt()) {
+    if (found.status == SolveStatus::kTimeout && stop.should_stop()) {
+      ++out.insertions;
+      by_insertion = settle_by_insertion();
+      if (by_insertion) break;
+      remaining.clear();  // the old tasks fit neither order: as when they are infeasible
+    }
     if (remaining.empty()) {
       out.outcome = TryScheduleOutcome::kOldTasksInfeasible;
       out.schedule.status = found.status;
@@ -157,12 +253,29 @@ TryScheduleResult try_schedule(const TryScheduleRequest& request, Scheduler& sol
   Schedule best = found;
   std::vector<std::size_t> best_index = index;
 
-  if (request.policy == DropPolicy::kPaperThenRestore && !dropped_order.empty()) {
+  if (request.policy == DropPolicy::kPaperThenRestore && !dropped_order.empty() && !by_insertion) {
     std::vector<std::size_t> back = dropped_order;
     std::stable_sort(back.begin(), back.end(),
                      [&](std::size_t a, std::size_t b) { return p.tasks[a].priority > p.tasks[b].priority; });
     for (std::size_t v : back) {
       if (keep[v]) continue;
+      if (stop.should_stop()) {  // no budget left to solve: what is left goes in where it fits
+        std::vector<std::size_t> order, rest;
+        for (const ScheduledTask& e : best.entries) order.push_back(best_index[e.task]);
+        for (std::size_t r : back)
+          if (!keep[r]) rest.push_back(r);
+        ++out.insertions;
+        if (auto more = insert_where_they_fit(p, order, rest, keep)) {
+          Schedule s = schedule_of(p, *more, keep, index);
+          if (complete(s)) {
+            best = std::move(s);
+            best_index = index;
+          } else {
+            for (std::size_t r : rest) keep[r] = false;
+          }
+        }
+        break;
+      }
       keep[v] = true;
       // Its delivery partner comes back with it.
       std::vector<std::size_t> partners;

@@ -9,6 +9,7 @@
 #include "rondo/schedule/checker.h"
 #include "rondo/schedule/default_scheduler.h"
 #include "rondo/schedule/mip_scheduler.h"
+#include "ticking_deadline.h"
 
 namespace rondo::schedule {
 namespace {
@@ -94,6 +95,32 @@ TEST(Solvers, LargeProblemsStopOnThePollBudgetWithAFeasibleSchedule) {
   const Schedule s = DefaultScheduler{}.solve(p, stop);
   ASSERT_TRUE(complete(s)) << to_string(s.status);
   EXPECT_TRUE(check_schedule(p, s).ok()) << check_schedule(p, s).summary();
+}
+
+// A problem that does not fit, under a time budget (a deadline, as the executor's background solve
+// has), with the exact program out of reach: once the widest restricted program has found nothing
+// the solver answers, instead of polling until the deadline with nothing left to try (which spent
+// the whole budget of trySchedule's drop loop on its first attempt).
+TEST(Solvers, ASolveThatFindsNoScheduleDoesNotWaitForTheDeadline) {
+  Problem p;
+  const Duration ten = minutes(10), zero{0};
+  p.travel = std::make_shared<MatrixTravel>(MatrixTravel::create(2, {zero, ten, ten, zero}).value());
+  p.location_names = {"A", "B"};
+  p.robot.time = *parse_time("2026-03-02T10:00:00Z");
+  for (LocationIndex at : {0U, 1U, 0U, 1U}) {
+    ProblemTask t;
+    t.id = "t" + std::to_string(p.tasks.size());
+    t.start_location = t.end_location = at;
+    t.release = p.robot.time;
+    t.deadline = p.robot.time + minutes(12);
+    t.duration = minutes(2);
+    p.tasks.push_back(t);
+  }
+  constexpr std::int64_t kTicks = 10'000'000;
+  const testing::TickingDeadline budget(kTicks);
+  const Schedule s = DefaultScheduler{DefaultSchedulerOptions{.exact_max_tasks = 0}}.solve(p, budget);
+  EXPECT_EQ(s.status, SolveStatus::kTimeout);
+  EXPECT_LT(budget.readings(), kTicks / 100);
 }
 
 TEST(Solvers, TimeDependentTravelIsUsedAndChecked) {

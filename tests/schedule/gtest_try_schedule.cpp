@@ -7,6 +7,7 @@
 
 #include "rondo/schedule/checker.h"
 #include "rondo/schedule/default_scheduler.h"
+#include "ticking_deadline.h"
 
 namespace rondo::schedule {
 namespace {
@@ -152,6 +153,53 @@ TEST(TrySchedule, RestoringNeverDropsMoreThanThePaperRule) {
     EXPECT_TRUE(check_schedule(req.problem, paper.schedule).ok()) << check_schedule(req.problem, paper.schedule).summary();
     EXPECT_TRUE(check_schedule(req.problem, ours.schedule).ok()) << check_schedule(req.problem, ours.schedule).summary();
   }
+}
+
+constexpr std::int64_t kTicks = 20'000;
+
+// The solver, counting the calls made once the stop had fired.
+class WatchedSolver final : public Scheduler {
+ public:
+  std::string_view name() const override { return "watched"; }
+  Schedule solve(const Problem& problem, const StopCondition& stop) override {
+    ++calls;
+    if (stop.should_stop()) ++calls_after_stop;
+    return inner.solve(problem, stop);
+  }
+  DefaultScheduler inner{DefaultSchedulerOptions{.exact_max_tasks = 0}};
+  int calls = 0;
+  int calls_after_stop = 0;
+};
+
+// A takeover restores many queued tasks as new at once, far more than fit before their deadlines:
+// the budget (a deadline, as the executor's background solve has) runs out inside the drop loop.
+// Before, every further attempt failed at once and dropped more, so every new task was dropped,
+// the urgent one too, and the loop kept calling the solver long after the deadline.
+TEST(TrySchedule, ABudgetThatEndsInTheDropLoopKeepsWhatFitsAndCallsTheSolverNoMore) {
+  TryScheduleRequest req{base_problem(), {}};
+  req.problem.tasks.push_back(task("old", 1, 0, 120, 5, 0));
+  req.problem.tasks.push_back(task("urgent", 2, 0, 20, 3, 5));
+  req.new_tasks.push_back(1);
+  for (int k = 0; k < 40; ++k) {
+    req.problem.tasks.push_back(task("n" + std::to_string(k), k % 2 == 0 ? 1U : 2U, 0, 30, 4, 1));
+    req.new_tasks.push_back(req.problem.tasks.size() - 1);
+  }
+  WatchedSolver solver;
+  testing::TickingDeadline budget(kTicks);
+  std::mt19937_64 rng(7);
+  const TryScheduleResult out = try_schedule(req, solver, budget, rng);
+
+  EXPECT_GE(out.insertions, 1) << "the budget is meant to end inside the drop loop";
+  EXPECT_LE(solver.calls_after_stop, 1) << solver.calls << " solver calls";
+  EXPECT_LE(budget.readings_past_the_deadline(), 5);
+  ASSERT_EQ(out.outcome, TryScheduleOutcome::kSomeDropped);
+  EXPECT_TRUE(check_schedule(req.problem, out.schedule).ok()) << check_schedule(req.problem, out.schedule).summary();
+  std::vector<std::string> kept;
+  for (const ScheduledTask& e : out.schedule.entries) kept.push_back(req.problem.tasks[e.task].id);
+  EXPECT_NE(std::find(kept.begin(), kept.end(), "old"), kept.end());
+  EXPECT_NE(std::find(kept.begin(), kept.end(), "urgent"), kept.end());
+  EXPECT_GE(kept.size(), 6U);  // old, urgent and at least four of the forty
+  EXPECT_EQ(kept.size() + out.schedule.dropped.size(), req.problem.tasks.size());
 }
 
 }  // namespace
