@@ -162,6 +162,8 @@ DroppedTask reason_for(const Problem& p, std::size_t i, const Schedule& kept, co
 
 }  // namespace
 
+// Bounded by `stop` (docs/scheduling.md, "Within the budget"): once it fires before the solver has
+// found a schedule, no further solver call is made and no task is dropped for want of time.
 TryScheduleResult try_schedule(const TryScheduleRequest& request, Scheduler& solver, const StopCondition& stop,
                                std::mt19937_64& rng) {
   const Problem& p = request.problem;
@@ -204,7 +206,6 @@ TryScheduleResult try_schedule(const TryScheduleRequest& request, Scheduler& sol
   bool by_insertion = false;
   while (!attempt()) {
     if (found.status == SolveStatus::kTimeout && stop.should_stop()) {
-      ++out.insertions;
       by_insertion = settle_by_insertion();
       if (by_insertion) break;
       remaining.clear();  // the old tasks fit neither order: as when they are infeasible
@@ -264,7 +265,6 @@ TryScheduleResult try_schedule(const TryScheduleRequest& request, Scheduler& sol
         for (const ScheduledTask& e : best.entries) order.push_back(best_index[e.task]);
         for (std::size_t r : back)
           if (!keep[r]) rest.push_back(r);
-        ++out.insertions;
         if (auto more = insert_where_they_fit(p, order, rest, keep)) {
           Schedule s = schedule_of(p, *more, keep, index);
           if (complete(s)) {

@@ -10,13 +10,6 @@
 // Contract: the problem's robot state is where and when the robot is free (after the running task
 // ends, if one runs); old tasks (those not in new_tasks) are never dropped: if they cannot all be
 // scheduled the outcome is kOldTasksInfeasible. Deterministic for a given rng state.
-//
-// Bounded by `stop`: once it fires before the solver has found a schedule, no further solver call
-// is made and no task is dropped for want of time. The old tasks keep the order they have in the
-// problem (the plan they come from; by latest start if that order no longer holds), and the new
-// ones are inserted where they fit, the highest priority first; the others are dropped
-// ("does not fit" or the like). When the old tasks fit neither order the outcome is
-// kOldTasksInfeasible, as when the solver proves it.
 #pragma once
 
 #include <cstddef>
@@ -69,9 +62,6 @@ struct TryScheduleResult {
   Schedule schedule;                 // of the kept tasks; `dropped` holds the others with reasons
   std::string preempt_reason;        // when outcome == kPreemptRunning
   int attempts = 0;                  // solver calls
-  // Times the budget ended before the solver answered, and the new tasks were inserted where they
-  // fit into the old tasks' order instead (no solver call; see try_schedule's contract).
-  int insertions = 0;
 };
 
 TryScheduleResult try_schedule(const TryScheduleRequest& request, Scheduler& solver, const StopCondition& stop,
