@@ -54,7 +54,8 @@ Reply submit_on_clock(Api& api, std::vector<Task> tasks, const std::string& key,
   for (const Task& t : tasks) ids.push_back(t.id);
   const std::string meta_key = "idempotency." + key;
   if (!key.empty()) {
-    auto stored = store::get_meta(db, meta_key);
+    // Written as pending unless the key is known (one statement: a round trip on PostgreSQL).
+    auto stored = store::claim_meta(db, meta_key, Json{{"fingerprint", print}}.dump());
     if (!stored) return error_reply(stored.error());
     if (*stored) {
       Json rec = Json::parse(**stored, nullptr, false);
@@ -71,8 +72,6 @@ Reply submit_on_clock(Api& api, std::vector<Task> tasks, const std::string& key,
       const bool all_stored =
           std::all_of(ids.begin(), ids.end(), [&](const TaskId& id) { return api.ctx.fleet.book().known(id); });
       if (all_stored) return created(api, ids);
-    } else if (auto ok = store::set_meta(db, meta_key, Json{{"fingerprint", print}}.dump()); !ok) {
-      return error_reply(ok.error());
     }
   }
   if (Status ok = api.ctx.fleet.add_tasks(std::move(tasks), "api"); !ok) {

@@ -5,16 +5,21 @@
 #include "db/connection.h"
 
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 #include "rondo/store/events.h"
 
 namespace rondo::store {
 
-// Appends one event row and returns its seq. Throws db::Failure (caller's guarded() maps it).
-std::int64_t insert_event_row(db::Connection& db, const Event& event);
+// Appends one event row and returns its seq; a task event only when its task is stored (nothing
+// otherwise). Throws db::Failure (caller's guarded() maps it).
+std::optional<std::int64_t> insert_event_row(db::Connection& db, const Event& event);
 
-// Whether task `id` is stored. Throws db::Failure.
-bool task_exists(db::Connection& db, std::string_view id);
+// insert_event_row where a task event's task must be stored (the transaction has just stored or
+// changed it): its absence is a failure, as the foreign key would make it.
+inline void append_event_row(db::Connection& db, const Event& event) {
+  if (!insert_event_row(db, event)) throw db::Failure(db::FailureKind::kStorage, "the task of an event is not stored");
+}
 
 }  // namespace rondo::store

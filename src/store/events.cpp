@@ -56,22 +56,24 @@ Result<Subject> parse_subject(std::string_view text) {
   return Error::invalid(fmt::format("unknown event subject '{}' (task, robot, request or schedule)", text));
 }
 
-std::int64_t insert_event_row(db::Connection& db, const Event& e) {
+std::optional<std::int64_t> insert_event_row(db::Connection& db, const Event& e) {
   // The robot: the event's own; else a robot event's subject, or a task event's task's robot.
-  const std::optional<std::string> task =
-      e.subject == Subject::kTask ? std::optional<std::string>(e.task_id) : std::nullopt;
   const std::string& robot = !e.robot.empty() || e.subject != Subject::kRobot ? e.robot : e.about;
+  if (e.subject == Subject::kTask) {
+    // Only if the task is stored, read with its robot in the same statement (one round trip).
+    return db::query_int64(db,
+                           "INSERT INTO events (time_ms, subject, task_id, about, event, code, reason, robot) "
+                           "SELECT CAST($1 AS BIGINT), 'task', id, CAST($3 AS TEXT), CAST($4 AS TEXT), "
+                           "CAST($5 AS TEXT), CAST($6 AS TEXT), COALESCE(NULLIF(CAST($7 AS TEXT), ''), robot, '') "
+                           "FROM tasks WHERE id = $2 RETURNING seq",
+                           {to_db(e.time), e.task_id, e.about, e.event, e.code, e.reason, robot});
+  }
   const auto seq = db::query_int64(db,
-                                   "INSERT INTO events (time_ms, subject, task_id, about, event, code, reason, robot) "
-                                   "VALUES ($1, $2, $3, $4, $5, $6, $7, COALESCE(NULLIF($8, ''), "
-                                   "(SELECT robot FROM tasks WHERE id = $3), '')) RETURNING seq",
-                                   {to_db(e.time), to_string(e.subject), task, e.about, e.event, e.code, e.reason, robot});
+                                   "INSERT INTO events (time_ms, subject, about, event, code, reason, robot) "
+                                   "VALUES ($1, $2, $3, $4, $5, $6, $7) RETURNING seq",
+                                   {to_db(e.time), to_string(e.subject), e.about, e.event, e.code, e.reason, robot});
   if (!seq) throw db::Failure(db::FailureKind::kStorage, "the event log gave no sequence number");
-  return *seq;
-}
-
-bool task_exists(db::Connection& db, std::string_view id) {
-  return db::query_int64(db, "SELECT 1 FROM tasks WHERE id = $1", {id}).has_value();
+  return seq;
 }
 
 Result<std::int64_t> append_event(Store& store, const Event& event) {
@@ -82,13 +84,11 @@ Result<std::int64_t> append_event(Store& store, const Event& event) {
   return guarded(store, "appending an event", [&]() -> Result<std::int64_t> {
     db::Connection& db = connection(store);
     WriteTx tx(db);
-    if (event.subject == Subject::kTask && !task_exists(db, event.task_id)) {
-      return Error::not_found(
-          fmt::format("{}: no task '{}' for event '{}'", store.name(), event.task_id, event.event));
-    }
-    const std::int64_t seq = insert_event_row(db, event);
+    const std::optional<std::int64_t> seq = insert_event_row(db, event);
+    if (!seq)
+      return Error::not_found(fmt::format("{}: no task '{}' for event '{}'", store.name(), event.task_id, event.event));
     tx.commit();
-    return seq;
+    return *seq;
   });
 }
 

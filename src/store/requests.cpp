@@ -80,7 +80,7 @@ Status take_request(Store& store, const RequestTaken& taken, const Event* event)
     db::Connection& db = connection(store);
     WriteTx tx(db);
     RONDO_RETURN_IF_ERROR(mark_request_taken(db, store.name(), taken));
-    if (event) insert_event_row(db, *event);
+    if (event) append_event_row(db, *event);
     tx.commit();
     return {};
   });

@@ -80,6 +80,15 @@ Result<std::optional<std::string>> get_meta(const Store& store, std::string_view
   });
 }
 
+Result<std::optional<std::string>> claim_meta(Store& store, std::string_view key, std::string_view value) {
+  return guarded(store, fmt::format("claiming '{}'", key), [&]() -> Result<std::optional<std::string>> {
+    db::Connection& db = connection(store);
+    if (db.exec("INSERT INTO meta (key, value) VALUES ($1, $2) ON CONFLICT (key) DO NOTHING", {key, value}) == 1)
+      return std::optional<std::string>{};
+    return db::query_text(db, "SELECT value FROM meta WHERE key = $1", {key});
+  });
+}
+
 Status set_meta(Store& store, const std::vector<std::pair<std::string, std::string>>& entries) {
   return guarded(store, "setting the store's identity", [&]() -> Status {
     WriteTx tx(connection(store));

@@ -86,7 +86,7 @@ Status add_tasks(Store& store, std::span<const TaskRow> tasks, std::string_view 
       if (added == 0) {  // the transaction rolls back: none of `tasks` is stored
         return Error::invalid(fmt::format("{}: task '{}' is already stored", store.name(), task.id));
       }
-      insert_event_row(db, {.time = task.created,
+      append_event_row(db, {.time = task.created,
                             .task_id = task.id,
                             .event = task.state,
                             .code = std::string(code),
@@ -116,7 +116,7 @@ Status set_task_state(Store& store, std::string_view id, std::string_view state,
                           {state, to_db(at), to_db(planned->start), to_db(planned->end), id})
                 : db.exec("UPDATE tasks SET state = $1, updated_ms = $2 WHERE id = $3", {state, to_db(at), id});
     if (changed == 0) return Error::not_found(fmt::format("{}: no task '{}'", store.name(), id));
-    insert_event_row(db, {.time = at,
+    append_event_row(db, {.time = at,
                           .task_id = std::string(id),
                           .event = std::string(state),
                           .code = std::string(code),

@@ -15,7 +15,8 @@ namespace rondo::store {
 class WriteTx {
  public:
   explicit WriteTx(db::Connection& db) : db_(db), nested_(db.in_transaction()) {
-    db_.exec_script(nested_ ? "SAVEPOINT rondo_write" : std::string(db::begin_write(db.backend())));
+    // Deferred: on PostgreSQL it travels with the first statement of the write (one round trip).
+    db_.exec_deferred(nested_ ? "SAVEPOINT rondo_write" : std::string(db::begin_write(db.backend())));
   }
   WriteTx(const WriteTx&) = delete;
   WriteTx& operator=(const WriteTx&) = delete;
@@ -27,7 +28,10 @@ class WriteTx {
     }
   }
   void commit() {
-    db_.exec_script(nested_ ? "RELEASE rondo_write" : "COMMIT");
+    if (nested_)
+      db_.exec_deferred("RELEASE rondo_write");  // travels with the next statement, at the latest the COMMIT
+    else
+      db_.exec_script("COMMIT");
     done_ = true;
   }
 

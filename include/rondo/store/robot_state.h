@@ -42,6 +42,9 @@ Result<std::optional<RobotState>> load_robot_state(const Store& store, std::stri
 // The store's identity: small key/value facts (what run it holds). Errors: kStorage.
 Status set_meta(Store& store, std::string_view key, std::string_view value);
 Result<std::optional<std::string>> get_meta(const Store& store, std::string_view key);
+// Sets `key` to `value` unless it is set already, in one statement: nothing when it was set by
+// this call, else the value it holds (left as it is).
+Result<std::optional<std::string>> claim_meta(Store& store, std::string_view key, std::string_view value);
 // Sets several keys in one transaction: all of them or, on an error or a crash, none.
 Status set_meta(Store& store, const std::vector<std::pair<std::string, std::string>>& entries);
 // Every key and its value.

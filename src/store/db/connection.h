@@ -91,6 +91,10 @@ class Connection {
   virtual void exec_script(std::string_view sql) = 0;
   // Runs one statement that returns rows.
   virtual std::unique_ptr<Rows> query(std::string_view sql, const Params& params = {}) = 0;
+  // Runs a statement that returns nothing to read and does not fail where it is used (BEGIN,
+  // SAVEPOINT, RELEASE of a savepoint that is open): SQLite at once; PostgreSQL sends it together
+  // with the next statement, in one round trip to the server, and a failure of it is that one's.
+  virtual void exec_deferred(std::string_view sql) { exec_script(sql); }
   // Whether a transaction is open on this connection.
   virtual bool in_transaction() const = 0;
 };

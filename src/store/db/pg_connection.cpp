@@ -60,17 +60,9 @@ struct TextParams {
   throw Failure(FailureKind::kStorage, message);
 }
 
-PGresult* run(pg_conn* conn, std::string_view sql, const Params& params) {
-  const std::string text(sql);
-  const TextParams p(params);
-  PGresult* r = PQexecParams(conn, text.c_str(), static_cast<int>(p.values.size()), nullptr, p.values.data(), nullptr,
-                             nullptr, 0);
+bool succeeded(const PGresult* r) {
   const ExecStatusType status = r ? PQresultStatus(r) : PGRES_FATAL_ERROR;
-  if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK) {
-    Result owned{r};
-    fail(conn, r);
-  }
-  return r;
+  return status == PGRES_COMMAND_OK || status == PGRES_TUPLES_OK;
 }
 
 void ignore_notice(void* /*arg*/, const char* /*message*/) {}
@@ -143,14 +135,74 @@ PgConnection::~PgConnection() {
   PQfinish(conn_);
 }
 
+PGresult* PgConnection::run(std::string_view sql, const Params& params) {
+  const std::string text(sql);
+  if (!deferred_.empty()) return run_pipelined(text, params);
+  const TextParams p(params);
+  PGresult* r = PQexecParams(conn_, text.c_str(), static_cast<int>(p.values.size()), nullptr, p.values.data(), nullptr,
+                             nullptr, 0);
+  if (!succeeded(r)) {
+    Result owned{r};
+    fail(conn_, r);
+  }
+  return r;
+}
+
+// The deferred statements and `sql` queued in pipeline mode and synced once: one round trip. The
+// server runs them in order and skips the rest after a failure; the first failure is thrown.
+PGresult* PgConnection::run_pipelined(const std::string& sql, const Params& params) {
+  std::vector<std::string> before;
+  before.swap(deferred_);
+  if (PQenterPipelineMode(conn_) == 0) fail(conn_, nullptr);
+  const TextParams p(params);
+  bool sent = true;
+  for (const std::string& d : before)
+    sent = sent && PQsendQueryParams(conn_, d.c_str(), 0, nullptr, nullptr, nullptr, nullptr, 0) != 0;
+  sent = sent && PQsendQueryParams(conn_, sql.c_str(), static_cast<int>(p.values.size()), nullptr, p.values.data(),
+                                   nullptr, nullptr, 0) != 0;
+  sent = sent && PQpipelineSync(conn_) != 0;
+  // Each statement's result is followed by a null; the sync's own result ends the round trip.
+  PGresult* failed = nullptr;
+  PGresult* last = nullptr;
+  std::size_t ends = 0;
+  while (sent) {
+    PGresult* r = PQgetResult(conn_);
+    if (r == nullptr) {
+      if (++ends > before.size() + 2) break;  // the connection is gone: no sync will come
+      continue;
+    }
+    const ExecStatusType status = PQresultStatus(r);
+    if (status == PGRES_PIPELINE_SYNC) {
+      PQclear(r);
+      break;
+    }
+    if (!failed && status != PGRES_PIPELINE_ABORTED && !succeeded(r)) {
+      failed = r;
+      continue;
+    }
+    PQclear(last);
+    last = r;
+  }
+  PQexitPipelineMode(conn_);
+  if (!sent || failed || last == nullptr) {
+    PQclear(last);
+    Result owned{failed};
+    fail(conn_, failed);
+  }
+  return last;
+}
+
 std::int64_t PgConnection::exec(std::string_view sql, const Params& params) {
-  Result r{run(conn_, sql, params)};
+  Result r{run(sql, params)};
   const char* tuples = PQcmdTuples(r.r);
   return (tuples && *tuples) ? parse_int64(tuples) : 0;
 }
 
 void PgConnection::exec_script(std::string_view sql) {
-  const std::string text(sql);
+  std::string text;
+  for (const std::string& d : deferred_) text += d + "; ";
+  deferred_.clear();
+  text += sql;
   // The simple query protocol: several statements in one message, results read to the last.
   if (PQsendQuery(conn_, text.c_str()) == 0) fail(conn_, nullptr);
   PGresult* failed = nullptr;
@@ -169,10 +221,15 @@ void PgConnection::exec_script(std::string_view sql) {
 }
 
 std::unique_ptr<Rows> PgConnection::query(std::string_view sql, const Params& params) {
-  return std::make_unique<PgRows>(run(conn_, sql, params));
+  return std::make_unique<PgRows>(run(sql, params));
+}
+
+void PgConnection::exec_deferred(std::string_view sql) {
+  deferred_.emplace_back(sql);
 }
 
 bool PgConnection::in_transaction() const {
+  if (!deferred_.empty()) return true;  // a deferred BEGIN, or a savepoint's statement inside one
   const PGTransactionStatusType status = PQtransactionStatus(conn_);
   return status == PQTRANS_INTRANS || status == PQTRANS_INERROR || status == PQTRANS_ACTIVE;
 }

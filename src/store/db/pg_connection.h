@@ -1,6 +1,8 @@
 // Private to rondo::store: db::Connection on a PostgreSQL server (libpq). Each statement goes in
-// one round trip (PQexecParams) with its parameters as text, typed by the server from where they
-// are used. Server notices are not printed. Errors are thrown as db::Failure.
+// one round trip with its parameters as text, typed by the server from where they are used;
+// deferred statements (BEGIN, SAVEPOINT, RELEASE) wait and go with the next one, in the same round
+// trip (libpq's pipeline mode, or one simple-protocol message for a script). Server notices are
+// not printed. Errors are thrown as db::Failure.
 //
 //   auto db = PgConnection::connect({.conninfo = "postgresql://rondo@db/rondo", .password = pw});
 //   db->exec("SET synchronous_commit = off");
@@ -10,10 +12,12 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "db/connection.h"
 
 struct pg_conn;
+struct pg_result;
 
 namespace rondo::store::db {
 
@@ -36,13 +40,18 @@ class PgConnection final : public Connection {
   std::int64_t exec(std::string_view sql, const Params& params = {}) override;
   void exec_script(std::string_view sql) override;
   std::unique_ptr<Rows> query(std::string_view sql, const Params& params = {}) override;
+  void exec_deferred(std::string_view sql) override;
   bool in_transaction() const override;
 
   pg_conn* raw() { return conn_; }
 
  private:
   explicit PgConnection(pg_conn* conn) : conn_(conn) {}
+  // Runs `sql` after the deferred statements, in one round trip; the caller frees the result.
+  pg_result* run(std::string_view sql, const Params& params);
+  pg_result* run_pipelined(const std::string& sql, const Params& params);
   pg_conn* conn_;
+  std::vector<std::string> deferred_;  // sent with the next statement
 };
 
 }  // namespace rondo::store::db
