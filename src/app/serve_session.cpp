@@ -321,10 +321,9 @@ Result<ActiveEnd> serve_active(const ServeRequest& request, const store::StoreLo
                           "the takeover began)",
                           lease->holder(), *lease->epoch(), before.holder, before.epoch,
                           std::chrono::duration<double>(before.age).count());
-    // The schedule's subject (the executive's), named after the new holder: the events table knows
-    // no subject for the process itself.
+    // About the executive process: the instance that took over (its epoch is the event's own).
     RONDO_RETURN_IF_ERROR(store::append_event(db, {.time = clock.now(),
-                                                   .subject = store::Subject::kSchedule,
+                                                   .subject = store::Subject::kExecutive,
                                                    .about = lease->holder(),
                                                    .event = "takeover",
                                                    .code = "takeover",

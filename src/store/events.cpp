@@ -15,8 +15,11 @@
 namespace rondo::store {
 namespace {
 
-constexpr std::array<std::pair<Subject, const char*>, 4> kSubjects{
-    {{Subject::kTask, "task"}, {Subject::kRobot, "robot"}, {Subject::kRequest, "request"}, {Subject::kSchedule, "schedule"}}};
+constexpr std::array<std::pair<Subject, const char*>, 5> kSubjects{{{Subject::kTask, "task"},
+                                                                    {Subject::kRobot, "robot"},
+                                                                    {Subject::kRequest, "request"},
+                                                                    {Subject::kSchedule, "schedule"},
+                                                                    {Subject::kExecutive, "executive"}}};
 
 constexpr const char* kSelect =
     "SELECT seq, time_ms, subject, COALESCE(task_id, ''), about, event, code, reason, robot FROM events";
@@ -53,7 +56,7 @@ const char* to_string(Subject subject) {
 Result<Subject> parse_subject(std::string_view text) {
   for (const auto& [s, name] : kSubjects)
     if (text == name) return s;
-  return Error::invalid(fmt::format("unknown event subject '{}' (task, robot, request or schedule)", text));
+  return Error::invalid(fmt::format("unknown event subject '{}' (task, robot, request, schedule or executive)", text));
 }
 
 std::optional<std::int64_t> insert_event_row(db::Connection& db, const Event& e) {

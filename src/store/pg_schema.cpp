@@ -191,6 +191,13 @@ CREATE TRIGGER requests_fenced BEFORE INSERT OR UPDATE OR DELETE ON requests
   FOR EACH STATEMENT EXECUTE FUNCTION rondo_fence();
 )sql";
 
+// Events about the executive process itself (a takeover names the instance that became active).
+constexpr std::string_view kSchemaV7 = R"sql(
+ALTER TABLE events DROP CONSTRAINT events_subject_check;
+ALTER TABLE events ADD CONSTRAINT events_subject_check
+  CHECK (subject IN ('task', 'robot', 'request', 'schedule', 'executive'));
+)sql";
+
 constexpr Migration kPgMigrations[] = {
     {1, "tasks, task_events (append-only), traversals, observations", kSchemaV1},
     {2, "events with subject and outcome code; task source and progress; robot_state; meta", kSchemaV2},
@@ -198,6 +205,7 @@ constexpr Migration kPgMigrations[] = {
     {4, "tasks: planned start and end", kSchemaV4},
     {5, "the robot of every task, event, traversal and observation", kSchemaV5},
     {6, "the lease of the active executive (its epoch) and the epoch of every event", kSchemaV6},
+    {7, "events about the executive process (subject executive: a takeover)", kSchemaV7},
 };
 
 }  // namespace

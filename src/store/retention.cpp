@@ -61,6 +61,28 @@ void add_missing_archive_columns(SQLite::Database& db) {
   }
 }
 
+// An archive made before schema version 7 refuses events about the executive (its events table's
+// subject CHECK): that table is made again from `create` (this build's "CREATE TABLE events (...)"),
+// with its rows. `schema` is "archive." for an attached archive, "" for one opened on its own.
+void widen_archive_subjects(SQLite::Database& db, const std::string& schema, const std::string& create) {
+  const std::string sql =
+      db.execAndGet(fmt::format("SELECT sql FROM {}sqlite_schema WHERE type = 'table' AND name = 'events'", schema))
+          .getString();
+  if (sql.find("'executive'") != std::string::npos) return;
+  const std::string head = "CREATE TABLE events";
+  if (create.rfind(head, 0) != 0) throw std::runtime_error("unexpected schema of table events");
+  std::string names;
+  {  // finished before the table is dropped (an open statement locks it)
+    SQLite::Statement q(db, fmt::format("SELECT name FROM pragma_table_info('events', '{}')",
+                                        schema.empty() ? "main" : schema.substr(0, schema.size() - 1)));
+    while (q.executeStep()) names += (names.empty() ? "" : ", ") + q.getColumn(0).getString();
+  }
+  db.exec(
+      fmt::format("ALTER TABLE {0}events RENAME TO events_v6; CREATE TABLE {0}events{1}; "
+                  "INSERT INTO {0}events ({2}) SELECT {2} FROM {0}events_v6; DROP TABLE {0}events_v6",
+                  schema, create.substr(head.size()), names));
+}
+
 // A table of the archive as this build's SQLite schema has it: its columns and their types.
 struct ArchiveTable {
   std::string name;
@@ -83,6 +105,7 @@ std::vector<ArchiveTable> prepare_archive(SQLite::Database& archive, const std::
     const std::string head = "CREATE TABLE " + t.name;
     if (sql.rfind(head, 0) != 0) throw std::runtime_error("unexpected schema of table " + t.name);
     archive.exec("CREATE TABLE IF NOT EXISTS " + t.name + sql.substr(head.size()));
+    if (t.name == "events") widen_archive_subjects(archive, "", sql);
     SQLite::Statement columns(model, fmt::format("SELECT name, type FROM pragma_table_info('{}')", name));
     while (columns.executeStep()) t.columns.emplace_back(columns.getColumn(0).getString(), columns.getColumn(1).getString());
     std::vector<std::string> have;
@@ -213,6 +236,9 @@ Result<ArchiveReport> archive_old_records(Store& store, Duration age, Duration l
       SQLite::Transaction tx(db, SQLite::TransactionBehavior::IMMEDIATE);
       for (const std::string& create : archive_schema(db)) db.exec(create);
       add_missing_archive_columns(db);
+      const std::string events_table =  // read (and its statement finished) before the archive's is made again
+          db.execAndGet("SELECT sql FROM main.sqlite_schema WHERE type = 'table' AND name = 'events'").getString();
+      widen_archive_subjects(db, "archive.", events_table);
       const std::string old_tasks =
           fmt::format("SELECT id FROM main.tasks WHERE state IN {} AND updated_ms < {}", kFinalStates, cut);
       const std::string old_events =

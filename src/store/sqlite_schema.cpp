@@ -166,6 +166,36 @@ INSERT INTO lease (id, epoch) VALUES (1, 0);
 ALTER TABLE events ADD COLUMN epoch INTEGER NOT NULL DEFAULT 0;
 )sql";
 
+// Events about the executive process itself (a takeover names the instance that became active).
+// SQLite cannot change a CHECK in place: the events table is made again, with every row, its
+// sequence numbers (and AUTOINCREMENT's high-water mark) and its indexes and append-only triggers.
+constexpr std::string_view kSchemaV7 = R"sql(
+ALTER TABLE events RENAME TO events_v6;
+CREATE TABLE events (
+  seq      INTEGER PRIMARY KEY AUTOINCREMENT,
+  time_ms  INTEGER NOT NULL,
+  subject  TEXT    NOT NULL CHECK (subject IN ('task', 'robot', 'request', 'schedule', 'executive')),
+  task_id  TEXT    REFERENCES tasks (id),
+  about    TEXT    NOT NULL DEFAULT '',
+  event    TEXT    NOT NULL,
+  code     TEXT    NOT NULL DEFAULT '',
+  reason   TEXT    NOT NULL DEFAULT '',
+  robot    TEXT    NOT NULL DEFAULT '',
+  epoch    INTEGER NOT NULL DEFAULT 0,
+  CHECK ((subject = 'task') = (task_id IS NOT NULL))
+) STRICT;
+INSERT INTO events (seq, time_ms, subject, task_id, about, event, code, reason, robot, epoch)
+  SELECT seq, time_ms, subject, task_id, about, event, code, reason, robot, epoch FROM events_v6 ORDER BY seq;
+DELETE FROM sqlite_sequence WHERE name = 'events';
+INSERT INTO sqlite_sequence (name, seq) SELECT 'events', seq FROM sqlite_sequence WHERE name = 'events_v6';
+DROP TABLE events_v6;
+CREATE INDEX events_by_task ON events (task_id, seq) WHERE task_id IS NOT NULL;
+CREATE TRIGGER events_no_update BEFORE UPDATE ON events
+BEGIN SELECT RAISE(ABORT, 'events is append-only'); END;
+CREATE TRIGGER events_no_delete BEFORE DELETE ON events
+BEGIN SELECT RAISE(ABORT, 'events is append-only'); END;
+)sql";
+
 constexpr Migration kSqliteMigrations[] = {
     {1, "tasks, task_events (append-only), traversals, observations", kSchemaV1},
     {2, "events with subject and outcome code; task source and progress; robot_state; meta", kSchemaV2},
@@ -173,6 +203,7 @@ constexpr Migration kSqliteMigrations[] = {
     {4, "tasks: planned start and end", kSchemaV4},
     {5, "the robot of every task, event, traversal and observation", kSchemaV5},
     {6, "the lease of the active executive (its epoch) and the epoch of every event", kSchemaV6},
+    {7, "events about the executive process (subject executive: a takeover)", kSchemaV7},
 };
 
 }  // namespace

@@ -148,7 +148,8 @@ TEST_F(ServeFailoverPostgres, TheStandbyTakesOverWhenTheActiveIsKilled) {
                    .empty())
       << standby_->seen;
   EXPECT_EQ(one_value(url_, "SELECT COUNT(*) FROM events WHERE event = 'takeover' AND epoch = 2"), "1");
-  // Named after the new holder, the one the lease row names.
+  // About the executive process, named after the new holder, the one the lease row names.
+  EXPECT_EQ(one_value(url_, "SELECT subject FROM events WHERE event = 'takeover' AND epoch = 2"), "executive");
   EXPECT_EQ(one_value(url_, "SELECT about FROM events WHERE event = 'takeover' AND epoch = 2"),
             one_value(url_, "SELECT holder FROM lease"));
   EXPECT_EQ(one_value(url_, "SELECT COUNT(*) FROM tasks WHERE id LIKE 'b%'"), "10");

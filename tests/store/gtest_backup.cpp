@@ -104,9 +104,16 @@ TEST(Archive, AddsToAnArchiveOfAnOlderSchema) {
     SQLite::Database old(s.archive.path(), SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE);
     ASSERT_TRUE(migrate(old, schema_migrations().first(3), s.archive.path()).ok());
   }
+  // Its events table knows no executive subject (version 7): it is made again, and takes one.
+  ASSERT_TRUE(append_event(
+      s.db, {.time = day(1, 13), .subject = Subject::kExecutive, .about = "rondo-serve-1", .event = "takeover"}));
   const auto r = archive_old_records(s.db, hours(24 * 20), hours(24 * 14), s.archive.path());
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_GT(r->tasks, 0);
+  {
+    SQLite::Database archived(s.archive.path(), SQLite::OPEN_READONLY);
+    EXPECT_EQ(archived.execAndGet("SELECT COUNT(*) FROM events WHERE subject = 'executive'").getInt(), 1);
+  }
   EXPECT_EQ(count(s.archive.path(), "tasks"), r->tasks);
   SQLite::Database archived(s.archive.path(), SQLite::OPEN_READONLY);
   EXPECT_EQ(archived.execAndGet("SELECT COUNT(*) FROM tasks WHERE planned_start_ms IS NULL AND planned_end_ms IS NULL")

@@ -106,6 +106,19 @@ TEST_P(Events, ATaskEventNamesItsTaskAndNoOtherEventDoes) {
   EXPECT_TRUE(last->front().task_id.empty());
   EXPECT_EQ(read_events(db(), 0, 1)->size(), 1u);  // a limit
   EXPECT_EQ(parse_subject("robot").value(), Subject::kRobot);
+  // The executive process itself: a takeover names the instance that became active.
+  const auto taken = append_event(db(), {.time = at(6),
+                                         .subject = Subject::kExecutive,
+                                         .about = "rondo-serve-4711",
+                                         .event = "takeover",
+                                         .code = "takeover"});
+  ASSERT_TRUE(taken.ok()) << taken.error().message;
+  const auto takeover = read_events(db(), *taken - 1);
+  ASSERT_EQ(takeover->size(), 1u);
+  EXPECT_EQ(takeover->front().subject, Subject::kExecutive);
+  EXPECT_EQ(takeover->front().about, "rondo-serve-4711");
+  EXPECT_EQ(parse_subject("executive").value(), Subject::kExecutive);
+  EXPECT_EQ(to_string(Subject::kExecutive), std::string("executive"));
   EXPECT_FALSE(parse_subject("moon").ok());
 }
 

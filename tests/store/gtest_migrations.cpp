@@ -168,6 +168,46 @@ TEST(Migrations, Version4RowsGetTheirRobotsName) {
   EXPECT_FALSE(set_task_robot(*store, "nope", "r1"));
 }
 
+// Version 6 -> 7 (events about the executive): SQLite makes the events table again; every row keeps
+// its sequence number and fields, numbering continues after the highest ever given (AUTOINCREMENT's
+// mark, above the last row left), the log is still append-only, and an executive event is taken.
+TEST(Migrations, Version6EventsAreKeptAndTheExecutiveIsASubject) {
+  TempDb tmp;
+  {
+    auto db = raw_db(tmp);
+    ASSERT_TRUE(migrate(db, schema_migrations().first(6), tmp.path()).ok());
+    db.exec("INSERT INTO tasks (id, state, task_json, created_ms, updated_ms) VALUES ('t1', 'queued', '{}', 10, 10)");
+    db.exec(
+        "INSERT INTO events (seq, time_ms, subject, task_id, event, robot, epoch) VALUES "
+        "(3, 10, 'task', 't1', 'queued', 'r1', 0), (8, 12, 'schedule', NULL, 'assumptions', '', 0), "
+        "(9, 13, 'robot', NULL, 'fault', 'r1', 0)");
+    db.exec("DROP TRIGGER events_no_delete; DELETE FROM events WHERE seq = 9");  // as retention does
+    EXPECT_THROW(db.exec("INSERT INTO events (time_ms, subject, event) VALUES (1, 'executive', 'takeover')"),
+                 SQLite::Exception);
+  }
+  auto store = Store::open(tmp.path());
+  ASSERT_TRUE(store.ok()) << store.error().message;
+  const std::vector<Event> events = read_events(*store).value();
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0].seq, 3);
+  EXPECT_EQ(events[0].task_id, "t1");
+  EXPECT_EQ(events[0].robot, "r1");
+  EXPECT_EQ(events[1].seq, 8);
+  EXPECT_EQ(events[1].subject, Subject::kSchedule);
+  const auto taken = append_event(
+      *store,
+      {.time = Time{seconds(20)}, .subject = Subject::kExecutive, .about = "rondo-serve-1", .event = "takeover"});
+  ASSERT_TRUE(taken.ok()) << taken.error().message;
+  EXPECT_EQ(*taken, 10) << "a sequence number once given is never given again";
+  auto db = raw_db(tmp);
+  EXPECT_THROW(db.exec("UPDATE events SET reason = 'x'"), SQLite::Exception);
+  EXPECT_THROW(db.exec("DELETE FROM events"), SQLite::Exception);
+  EXPECT_EQ(db.execAndGet("SELECT COUNT(*) FROM sqlite_schema WHERE name IN ('events_by_task', 'events_no_update', "
+                          "'events_no_delete')")
+                .getInt(),
+            3);
+}
+
 // Every older version of the real schema opens and ends at the latest one.
 TEST(Migrations, FromEachOlderVersionToLatest) {
   const auto steps = schema_migrations();

@@ -23,8 +23,9 @@
 
 namespace rondo::store {
 
-// What an event is about.
-enum class Subject { kTask, kRobot, kRequest, kSchedule };
+// What an event is about. kExecutive: the executive process itself (a takeover names the
+// instance that became active, in `about`, at the epoch the event records).
+enum class Subject { kTask, kRobot, kRequest, kSchedule, kExecutive };
 const char* to_string(Subject subject);
 Result<Subject> parse_subject(std::string_view text);
 
