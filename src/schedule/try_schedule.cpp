@@ -55,8 +55,9 @@ void close_drops(const Problem& p, std::vector<bool>& keep) {
 // Cheap and bounded, for when the budget ends before the solver has answered (a takeover that
 // brings many new tasks at once): `order` (indices into p.tasks, feasible) with each candidate
 // inserted in turn, the highest priority first, where it delays the tasks least, if anywhere that
-// keeps every task in its window and the item and precedence rules. No solver call: O(k n^2) timing
-// checks for k candidates. Marks what it placed in `keep`. Nothing when `order` itself is infeasible.
+// keeps every task in its window and the item and precedence rules. No solver call: for k
+// candidates, k n timing checks of O(n) at most (fewer: no place after c's latest start is tried). Marks what it placed
+// in `keep`. Nothing when `order` itself is infeasible.
 std::optional<std::vector<std::size_t>> insert_where_they_fit(const Problem& p, std::vector<std::size_t> order,
                                                               std::vector<std::size_t> candidates,
                                                               std::vector<bool>& keep) {
@@ -68,12 +69,22 @@ std::optional<std::vector<std::size_t>> insert_where_they_fit(const Problem& p, 
   });
   std::vector<std::size_t> placed;
   for (std::size_t c : candidates) {
+    // When each prefix of the plan ends: c starts after it, so once one ends past c's latest start,
+    // no later place is tried (prefixes only end later).
+    std::vector<std::int64_t> prefix_end{0};
+    std::size_t last = in.size();  // the robot's start
+    for (std::size_t j : order) {
+      const std::int64_t now = prefix_end.back();
+      prefix_end.push_back(std::max(in.release(j), now + in.travel(last, j, now)) + in.duration(j));
+      last = j;
+    }
     std::optional<std::size_t> best_at;
     std::int64_t best_objective = 0;
     std::vector<std::size_t> trial{c};  // c at each place in turn: 0, then swapped one on
     trial.reserve(order.size() + 1);
     for (std::size_t i : order) trial.push_back(i);
     for (std::size_t at = 0;; ++at) {
+      if (prefix_end[at] > in.latest(c)) break;
       const detail::Instance::Timing t = in.time(trial);
       if (t.feasible && (!best_at || t.objective < best_objective) && in.order_respects_rules(trial)) {
         best_at = at;
