@@ -185,18 +185,8 @@ Duration TravelCache::quantile_at_slot(map::NodeIndex from, map::NodeIndex to, T
   return to_duration(q);
 }
 
-template <class AtSlot>
-Duration TravelCache::interpolate(Time depart, const AtSlot& at) const {
-  const Time start = planner_->slot_start(depart);
-  const Time next = start + slot_width_;
-  const Duration here = at(start);
-  if (here >= kUnreachable) return kUnreachable;
-  Duration there = at(next);
-  if (there >= kUnreachable) return here;  // closed later: the value now holds within the slot
-  there = std::max(there, here - slot_width_);  // FIFO: slope >= -1
-  const double f = static_cast<double>((depart - start).count()) / static_cast<double>(slot_width_.count());
-  const double ms = static_cast<double>(here.count()) + f * static_cast<double>((there - here).count());
-  return Duration{static_cast<std::int64_t>(std::llround(ms))};
+std::uint64_t TravelCache::models_version() const {
+  return models_->version();
 }
 
 Duration TravelCache::travel(map::NodeIndex from, map::NodeIndex to, Time depart) const {
@@ -270,21 +260,50 @@ Duration TravelCache::lower_bound(map::NodeIndex from, map::NodeIndex to) const 
   return Duration{static_cast<std::int64_t>(std::floor(s * 1000.0))};
 }
 
+std::int64_t* SlotTable::cell(Time slot_start, Duration slot_width, std::size_t from, std::size_t to) {
+  if (slots_.empty()) first_ = slot_start;
+  if (slot_start < first_) {  // an earlier slot than any read yet: rows go in at the front
+    if ((first_ - slot_start) % slot_width != Duration{0}) return nullptr;
+    slots_.insert(slots_.begin(), static_cast<std::size_t>((first_ - slot_start) / slot_width), {});
+    first_ = slot_start;
+  }
+  const std::int64_t offset = (slot_start - first_).count(), width = slot_width.count();
+  const auto slot = static_cast<std::size_t>(offset / width);
+  if (static_cast<std::int64_t>(slot) * width != offset) return nullptr;
+  if (slot >= slots_.size()) slots_.resize(slot + 1);
+  std::vector<std::vector<std::int64_t>>& rows = slots_[slot];
+  if (rows.empty()) rows.resize(locations_);
+  std::vector<std::int64_t>& row = rows[from];
+  if (row.empty()) row.assign(locations_, kNotRead);
+  return &row[to];
+}
+
 SchedulerQuantileTravel::SchedulerQuantileTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes,
                                                  double level)
-    : cache_(&cache), nodes_(std::move(nodes)), level_(level) {}
+    : cache_(&cache), nodes_(std::move(nodes)), level_(level), values_(nodes_.size()) {}
 
 Duration SchedulerQuantileTravel::travel(schedule::LocationIndex from, schedule::LocationIndex to, Time depart) const {
-  return cache_->quantile_travel(nodes_[from], nodes_[to], depart, level_);
+  const map::NodeIndex a = nodes_[from], b = nodes_[to];
+  if (a == b) return Duration{0};
+  const std::uint64_t version = cache_->models_version();
+  return cache_->interpolate(depart, [&](Time slot) {
+    return values_.get(version, slot, cache_->slot_width(), from, to,
+                       [&] { return cache_->quantile_at_slot(a, b, slot, level_); });
+  });
 }
 
 SchedulerTravel::SchedulerTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes)
-    : cache_(&cache), nodes_(std::move(nodes)) {
+    : cache_(&cache), nodes_(std::move(nodes)), values_(nodes_.size()) {
   cache_->begin_problem();
 }
 
 Duration SchedulerTravel::travel(schedule::LocationIndex from, schedule::LocationIndex to, Time depart) const {
-  return cache_->travel(nodes_[from], nodes_[to], depart);
+  const map::NodeIndex a = nodes_[from], b = nodes_[to];
+  if (a == b) return Duration{0};
+  const std::uint64_t version = cache_->models_version();
+  return cache_->interpolate(depart, [&](Time slot) {
+    return values_.get(version, slot, cache_->slot_width(), from, to, [&] { return cache_->at_slot(a, b, slot); });
+  });
 }
 
 Duration SchedulerTravel::lower_bound(schedule::LocationIndex from, schedule::LocationIndex to) const {

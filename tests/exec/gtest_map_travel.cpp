@@ -143,6 +143,35 @@ RC_GTEST_PROP(SchedulerTravel, CachedAnswersEqualAFreshCacheAfterOneEdgeUpdates,
   }
 }
 
+// A problem's oracles keep the values they read (SlotTable): whatever the order of the reads
+// (earlier slots after later ones too) and the updates between them, each answer equals the
+// cache's, read directly.
+RC_GTEST_PROP(SchedulerTravel, ItsTableAnswersAsTheCacheDoes, ()) {
+  const map::TopoMap map = scenario_map();
+  const auto phase = *rc::gen::container<std::vector<double>>(map.edge_count(), rc::gen::inRange(0, 24));
+  auto base = rhythmic_models(phase, 1.5, 0.8);
+  auto models = std::make_shared<plan::testing::PatchableEdgeModels>(
+      map.edge_count(), [base](map::EdgeIndex e, Time t) { return base->outcome(e, t); });
+  plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
+  TravelCache cache(map, models, planner, minutes(15));
+  const std::vector<map::NodeIndex> nodes{0, 1, 2, 3, 4, 2};  // two locations on one node
+  SchedulerTravel travel(cache, nodes);
+  SchedulerQuantileTravel quantile(cache, nodes, 0.9);
+  const int steps = *rc::gen::inRange(1, 60);
+  for (int k = 0; k < steps; ++k) {
+    if (*rc::gen::inRange(0, 10) == 0) {
+      models->change(*rc::gen::inRange<std::size_t>(0, map.edge_count()), *rc::gen::element(1.0, 0.5, 0.0),
+                     *rc::gen::element(1.0, 0.25, 3.0));
+      continue;
+    }
+    const auto a = *rc::gen::inRange<std::size_t>(0, nodes.size());
+    const auto b = *rc::gen::inRange<std::size_t>(0, nodes.size());
+    const Time t = kMonday + hours(9) + seconds(*rc::gen::inRange(0, 3 * 3600));
+    RC_ASSERT(travel.travel(a, b, t) == cache.travel(nodes[a], nodes[b], t));
+    RC_ASSERT(quantile.travel(a, b, t) == cache.quantile_travel(nodes[a], nodes[b], t, 0.9));
+  }
+}
+
 TEST(SchedulerTravel, AnUpdateOfAnEdgeOffTheWayKeepsTheEntry) {
   const map::TopoMap map = scenario_map();
   auto models = std::make_shared<plan::testing::PatchableEdgeModels>(map.edge_count(), [](map::EdgeIndex, Time) {

@@ -98,6 +98,13 @@ class TravelCache {
   // waiting >= 0; interpolation and the FIFO repair only mix and raise values that are all above it.
   Duration lower_bound(map::NodeIndex from, map::NodeIndex to) const;
   Time slot_start(Time t) const { return planner_->slot_start(t); }
+  Duration slot_width() const { return slot_width_; }
+  // The models' version(): every value above stays the same while it does.
+  std::uint64_t models_version() const;
+  // travel() and quantile_travel() with the value at each slot start read through `at`
+  // (SchedulerTravel's table of them).
+  template <class AtSlot>
+  Duration interpolate(Time depart, const AtSlot& at) const;
   plan::TravelPlanner& planner() const { return *planner_; }
   // Cached (slot, target) entries, and how many were solved again / kept after a model change.
   std::size_t cached_count() const { return policies_.size(); }
@@ -140,9 +147,6 @@ class TravelCache {
   const Arrivals& arrivals(map::NodeIndex from, Time slot_start) const;
   template <class E>
   E& touch(E& entry, WorkingSets& sets) const;
-  // FIFO-repaired linear interpolation between the values at the slot starts around `depart`.
-  template <class AtSlot>
-  Duration interpolate(Time depart, const AtSlot& at_slot) const;
   void evict_to_bound() const;
   bool refresh(Entry& entry, Time slot_start) const;
   void refresh_lower_bounds() const;
@@ -164,6 +168,59 @@ class TravelCache {
   mutable std::map<map::NodeIndex, std::vector<double>> lower_from_;  // per source: seconds to all
 };
 
+// What a solve reads again and again: the value at a slot start between two of a problem's
+// locations. A solver's label extensions ask for the same few slots of the same pairs thousands
+// of times, and each TravelCache read is two ordered-map lookups and a version check (about 75 %
+// of a lone robot's run in the fleet example, docs/fleet.md). So each problem's oracle keeps the
+// values it has read, in a table per slot start, for as long as the models stay at the version
+// they were read at; a change of version empties it. Every value is the cache's, to the bit.
+class SlotTable {
+ public:
+  explicit SlotTable(std::size_t locations) : locations_(locations) {}
+  // The value for (from, to) at `slot_start`, from `read()` the first time.
+  template <class Read>
+  Duration get(std::uint64_t version, Time slot_start, Duration slot_width, std::size_t from, std::size_t to,
+               const Read& read);
+
+ private:
+  static constexpr std::int64_t kNotRead = -1;
+  // Null for a slot start off the grid of the first one read (not met: the planner's slots are
+  // one width apart), which is then read each time.
+  std::int64_t* cell(Time slot_start, Duration slot_width, std::size_t from, std::size_t to);
+
+  std::size_t locations_;
+  std::uint64_t version_ = 0;
+  Time first_{};                                               // the slot start of slots_[0]
+  std::vector<std::vector<std::vector<std::int64_t>>> slots_;  // [slot][from][to], milliseconds
+};
+
+template <class Read>
+Duration SlotTable::get(std::uint64_t version, Time slot_start, Duration slot_width, std::size_t from, std::size_t to,
+                        const Read& read) {
+  if (version != version_) {
+    slots_.clear();
+    version_ = version;
+  }
+  std::int64_t* ms = cell(slot_start, slot_width, from, to);
+  if (ms == nullptr) return read();
+  if (*ms == kNotRead) *ms = read().count();
+  return Duration{*ms};
+}
+
+template <class AtSlot>
+Duration TravelCache::interpolate(Time depart, const AtSlot& at) const {
+  const Time start = planner_->slot_start(depart);
+  const Time next = start + slot_width_;
+  const Duration here = at(start);
+  if (here >= kUnreachable) return kUnreachable;
+  Duration there = at(next);
+  if (there >= kUnreachable) return here;       // closed later: the value now holds within the slot
+  there = std::max(there, here - slot_width_);  // FIFO: slope >= -1
+  const double f = static_cast<double>((depart - start).count()) / static_cast<double>(slot_width_.count());
+  const double ms = static_cast<double>(here.count()) + f * static_cast<double>((there - here).count());
+  return Duration{static_cast<std::int64_t>(std::llround(ms))};
+}
+
 // The chance constraint's window travel (schedule::Problem::window_travel): the quantile of
 // the travel time at level 1 − α over the same cache and nodes. Made with the problem's
 // SchedulerTravel, whose generation it reads in.
@@ -180,6 +237,7 @@ class SchedulerQuantileTravel final : public schedule::TravelOracle {
   const TravelCache* cache_;
   std::vector<map::NodeIndex> nodes_;
   double level_;
+  mutable SlotTable values_;
 };
 
 class SchedulerTravel final : public schedule::TravelOracle {
@@ -195,6 +253,7 @@ class SchedulerTravel final : public schedule::TravelOracle {
  private:
   const TravelCache* cache_;
   std::vector<map::NodeIndex> nodes_;
+  mutable SlotTable values_;
 };
 
 }  // namespace rondo::exec
