@@ -183,6 +183,29 @@ Status decode_store(const Field& f, const std::filesystem::path& base, Deploymen
   return Status{};
 }
 
+// reference: {name: TEXT, days: N, tasks: N, distance_km: X}: tasks, distance or both.
+Status decode_reference(const Field& f, Deployment& d) {
+  RONDO_RETURN_IF_ERROR(f.expect_keys({"name", "days", "tasks", "distance_km"}));
+  ReferenceFigures r;
+  RONDO_ASSIGN_OR_RETURN(const Field name, f.required("name"));
+  RONDO_ASSIGN_OR_RETURN(r.name, name.as_string());
+  RONDO_ASSIGN_OR_RETURN(const Field days, f.required("days"));
+  RONDO_ASSIGN_OR_RETURN(const std::int64_t n, days.as_int());
+  if (n < 1 || n > 3660) return days.error("must be between 1 and 3660");
+  r.days = static_cast<int>(n);
+  if (auto t = f.optional("tasks")) {
+    RONDO_ASSIGN_OR_RETURN(r.tasks, t->as_int());
+    if (*r.tasks < 0) return t->error("must not be negative");
+  }
+  if (auto k = f.optional("distance_km")) {
+    RONDO_ASSIGN_OR_RETURN(r.distance_km, k->as_number());
+    if (*r.distance_km < 0) return k->error("must not be negative");
+  }
+  if (!r.tasks && !r.distance_km) return f.error("gives neither 'tasks' nor 'distance_km': nothing to compare");
+  d.reference = std::move(r);
+  return Status{};
+}
+
 // The world describes the simulated building: a simulated robot needs it, and a fleet of VDA 5050
 // vehicles alone, which drive in the real building, has it refused rather than read and never used
 // (docs/deployment.md, "The robots").
@@ -203,9 +226,10 @@ Status decode_simulated_building(const Field& root, const std::filesystem::path&
 
 Result<Deployment> decode(const Field& root, const std::filesystem::path& file) {
   const std::filesystem::path base = file.parent_path();
-  RONDO_RETURN_IF_ERROR(root.expect_keys({"rondo_deployment", "name", "map", "time_zone", "dock", "start", "days",
-                                          "seed", "routines", "world", "requests", "places", "executor", "robot",
-                                          "robots", "docks", "allocator", "battery", "store"}));
+  RONDO_RETURN_IF_ERROR(
+      root.expect_keys({"rondo_deployment", "name",    "map",      "time_zone", "dock",     "start", "days",   "seed",
+                        "routines",         "world",   "requests", "places",    "executor", "robot", "robots", "docks",
+                        "allocator",        "battery", "store",    "reference"}));
   Deployment d;
   d.file = file;
   RONDO_ASSIGN_OR_RETURN(const Field version, root.required("rondo_deployment"));
@@ -241,6 +265,7 @@ Result<Deployment> decode(const Field& root, const std::filesystem::path& file) 
   if (auto f = root.optional("executor")) RONDO_RETURN_IF_ERROR(decode_executor(*f, d.executor));
   RONDO_RETURN_IF_ERROR(decode_robots(root, d));
   if (auto f = root.optional("store")) RONDO_RETURN_IF_ERROR(decode_store(*f, base, d));
+  if (auto f = root.optional("reference")) RONDO_RETURN_IF_ERROR(decode_reference(*f, d));
   RONDO_RETURN_IF_ERROR(decode_simulated_building(root, base, d));
   return d;
 }

@@ -67,6 +67,15 @@ enum class AllocatorKind {
   kGreedy,  // fleet::GreedyAllocator: cheapest insertion into each robot's schedule
 };
 
+// `reference:`: the figures of the real deployment a simulated one stands for, set beside the
+// run's own in report.json ("reference"), so a reader sees how near the load is.
+struct ReferenceFigures {
+  std::string name;  // where the figures come from
+  int days = 0;
+  std::optional<std::int64_t> tasks;
+  std::optional<double> distance_km;
+};
+
 // A place where robots dock and charge, and how many robots it has room for at once.
 struct DockSpec {
   std::string node;
@@ -101,6 +110,7 @@ struct Deployment {
   // `store:`: where `rondo serve` keeps its store; none: rondo.sqlite in its data folder
   // (docs/deployment.md, "The store").
   std::optional<store::StoreLocation> store;
+  std::optional<ReferenceFigures> reference;
 
   bool has_vehicle() const;    // a VDA 5050 vehicle among the robots
   bool has_simulated() const;  // a simulated robot among them

@@ -467,6 +467,26 @@ Json run_report(const fleet::Fleet& fleet, const RunFigures& figures) {
   return j;
 }
 
+Json reference_figures(const ReferenceFigures& reference, const Json& report, int days) {
+  const auto per_day = [](double v, int n) { return round_to(v / n, 10); };
+  Json real{{"name", reference.name}, {"days", reference.days}};
+  const std::int64_t added = report["tasks"]["added"].get<std::int64_t>();
+  const std::int64_t completed = report["tasks"]["completed"].get<std::int64_t>();
+  const double km = report["navigation"]["distance_m"].get<double>() / 1000.0;
+  Json run{{"days", days}, {"tasks_added", added}, {"tasks_completed", completed}, {"distance_km", round_to(km, 100)}};
+  if (reference.tasks) {
+    real["tasks"] = *reference.tasks;
+    real["tasks_per_day"] = per_day(static_cast<double>(*reference.tasks), reference.days);
+    run["tasks_completed_per_day"] = per_day(static_cast<double>(completed), days);
+  }
+  if (reference.distance_km) {
+    real["distance_km"] = *reference.distance_km;
+    real["km_per_day"] = round_to(*reference.distance_km / reference.days, 100);
+    run["km_per_day"] = round_to(km / days, 100);
+  }
+  return Json{{"real", std::move(real)}, {"run", std::move(run)}};
+}
+
 DayPicture day_picture(const exec::Executor& executor, const std::string& title, Time from, Time to,
                        const TimeZone& zone, bool every_task) {
   DayPicture day{.title = title, .from = from, .to = to, .zone = zone, .rows = {}, .charging = {}};

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "day_svg.h"
+#include "deployment.h"
 #include "rondo/core/document.h"
 #include "rondo/core/timezone.h"
 #include "rondo/core/traversal.h"
@@ -62,6 +63,11 @@ Json robot_summaries(const fleet::Fleet& fleet, const RunFigures& figures);
 
 // Every key is the fleet's total (a fleet of one: its robot's), with "robots" per robot.
 Json run_report(const fleet::Fleet& fleet, const RunFigures& figures);
+
+// report.json's "reference": the real deployment's figures (`reference:`) and the run's beside
+// them, both also per day, since the run may be shorter or longer. `report` is the rest of the
+// report (its "tasks" and "navigation").
+Json reference_figures(const ReferenceFigures& reference, const Json& report, int days);
 
 // The schedule picture of one local day [from, to): the tasks allocated to `executor`'s robot
 // (every task when `every_task`).

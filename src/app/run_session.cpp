@@ -349,6 +349,7 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   result.report["seed"] = d.seed;
   result.report["days"] = d.days;
   result.report["travel_table"] = travel_table(map, log, start, d.days, fleet.zone());
+  if (d.reference) result.report["reference"] = reference_figures(*d.reference, result.report, d.days);
   RONDO_ASSIGN_OR_RETURN(const std::vector<store::Event> events, store::read_events(db));
   result.report["weeks"] = weekly_summary(log, events, start, end);
   result.write_errors = static_cast<int>(fleet.write_errors().size());

@@ -273,6 +273,44 @@ TEST(RunCommand, ADeploymentBatteryBlockIsCheckedLikeTheWorlds) {
   }
 }
 
+// `reference:` sets a real deployment's figures beside the run's (examples/g4s/real-load.yaml);
+// a block that gives nothing to compare, or a figure out of range, is refused with its line.
+TEST(RunCommand, AReferenceIsSetBesideTheRunsFiguresAndCheckedWithItsLine) {
+  const std::string refit = "refit_at: \"02:00\"        # nightly refit of the edge models";
+  const std::string block = "\nreference:\n  name: the real one\n  days: 21\n";
+  for (const char* bad : {"", "  tasks: -1\n", "  distance_km: far\n", "  tasks: 963\n  km: 20\n"}) {
+    const auto dir = fresh_dir("reference-bad");
+    const auto deployment = edited_example(dir, "deployment.yaml", refit, refit + block + bad);
+    const auto r = test::run_cli({"run", deployment.string(), "--days", "1", "--out", (dir / "run").string()});
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_THAT(r.err, HasSubstr("deployment.yaml:")) << bad;
+    EXPECT_FALSE(std::filesystem::exists(dir / "run")) << bad;
+    std::filesystem::remove_all(dir);
+  }
+  const auto dir = fresh_dir("reference");
+  const auto deployment =
+      edited_example(dir, "deployment.yaml", refit, refit + block + "  tasks: 963\n  distance_km: 20.6\n");
+  const auto r = test::run_cli({"run", deployment.string(), "--days", "2", "--out", (dir / "run").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Json report = Json::parse(slurp(dir / "run" / "report.json"));
+  const Json& ref = report["reference"];
+  EXPECT_EQ(ref["real"]["name"], "the real one");
+  EXPECT_EQ(ref["real"]["tasks"], 963);
+  EXPECT_DOUBLE_EQ(ref["real"]["tasks_per_day"].get<double>(), 45.9);
+  EXPECT_DOUBLE_EQ(ref["real"]["km_per_day"].get<double>(), 0.98);
+  EXPECT_EQ(ref["run"]["days"], 2);
+  EXPECT_EQ(ref["run"]["tasks_added"], report["tasks"]["added"]);
+  EXPECT_EQ(ref["run"]["tasks_completed"], report["tasks"]["completed"]);
+  EXPECT_NEAR(ref["run"]["distance_km"].get<double>(), report["navigation"]["distance_m"].get<double>() / 1000, 0.005);
+  std::filesystem::remove_all(dir);
+  // The example at the real load reads (its 21 days are measured in docs/deployment.md, not here).
+  const auto real_load = app::load_deployment("examples/g4s/real-load.yaml");
+  ASSERT_TRUE(real_load.ok()) << real_load.error().message;
+  ASSERT_TRUE(real_load->reference.has_value());
+  EXPECT_EQ(real_load->reference->tasks, 963);
+  EXPECT_EQ(real_load->reference->distance_km, 20.6);
+}
+
 TEST(RunCommand, BlockedEdgeIsAnExecutorKeyAndTheReportHasItsWeeks) {
   const std::string refit = "refit_at: \"02:00\"        # nightly refit of the edge models";
   {
