@@ -34,6 +34,7 @@ Json task_json(const exec::TaskRecord& r) {
          {"code", std::string(exec::to_string(r.outcome))},
          {"reason", r.reason},
          {"source", r.source},
+         {"robot", r.robot.empty() ? Json(nullptr) : Json(r.robot)},
          {"priority", t.priority},
          {"start_node", t.start_node},
          {"duration_s", to_seconds(t.duration)},
@@ -62,6 +63,7 @@ Json event_json(const store::Event& e) {
               {"subject", store::to_string(e.subject)},
               {"task_id", e.task_id.empty() ? Json(nullptr) : Json(e.task_id)},
               {"about", e.about.empty() ? Json(nullptr) : Json(e.about)},
+              {"robot", e.robot.empty() ? Json(nullptr) : Json(e.robot)},
               {"event", e.event},
               {"code", e.code},
               {"reason", e.reason}};

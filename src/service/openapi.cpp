@@ -108,7 +108,9 @@ Json document() {
          responses({{200, "the robot"}}));
   paths["/api/v1/map"]["get"] = op("The topological map (docs/map-format.md, as JSON).", responses({{200, "the map"}}));
   paths["/api/v1/schedule"]["get"] =
-      op("One local day's schedule, planned against actual.", responses({{200, "the day"}, {422, "a bad date"}}),
+      op("One local day's schedule, planned against actual; each task names its robot, and robots gives each "
+         "robot's current task and planned order.",
+         responses({{200, "the day"}, {422, "a bad date"}}),
          Json::array({param("date", "query", "string", "YYYY-MM-DD, local; default today")}));
   paths["/api/v1/edges"]["get"] =
       op("Every edge's success probability and expected travel time at one time (default now).",
@@ -140,7 +142,8 @@ Json document() {
          responses({{200, "{out_of_service}"}, {400, "not JSON"}, {422, "a bad field"}}), Json::array(), false, true);
   const Json robot_name = param("name", "path", "string", "the robot's name in the deployment");
   paths["/api/v1/robots"]["get"] =
-      op("Every robot of the fleet: the fields of /api/v1/robot with its name and open_tasks.",
+      op("Every robot of the fleet: the fields of /api/v1/robot with its name, open_tasks, and tasks (its stored "
+         "tasks by state).",
          responses({{200, "{robots}"}}));
   paths["/api/v1/robots/{name}"]["get"] =
       op("One robot of the fleet.", responses({{200, "the robot"}, {404, "no such robot"}}), Json::array({robot_name}));

@@ -71,15 +71,29 @@ std::map<std::string, int> open_tasks(const Api& api) {
   return n;
 }
 
+// What a robot of the fleet adds to the robot's view: the tasks it holds that are not over, and
+// every stored task allocated to it by state (the dashboard's totals: one grouped query).
+using TaskCounts = std::map<std::string, std::map<std::string, long>>;
+void add_fleet_fields(Json& view, const std::string& name, const std::map<std::string, int>& open,
+                      const TaskCounts& counts) {
+  const auto it = open.find(name);
+  view["open_tasks"] = it == open.end() ? 0 : it->second;
+  Json by_state = Json::object();
+  if (const auto c = counts.find(name); c != counts.end())
+    for (const auto& [state, n] : c->second) by_state[state] = n;
+  view["tasks"] = std::move(by_state);
+}
+
 // GET /api/v1/robots: every robot of the fleet, with the tasks it holds.
 Reply robots(Api& api, const httplib::Request&) {
   return api.on_clock([&api] {
     const std::map<std::string, int> open = open_tasks(api);
+    auto counts = store::count_tasks_by_robot(api.ctx.store);
+    if (!counts) return error_reply(counts.error());
     Json list = Json::array();
     for (const auto& e : api.ctx.fleet.robots()) {
       Json view = robot_view(api, *e);
-      const auto it = open.find(e->name());
-      view["open_tasks"] = it == open.end() ? 0 : it->second;
+      add_fleet_fields(view, e->name(), open, *counts);
       list.push_back(std::move(view));
     }
     Reply r;
@@ -93,11 +107,11 @@ Reply one_robot(Api& api, const httplib::Request& req) {
   return api.on_clock([&api, name = std::string(req.matches[1])] {
     exec::Executor* e = api.ctx.fleet.find_robot(name);
     if (!e) return error_reply(Error::not_found(fmt::format("no robot '{}'", name)));
-    const std::map<std::string, int> open = open_tasks(api);
+    auto counts = store::count_tasks_by_robot(api.ctx.store);
+    if (!counts) return error_reply(counts.error());
     Reply r;
     r.body = robot_view(api, *e);
-    const auto it = open.find(name);
-    r.body["open_tasks"] = it == open.end() ? 0 : it->second;
+    add_fleet_fields(r.body, name, open_tasks(api), *counts);
     return r;
   });
 }
@@ -148,6 +162,7 @@ Reply schedule(Api& api, const httplib::Request& req) {
       tasks.push_back(Json{{"id", id},
                            {"activity", t.task.activity},
                            {"start_node", t.task.start_node},
+                           {"robot", t.robot.empty() ? Json(nullptr) : Json(t.robot)},
                            {"state", to_string(t.state)},
                            {"code", std::string(exec::to_string(t.outcome))},
                            {"reason", t.reason},
@@ -156,6 +171,15 @@ Reply schedule(Api& api, const httplib::Request& req) {
                                                     : Json(nullptr)},
                            {"planned", Json{{"start", time_json(t.planned_start)}, {"end", time_json(t.planned_end)}}},
                            {"actual", Json{{"start", time_json(t.started)}, {"end", time_json(t.ended)}}}});
+    }
+    // Each robot's lane: its running task and planned order (the top-level pair is the first
+    // robot's, as before fleets).
+    Json robots = Json::array();
+    for (const auto& e : api.ctx.fleet.robots()) {
+      const exec::Executor::Activity ra = e->activity();
+      robots.push_back(Json{{"name", e->name()},
+                            {"current_task", ra.current ? Json(*ra.current) : Json(nullptr)},
+                            {"planned_order", ra.planned}});
     }
     Reply reply;
     reply.body = Json{{"date", fmt::format("{:04d}-{:02d}-{:02d}", static_cast<int>(day->year()),
@@ -166,6 +190,7 @@ Reply schedule(Api& api, const httplib::Request& req) {
                       {"now", format_time(now)},
                       {"current_task", a.current ? Json(*a.current) : Json(nullptr)},
                       {"planned_order", a.planned},
+                      {"robots", std::move(robots)},
                       {"tasks", std::move(tasks)}};
     return reply;
   });

@@ -211,4 +211,15 @@ Result<std::map<std::string, long>> count_tasks_by_state(const Store& store) {
   });
 }
 
+Result<std::map<std::string, std::map<std::string, long>>> count_tasks_by_robot(const Store& store) {
+  using Counts = std::map<std::string, std::map<std::string, long>>;
+  return guarded(store, "counting tasks by robot", [&]() -> Result<Counts> {
+    auto q = connection(store).query(
+        "SELECT COALESCE(robot, ''), state, COUNT(*) FROM tasks GROUP BY COALESCE(robot, ''), state");
+    Counts out;
+    while (q->next()) out[q->text(0)][q->text(1)] = q->int64(2);
+    return out;
+  });
+}
+
 }  // namespace rondo::store

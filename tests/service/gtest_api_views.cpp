@@ -213,9 +213,34 @@ TEST(ApiViews, TheFleetsRobotsAreListedAndPausedOneByOne) {
   EXPECT_EQ(all["robots"][2]["open_tasks"], 0);
   ASSERT_EQ(cli.Post("/api/v1/tasks", s.task_body("f1", hours(1)), "application/json")->status, 201);
   int open = 0;
+  long queued = 0;
+  std::string holder;
   const Json now = body_of(cli.Get("/api/v1/robots"));
-  for (const Json& r : now["robots"]) open += r["open_tasks"].get<int>();
+  for (const Json& r : now["robots"]) {
+    open += r["open_tasks"].get<int>();
+    // The stored tasks by state (the dashboard's totals) agree with the open ones.
+    ASSERT_TRUE(r["tasks"].is_object()) << r.dump();
+    for (const auto& [state, n] : r["tasks"].items()) {
+      if (state == "queued") queued += n.get<long>();
+      holder = r["name"];
+    }
+  }
   EXPECT_EQ(open, 1) << now.dump();
+  EXPECT_EQ(queued, 1) << now.dump();
+  // The day's schedule names each task's robot, and gives every robot its lane.
+  const Json day = body_of(cli.Get("/api/v1/schedule"));
+  ASSERT_EQ(day["robots"].size(), 3u) << day.dump();
+  EXPECT_EQ(day["robots"][1]["name"], "r2");
+  for (const Json& t : day["tasks"]) {
+    if (t["id"] == "f1") {
+      EXPECT_EQ(t["robot"], holder) << day.dump();
+    }
+  }
+  // The task and its events carry the robot too.
+  const Json f1 = body_of(cli.Get("/api/v1/tasks/f1"));
+  EXPECT_EQ(f1["robot"], holder) << f1.dump();
+  ASSERT_FALSE(f1["events"].empty()) << f1.dump();
+  EXPECT_EQ(f1["events"].back()["robot"], holder) << f1.dump();
 
   Json r2 = body_of(cli.Get("/api/v1/robots/r2"));
   EXPECT_EQ(r2["name"], "r2");

@@ -1,5 +1,5 @@
 // Pages of tasks by filter (task_table.h: find_tasks, as GET /api/v1/tasks asks them), the counts
-// by state, and the changes of a task's robot and definition, on both backends: the window filter
+// by state (and by robot), and the changes of a task's robot and definition, on both backends: the window filter
 // compares the task JSON's times as times (SQLite's julianday, PostgreSQL's timestamptz), which
 // the dialect writes differently.
 #include <gtest/gtest.h>
@@ -91,6 +91,14 @@ TEST_P(TaskPages, CountsByStateAndChangesRobotAndDefinition) {
   ASSERT_TRUE(set_task_robot(*db_, "evening", "").ok());
   EXPECT_EQ(get_task(*db_, "evening")->robot, "");
   EXPECT_EQ(set_task_robot(*db_, "ghost", "r2").error().code, ErrorCode::kNotFound);
+
+  // By robot and state: a task allocated to none counts under "".
+  ASSERT_TRUE(set_task_robot(*db_, "noon", "r2").ok());
+  ASSERT_TRUE(set_task_robot(*db_, "morning", "r2").ok());
+  const auto by_robot = count_tasks_by_robot(*db_);
+  ASSERT_TRUE(by_robot.ok()) << by_robot.error().message;
+  using Counts = std::map<std::string, std::map<std::string, long>>;
+  EXPECT_EQ(*by_robot, (Counts{{"", {{"queued", 2}}}, {"r2", {{"queued", 1}, {"succeeded", 1}}}}));
 
   Json changed = get_task(*db_, "morning")->task;
   changed["priority"] = 7;

@@ -101,4 +101,8 @@ Result<TaskPage> find_tasks(const Store& store, const TaskFilter& filter);
 // How many stored tasks are in each state.
 Result<std::map<std::string, long>> count_tasks_by_state(const Store& store);
 
+// How many stored tasks each robot holds in each state: robot -> state -> count ("" for the
+// tasks allocated to no robot). One grouped query, cheap enough for every look at the robots.
+Result<std::map<std::string, std::map<std::string, long>>> count_tasks_by_robot(const Store& store);
+
 }  // namespace rondo::store

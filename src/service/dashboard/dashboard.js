@@ -1,6 +1,8 @@
-// The rondo dashboard: today's schedule (planned against actual), the map with the robot, the
-// task list with cancel buttons, a form to add a task, one path's rhythm over the day, and the
-// live event feed. Plain JavaScript and SVG, served by the binary itself; no build step.
+// The rondo dashboard: today's schedule (planned against actual, one lane per robot), the map
+// with every robot, the fleet's totals, the task list with cancel buttons, a form to add a task,
+// one path's rhythm over the day, and the live event feed. A fleet of one robot looks as a lone
+// robot always did: no lane titles, no totals, no names. Plain JavaScript and SVG, served by the
+// binary itself; no build step.
 // The token (when the service has one) is asked for once and kept in this tab's session storage.
 "use strict";
 
@@ -22,7 +24,11 @@ const EVENT_WORDS = {
 };
 // Events whose reason is the scheduler's own note, not worth a manager's time.
 const QUIET_REASONS = new Set(["queued", "scheduled", "navigating", "acting", "succeeded"]);
-const view = { zone: "UTC", tasks: [], names: new Map(), map: null, robot: null, schedule: null };
+// Each robot's colour on the map and in its lane, by its place in the fleet's list; a fleet of one
+// keeps the colours the dashboard always had.
+const ROBOT_COLOURS = ["#1d70b8", "#d4351c", "#2e8540", "#912b88", "#f47738", "#28a197", "#6f72af", "#85994b",
+                       "#b58840", "#5694ca"];
+const view = { zone: "UTC", tasks: [], names: new Map(), map: null, robots: [], schedule: null };
 
 const $ = (selector) => document.querySelector(selector);
 function el(tag, attrs = {}, text) {
@@ -78,11 +84,22 @@ function fromLocalInput(value) {
   return wall - zoneOffset(wall - zoneOffset(wall));
 }
 function taskName(task) { return task.activity || task.id; }
+// The fleet's robots by name, in the deployment's order: the schedule's list (it comes first) or
+// the robots' views.
+function robotNames() {
+  if (view.robots.length) return view.robots.map((r) => r.name);
+  return view.schedule && view.schedule.robots ? view.schedule.robots.map((r) => r.name) : [];
+}
+function isFleet() { return robotNames().length > 1; }
+function robotColour(name) {
+  const i = robotNames().indexOf(name);
+  return i < 0 ? "#666" : ROBOT_COLOURS[i % ROBOT_COLOURS.length];
+}
 // The service's clock as last read: the robot's line (every 2 s) or the schedule (on events),
 // whichever is newer. Only events refresh the schedule, and a quiet night has none: the form's
 // window must not stay at the time of the last one.
 function serviceNow() {
-  const read = [view.schedule && view.schedule.now, view.robot && view.robot.time].filter(Boolean).map(Date.parse);
+  const read = [view.schedule && view.schedule.now, view.robots.length && view.robots[0].time].filter(Boolean).map(Date.parse);
   return read.length ? Math.max(...read) : Date.now();
 }
 function showProblem(message) {
@@ -91,19 +108,79 @@ function showProblem(message) {
   p.textContent = message || "";
 }
 
-// --- the robot --------------------------------------------------------------------------------
-async function refreshRobot() {
-  const r = await api("GET", "/api/v1/robot");
-  view.robot = r;
+// --- the robots -------------------------------------------------------------------------------
+async function refreshRobots() {
+  const r = await api("GET", "/api/v1/robots");
+  view.robots = r.robots;
+  $("#robot-line").textContent = isFleet() ? fleetLine(view.robots) : robotLine(view.robots[0]);
+  drawTotals();
+  drawMap();
+  followClock();
+}
+
+// A lone robot's line, as it always read.
+function robotLine(r) {
   let line = `The robot ${PHASE_WORDS[r.phase] || r.phase}`;
   if (r.current_task) line += `: ${view.names.get(r.current_task) || "a task"}`;
   line += `. It is at ${r.node}, battery ${Math.round(r.battery * 100)} %${r.charging ? ", charging" : ""}.`;
   line += ` Its clock: ${dayAndClock(r.time)}${view.zone === "UTC" ? " UTC" : ""}.`;
   if (r.faults.length) line += ` Problem: ${r.faults.map((f) => f.message).join("; ")}.`;
   if (r.dispatch_paused) line += " It takes no new task until the problem is cleared.";
-  $("#robot-line").textContent = line;
-  drawMap();
-  followClock();
+  return line;
+}
+
+// A fleet's line: how many robots do what, and which have a problem.
+const PHASE_COUNTS = { idle: "free", waiting: "waiting", navigating: "on the way", acting: "doing a task", docking: "docking" };
+function fleetLine(robots) {
+  const counts = new Map();
+  for (const r of robots) counts.set(r.phase, (counts.get(r.phase) || 0) + 1);
+  const parts = [...counts].map(([phase, n]) => `${n} ${PHASE_COUNTS[phase] || phase}`);
+  let line = `The fleet's ${robots.length} robots: ${parts.join(", ")}.`;
+  line += ` Their clock: ${dayAndClock(robots[0].time)}${view.zone === "UTC" ? " UTC" : ""}.`;
+  const troubled = robots.filter((r) => r.faults.length || r.out_of_service);
+  for (const r of troubled)
+    line += ` ${r.name}: ${r.faults.length ? r.faults.map((f) => f.message).join("; ") : "out of service"}.`;
+  return line;
+}
+
+// The fleet's totals: per robot and in all, the tasks done, failed and dropped (every stored
+// task, GET /api/v1/robots) and those still to do; hidden for a fleet of one.
+function drawTotals() {
+  const section = $("#fleet-section");
+  section.hidden = !isFleet();
+  if (section.hidden) return;
+  const body = $("#fleet-totals tbody");
+  body.replaceChildren();
+  const count = (r, state) => (r.tasks && r.tasks[state]) || 0;
+  const total = { done: 0, failed: 0, dropped: 0, open: 0, busy: 0 };
+  const row = (attrs, cells) => {
+    const tr = el("tr", attrs);
+    for (const [cls, text, swatch] of cells) {
+      const td = el("td", { class: cls }, text);
+      if (swatch) {
+        // Through the style object, not a style attribute: the page's CSP refuses inline styles.
+        const dot = el("span", { class: "swatch" });
+        dot.style.background = swatch;
+        td.prepend(dot);
+      }
+      tr.append(td);
+    }
+    body.append(tr);
+  };
+  for (const r of view.robots) {
+    const figures = { done: count(r, "succeeded"), failed: count(r, "failed"), dropped: count(r, "dropped"), open: r.open_tasks };
+    for (const k of Object.keys(figures)) total[k] += figures[k];
+    if (r.phase !== "idle") total.busy++;
+    const now = `${PHASE_COUNTS[r.phase] || r.phase} at ${r.node}` + (r.current_task ? `: ${view.names.get(r.current_task) || "a task"}` : "");
+    row({ "data-robot": r.name }, [["name", r.name, robotColour(r.name)], ["now", now],
+      ["number battery", `${Math.round(r.battery * 100)} %${r.charging ? " charging" : ""}`],
+      ["number done", String(figures.done)], ["number failed", String(figures.failed)],
+      ["number dropped", String(figures.dropped)], ["number open", String(figures.open)]]);
+  }
+  const lowest = Math.min(...view.robots.map((r) => r.battery));
+  row({ class: "total" }, [["name", "All robots"], ["now", `${total.busy} of ${view.robots.length} busy`],
+    ["number battery", `lowest ${Math.round(lowest * 100)} %`], ["number done", String(total.done)],
+    ["number failed", String(total.failed)], ["number dropped", String(total.dropped)], ["number open", String(total.open)]]);
 }
 
 // --- the schedule as a Gantt chart ----------------------------------------------------------------
@@ -115,49 +192,86 @@ async function refreshSchedule() {
   followClock();
 }
 
+// The lanes of the chart: one per robot, each with the tasks allocated to it (and one for tasks
+// given to none, when there are any). A fleet of one has one lane without a title.
+function ganttLanes(s) {
+  const names = s.robots ? s.robots.map((r) => r.name) : [];
+  if (names.length <= 1) return [{ name: names[0] || "", title: null, tasks: s.tasks }];
+  const by = new Map(names.map((n) => [n, []]));
+  const none = [];
+  for (const t of s.tasks) (by.has(t.robot) ? by.get(t.robot) : none).push(t);
+  const lanes = names.map((n) => ({ name: n, title: n, tasks: by.get(n) }));
+  if (none.length) lanes.push({ name: "", title: "given to no robot", tasks: none });
+  return lanes;
+}
+
+// A lane's title: the robot and what its day holds so far.
+function laneTitle(lane) {
+  const n = (state) => lane.tasks.filter((t) => t.state === state).length;
+  const open = lane.tasks.filter((t) => !FINAL.has(t.state)).length;
+  if (!lane.tasks.length) return `${lane.title}: nothing today`;
+  return `${lane.title}: ${lane.tasks.length} today, ${n("succeeded")} done, ${n("failed")} failed, ${open} to do`;
+}
+
 function drawGantt() {
   const s = view.schedule;
   const box = $("#gantt");
   box.replaceChildren();
   if (!s) return;
-  const rows = s.tasks;
+  const lanes = ganttLanes(s);
+  const lines = lanes.reduce((n, lane) => n + lane.tasks.length + (lane.title ? 1 : 0), 0);
   const width = 1300, label = 320, stateW = 120, rowH = 20, top = 22;
   const from = Date.parse(s.from), to = Date.parse(s.to);
   const x = (iso) => label + stateW + Math.max(0, Math.min(1, (Date.parse(iso) - from) / (to - from))) * (width - label - stateW - 10);
-  const svg = el("svg:svg", { width, height: top + rows.length * rowH + 10, role: "img", "aria-label": "today's schedule" });
+  const svg = el("svg:svg", { width, height: top + lines * rowH + 10, role: "img", "aria-label": "today's schedule" });
   for (let h = 0; h <= 24; h += 2) {
     const t = new Date(from + h * 3600e3).toISOString();
-    svg.append(el("svg:line", { x1: x(t), x2: x(t), y1: top - 4, y2: top + rows.length * rowH, stroke: "#e3e6ea" }));
+    svg.append(el("svg:line", { x1: x(t), x2: x(t), y1: top - 4, y2: top + lines * rowH, stroke: "#e3e6ea" }));
     if (h < 24) svg.append(el("svg:text", { x: x(t) + 2, y: 12 }, clock(t)));
   }
-  rows.forEach((t, i) => {
-    const y = top + i * rowH;
-    const g = el("svg:g", { class: "gantt-row", "data-task": t.id, "data-name": taskName(t) });
-    const name = `${taskName(t)}${t.start_node ? " at " + t.start_node : ""}`;
-    g.append(el("svg:text", { x: 0, y: y + 14 }, name.length > 52 ? name.slice(0, 51) + "…" : name));
-    g.append(el("svg:text", { x: label, y: y + 14, class: "gantt-state s-" + t.state }, STATE_WORDS[t.state] || t.state));
-    if (t.window) {
-      g.append(el("svg:rect", { x: x(t.window.release), y: y + 3, height: rowH - 6, fill: "#dde3ea",
-        width: Math.max(2, x(t.window.deadline) - x(t.window.release)) }));
+  let line = 0;
+  for (const lane of lanes) {
+    const g = el("svg:g", { class: "gantt-lane", "data-robot": lane.name });
+    if (lane.title) {
+      const y = top + line * rowH;
+      const colour = lane.name ? robotColour(lane.name) : "#666";
+      g.append(el("svg:rect", { x: 0, y: y + 1, width: width, height: rowH - 2, fill: colour, "fill-opacity": 0.1 }));
+      g.append(el("svg:circle", { cx: 7, cy: y + rowH / 2, r: 5, fill: colour }));
+      g.append(el("svg:text", { x: 18, y: y + 14, class: "gantt-lane-title" }, laneTitle(lane)));
+      line++;
     }
-    if (t.planned.start) {
-      g.append(el("svg:rect", { x: x(t.planned.start), y: y + 5, height: rowH - 10, fill: "none", stroke: "#1d70b8",
-        "stroke-width": 2, width: Math.max(3, x(t.planned.end || t.planned.start) - x(t.planned.start)) }));
-    }
-    if (t.actual.start) {
-      const end = t.actual.end || s.now;
-      const colour = t.state === "succeeded" ? "#2e8540" : t.state === "failed" ? "#b00020" : t.state === "cancelled" ? "#888" : "#1d70b8";
-      g.append(el("svg:rect", { x: x(t.actual.start), y: y + 8, height: rowH - 16, fill: colour,
-        width: Math.max(3, x(end) - x(t.actual.start)) }));
-    }
-    const tip = el("svg:title", {}, `${name}: ${STATE_WORDS[t.state] || t.state}${t.reason ? " (" + t.reason + ")" : ""}` +
-      (t.planned.start ? `, planned ${clock(t.planned.start)}` : "") + (t.actual.start ? `, started ${clock(t.actual.start)}` : ""));
-    g.append(tip);
+    for (const t of lane.tasks) g.append(ganttRow(t, top + line++ * rowH, x, rowH, label, s.now));
     svg.append(g);
-  });
-  svg.append(el("svg:line", { x1: x(s.now), x2: x(s.now), y1: top - 6, y2: top + rows.length * rowH, stroke: "#d4351c", "stroke-width": 2 }));
+  }
+  svg.append(el("svg:line", { x1: x(s.now), x2: x(s.now), y1: top - 6, y2: top + lines * rowH, stroke: "#d4351c", "stroke-width": 2 }));
   box.append(svg);
-  if (!rows.length) box.append(el("p", {}, "Nothing is planned for today."));
+  if (!s.tasks.length) box.append(el("p", {}, "Nothing is planned for today."));
+}
+
+// One task's row at height y: its name and state, its window, planned and actual spans.
+function ganttRow(t, y, x, rowH, label, now) {
+  const g = el("svg:g", { class: "gantt-row", "data-task": t.id, "data-name": taskName(t), "data-robot": t.robot || "" });
+  const name = `${taskName(t)}${t.start_node ? " at " + t.start_node : ""}`;
+  g.append(el("svg:text", { x: 0, y: y + 14 }, name.length > 52 ? name.slice(0, 51) + "…" : name));
+  g.append(el("svg:text", { x: label, y: y + 14, class: "gantt-state s-" + t.state }, STATE_WORDS[t.state] || t.state));
+  if (t.window) {
+    g.append(el("svg:rect", { x: x(t.window.release), y: y + 3, height: rowH - 6, fill: "#dde3ea",
+      width: Math.max(2, x(t.window.deadline) - x(t.window.release)) }));
+  }
+  if (t.planned.start) {
+    g.append(el("svg:rect", { x: x(t.planned.start), y: y + 5, height: rowH - 10, fill: "none", stroke: "#1d70b8",
+      "stroke-width": 2, width: Math.max(3, x(t.planned.end || t.planned.start) - x(t.planned.start)) }));
+  }
+  if (t.actual.start) {
+    const end = t.actual.end || now;
+    const colour = t.state === "succeeded" ? "#2e8540" : t.state === "failed" ? "#b00020" : t.state === "cancelled" ? "#888" : "#1d70b8";
+    g.append(el("svg:rect", { x: x(t.actual.start), y: y + 8, height: rowH - 16, fill: colour,
+      width: Math.max(3, x(end) - x(t.actual.start)) }));
+  }
+  g.append(el("svg:title", {}, `${name}: ${STATE_WORDS[t.state] || t.state}${t.reason ? " (" + t.reason + ")" : ""}` +
+    (t.robot && isFleet() ? `, by ${t.robot}` : "") +
+    (t.planned.start ? `, planned ${clock(t.planned.start)}` : "") + (t.actual.start ? `, started ${clock(t.actual.start)}` : "")));
+  return g;
 }
 
 // --- the map ------------------------------------------------------------------------------------
@@ -188,36 +302,48 @@ function drawMap() {
     line.append(el("svg:title", {}, `${e.from} to ${e.to}: gets through ${Math.round(p * 100)} % of the time now`));
     svg.append(line);
   }
-  // The route the robot is taking now: its path drawn over the edges, thick and dark.
-  const route = view.robot && view.robot.route ? view.robot.route : [];
-  for (const step of route) {
-    const a = at.get(step.from), b = at.get(step.to);
-    const line = el('svg:line', {
-      class: 'route',
-      x1: px(a.x),
-      y1: py(a.y),
-      x2: px(b.x),
-      y2: py(b.y),
-      stroke: '#1d3557',
-      'stroke-width': 6,
-      'stroke-opacity': 0.55,
-      'stroke-linecap': 'round'
-    });
-    line.append(el('svg:title', {}, `the robot's way now: ${step.from} to ${step.to}`));
-    svg.append(line);
+  // Each robot's route now: its path drawn over the edges, thick, in its colour (a lone robot's
+  // dark blue).
+  const fleet = isFleet();
+  for (const robot of view.robots) {
+    for (const step of robot.route || []) {
+      const a = at.get(step.from), b = at.get(step.to);
+      const line = el("svg:line", { class: "route", "data-robot": robot.name, x1: px(a.x), y1: py(a.y), x2: px(b.x),
+        y2: py(b.y), stroke: fleet ? robotColour(robot.name) : "#1d3557", "stroke-width": 6, "stroke-opacity": 0.55,
+        "stroke-linecap": "round" });
+      line.append(el("svg:title", {}, `${fleet ? robot.name : "the robot"}'s way now: ${step.from} to ${step.to}`));
+      svg.append(line);
+    }
   }
-  const target = view.robot && view.robot.current_task ? (view.tasks.find((t) => t.id === view.robot.current_task) || {}).start_node : null;
+  const targets = new Set(view.robots.filter((r) => r.current_task)
+    .map((r) => (view.tasks.find((t) => t.id === r.current_task) || {}).start_node).filter(Boolean));
   for (const n of m.nodes) {
-    const c = el("svg:circle", { cx: px(n.pose.x), cy: py(n.pose.y), r: n.name === target ? 7 : 3.5,
-      fill: n.name === target ? "#ffbf47" : "#1d3557" });
+    const target = targets.has(n.name);
+    const c = el("svg:circle", { cx: px(n.pose.x), cy: py(n.pose.y), r: target ? 7 : 3.5, fill: target ? "#ffbf47" : "#1d3557" });
     c.append(el("svg:title", {}, n.name));
     svg.append(c);
   }
-  if (view.robot && view.robot.pose) {
-    const r = el("svg:circle", { id: "robot-dot", cx: px(view.robot.pose.x), cy: py(view.robot.pose.y), r: 8,
-      fill: "#d4351c", stroke: "white", "stroke-width": 2 });
-    r.append(el("svg:title", {}, `the robot, at ${view.robot.node}`));
-    svg.append(r);
+  // One marker per robot; robots standing together are spread on a small ring so that each shows.
+  const together = new Map();
+  for (const robot of view.robots) {
+    if (!robot.pose) continue;
+    const key = `${Math.round(px(robot.pose.x))},${Math.round(py(robot.pose.y))}`;
+    together.set(key, [...(together.get(key) || []), robot]);
+  }
+  for (const group of together.values()) {
+    group.forEach((robot, i) => {
+      const angle = (2 * Math.PI * i) / group.length;
+      const spread = group.length > 1 ? 9 : 0;
+      const cx = px(robot.pose.x) + spread * Math.cos(angle), cy = py(robot.pose.y) + spread * Math.sin(angle);
+      const g = el("svg:g", { class: "robot-marker", "data-robot": robot.name });
+      const dot = el("svg:circle", { class: "robot-dot", cx, cy, r: 8, fill: fleet ? robotColour(robot.name) : "#d4351c",
+        stroke: "white", "stroke-width": 2 });
+      if (!fleet) dot.id = "robot-dot";
+      dot.append(el("svg:title", {}, `${fleet ? robot.name : "the robot"}, at ${robot.node}`));
+      g.append(dot);
+      if (fleet) g.append(el("svg:text", { class: "robot-label", x: cx + 10, y: cy - 8 }, robot.name));
+      svg.append(g);
+    });
   }
   box.append(svg);
 }
@@ -231,6 +357,7 @@ async function refreshTasks() {
   for (const item of document.querySelectorAll("#feed li[data-unnamed=yes]")) nameFeedItem(item);
   const body = $("#tasks tbody");
   body.replaceChildren();
+  $("#tasks-robot").hidden = !isFleet();
   for (const task of t.tasks.slice().reverse()) {
     const row = el("tr", { "data-task": task.id, "data-name": taskName(task) });
     const place = task.start_node || (task.spec ? `the way that satisfies ${task.spec.formula}` : "where the robot is");
@@ -238,6 +365,7 @@ async function refreshTasks() {
     row.append(el("td", {}, task.window ? `${dayAndClock(task.window.release)} to ${clock(task.window.deadline)}` : "now"));
     row.append(el("td", { class: "state s-" + task.state }, STATE_WORDS[task.state] || task.state));
     row.append(el("td", { class: "reason" }, plainReason(task)));
+    if (isFleet()) row.append(el("td", { class: "robot" }, task.robot || ""));
     const cell = el("td");
     if (!FINAL.has(task.state)) {
       const b = el("button", { type: "button", class: "cancel" }, "Cancel");
@@ -362,10 +490,14 @@ async function drawRhythm() {
 function nameFeedItem(item) {
   const e = item.event;
   const known = e.task_id ? view.names.get(e.task_id) : undefined;
-  const who = e.task_id ? (known ? `"${known}"` : "A task") : e.subject === "robot" ? "The robot" : e.subject;
+  const robot = e.robot || e.about;
+  const who = e.task_id ? (known ? `"${known}"` : "A task")
+            : e.subject === "robot" ? (isFleet() && robot ? `Robot ${robot}` : "The robot") : e.subject;
   const words = EVENT_WORDS[e.event] || STATE_WORDS[e.event] || e.event;
   const why = e.reason && !QUIET_REASONS.has(e.event) ? " (" + e.reason + ")" : "";
-  item.textContent = `${dayAndClock(e.time)}: ${who} ${words}${why}`;
+  // In a fleet a task's event says which robot it is about.
+  const by = e.task_id && isFleet() && e.robot ? ` [${e.robot}]` : "";
+  item.textContent = `${dayAndClock(e.time)}: ${who} ${words}${why}${by}`;
   item.dataset.unnamed = e.task_id && !known ? "yes" : "";
 }
 // The browser reconnects a dropped stream by itself (with Last-Event-ID, so nothing is missed or
@@ -397,7 +529,7 @@ function refreshSoon() {
   if (pending) return;
   pending = setTimeout(async () => {
     pending = null;
-    try { await Promise.all([refreshTasks(), refreshSchedule(), refreshRobot()]); }
+    try { await Promise.all([refreshTasks(), refreshSchedule(), refreshRobots()]); }
     catch (err) { showProblem(err.message); }
   }, 300);
 }
@@ -405,11 +537,12 @@ function refreshSoon() {
 async function start() {
   try {
     const health = await api("GET", "/healthz");
-    $("#title").textContent = `The robot's day: ${health.deployment}`;
     view.map = await api("GET", "/api/v1/map");
     await refreshSchedule();
     await refreshTasks();
-    await refreshRobot();
+    await refreshRobots();
+    $("#title").textContent = `${isFleet() ? "The fleet's day" : "The robot's day"}: ${health.deployment}`;
+    if (isFleet()) $("#map-title").textContent = "Where the robots are";
     await refreshEdges();
     setUpForm();
     setUpSentence();
@@ -419,7 +552,7 @@ async function start() {
     await drawRhythm();
     $("#state-filter").addEventListener("change", () => refreshTasks().catch((err) => showProblem(err.message)));
     startFeed();
-    setInterval(() => refreshRobot().catch((err) => showProblem(err.message)), 2000);
+    setInterval(() => refreshRobots().catch((err) => showProblem(err.message)), 2000);
     // The feed refreshes the lists as events come; this catches what a dropped stream missed.
     setInterval(refreshSoon, 10000);
     setInterval(() => refreshEdges().catch((err) => showProblem(err.message)), 60000);

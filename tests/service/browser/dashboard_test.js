@@ -3,7 +3,11 @@
 // scripts/setup), against `rondo serve --speed 600` on the G4S example, a free loopback port and a
 // temporary data folder. It loads the page with no console errors, adds a task through the form,
 // sees it in the Gantt chart and then in its final state (with the reason when it failed),
-// cancels another task and sees it cancelled, and saves screenshots.
+// cancels another task and sees it cancelled, and saves screenshots. Then a fleet
+// (tests/data/fleet/deployment.yaml: three robots, no routines) at --speed 60, with two tasks
+// named to each robot: a marker per robot on the map, labelled with its name; one Gantt lane per
+// robot holding exactly that robot's tasks; and the fleet's totals, per robot and in all, as the
+// service counts them once every task is over.
 //
 //   node tests/service/browser/dashboard_test.js --rondo build/rondo --out build/dashboard-shots
 //
@@ -24,6 +28,7 @@ const args = Object.fromEntries(
 const rondo = args.rondo || path.join(root, "build/rondo");
 const out = path.resolve(args.out || path.join(root, "build/dashboard-shots"));
 const deployment = args.deployment || path.join(root, "examples/g4s/deployment.yaml");
+const fleetDeployment = args["fleet-deployment"] || path.join(root, "tests/data/fleet/deployment.yaml");
 const chromium = args.chromium || process.env.CHROMIUM || "/usr/bin/chromium";
 const DEADLINE_MS = 120e3;  // for every condition: generous, the machine may be busy
 
@@ -41,8 +46,8 @@ try {
 }
 
 // `rondo serve` on a free port; resolves with its port once it says where it listens.
-function startServer(data) {
-  const server = spawn(rondo, ["serve", deployment, "--listen", "127.0.0.1:0", "--data", data, "--speed", "600"],
+function startServer(data, file = deployment, speed = 600) {
+  const server = spawn(rondo, ["serve", file, "--listen", "127.0.0.1:0", "--data", data, "--speed", String(speed)],
                        { cwd: root, stdio: ["ignore", "pipe", "pipe"] });
   let log = "";
   return new Promise((resolve, reject) => {
@@ -116,6 +121,14 @@ async function main() {
     await page.waitForFunction(() => document.querySelectorAll("#add-form select[name=place] option").length > 3);
     // The feed is checked with the test's own task below: the service's clock starts at the wall
     // clock's time, and on a Friday evening the example's routines make no event until Monday.
+    // A fleet of one looks as a lone robot always did: no totals, no lane titles, no names on the map.
+    const fleetLook = await page.evaluate(() => ({
+      totals: !document.querySelector("#fleet-section").hidden,
+      lanes: document.querySelectorAll("#gantt .gantt-lane-title").length,
+      labels: document.querySelectorAll("#map svg .robot-label").length,
+    }));
+    if (fleetLook.totals || fleetLook.lanes || fleetLook.labels)
+      problems.push("the fleet of one shows a fleet's parts: " + JSON.stringify(fleetLook));
     await shot("1-loaded");
     step("the dashboard loaded");
 
@@ -239,7 +252,126 @@ async function main() {
     if (problems.length) fs.writeFileSync(path.join(out, "server.log"), log());
   }
   if (problems.length) die(1, problems.join("\n") + "\nthe service's last words:\n" + log().split("\n").slice(-40).join("\n"));
+  await fleetMain();
   console.log(`dashboard_test: all held; screenshots in ${out}`);
+}
+
+async function getJson(url) {
+  const res = await fetch(url);
+  if (!res.ok) throw new Error(`${url}: ${res.status} ${await res.text()}`);
+  return res.json();
+}
+
+// Until `condition` (async) holds, looking again every 200 ms; throws naming `what` past the deadline.
+async function until(what, condition) {
+  const end = Date.now() + DEADLINE_MS;
+  for (;;) {
+    if (await condition()) return;
+    if (Date.now() > end) throw new Error(`${what}: not within ${DEADLINE_MS / 1000} s`);
+    await new Promise((resolve) => setTimeout(resolve, 200));  // a poll interval, not a wait for time
+  }
+}
+
+// The fleet: three robots (tests/data/fleet/deployment.yaml), each given two tasks by name.
+async function fleetMain() {
+  const data = fs.mkdtempSync(path.join(os.tmpdir(), "rondo-dashboard-fleet-"));
+  const { server, port, log } = await startServer(data, fleetDeployment, 60);
+  const base = `http://127.0.0.1:${port}`;
+  const problems = [];
+  const browser = await puppeteer.launch({
+    executablePath: chromium,
+    headless: true,
+    args: ["--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--no-first-run", "--lang=en-GB"],
+    env: { ...process.env, LANG: "en_GB.UTF-8", TZ: "Europe/London" },
+  });
+  const step = (what) => console.log("dashboard_test: fleet: " + what);
+  let page = null;
+  try {
+    const robots = (await getJson(base + "/api/v1/robots")).robots.map((r) => r.name);
+    if (robots.join(",") !== "r1,r2,r3") throw new Error("the fleet deployment's robots are " + robots.join(","));
+    // Two tasks per robot, named to it, at places of their own, their windows open now for two hours
+    // of the service's clock.
+    const now = Date.parse((await getJson(base + "/api/v1/robots")).robots[0].time);
+    const places = { r1: ["WayPoint2", "WayPoint3"], r2: ["WayPoint11", "WayPoint9"], r3: ["WayPoint21", "WayPoint19"] };
+    const tasks = [];
+    for (const robot of robots) {
+      places[robot].forEach((node, i) => tasks.push({
+        id: `fleet-${robot}-${i}`, activity: `fleet check ${node}`, robot, start_node: node, duration: 60,
+        window: { release: new Date(now - 60e3).toISOString(), deadline: new Date(now + 2 * 3600e3).toISOString() },
+      }));
+    }
+    const res = await fetch(base + "/api/v1/tasks", { method: "POST", headers: { "Content-Type": "application/json" },
+                                                      body: JSON.stringify({ tasks }) });
+    if (res.status !== 201) throw new Error(`the fleet's tasks were not accepted: ${res.status} ${await res.text()}`);
+    const expected = Object.fromEntries(robots.map((r) => [r, tasks.filter((t) => t.robot === r).map((t) => t.id).sort()]));
+
+    page = await browser.newPage();
+    await page.emulateTimezone("Europe/London");
+    await (await page.createCDPSession()).send("Emulation.setLocaleOverride", { locale: "en-GB" });
+    await page.setViewport({ width: 1400, height: 2200 });
+    page.setDefaultTimeout(DEADLINE_MS);
+    page.on("console", (m) => { if (m.type() === "error") problems.push("console error: " + m.text()); });
+    page.on("pageerror", (e) => problems.push("page error: " + e.message));
+    await page.goto(base + "/", { waitUntil: "load" });
+
+    // A marker per robot on the map, labelled with its name.
+    await page.waitForFunction((names) => {
+      const markers = [...document.querySelectorAll("#map svg .robot-marker")];
+      return markers.length === names.length && names.every((n) => markers.some((g) =>
+        g.dataset.robot === n && g.querySelector(".robot-dot") && g.querySelector("text").textContent === n));
+    }, {}, robots);
+    step("a marker per robot on the map, with its name");
+
+    // A lane per robot, holding exactly that robot's tasks.
+    await page.waitForFunction((want) => Object.entries(want).every(([robot, ids]) => {
+      const lane = document.querySelector(`#gantt .gantt-lane[data-robot="${robot}"]`);
+      if (!lane || !lane.querySelector(".gantt-lane-title").textContent.startsWith(robot)) return false;
+      const rows = [...lane.querySelectorAll(".gantt-row")];
+      return rows.map((g) => g.dataset.task).sort().join(",") === ids.join(",") && rows.every((g) => g.dataset.robot === robot);
+    }), {}, expected);
+    await page.screenshot({ path: path.join(out, "6-fleet.png"), fullPage: true });
+    step("a Gantt lane per robot with its tasks");
+
+    // Every task over (the service says so), then the totals as the service counts them.
+    await until("every fleet task over", async () => {
+      const listed = await getJson(base + "/api/v1/tasks?limit=1000");
+      return listed.tasks.length === tasks.length &&
+        listed.tasks.every((t) => ["succeeded", "failed", "cancelled", "dropped", "preempted"].includes(t.state));
+    });
+    const views = (await getJson(base + "/api/v1/robots")).robots;
+    const figures = (r) => ({ done: (r.tasks.succeeded || 0), failed: (r.tasks.failed || 0), dropped: (r.tasks.dropped || 0),
+                              open: r.open_tasks });
+    const want = Object.fromEntries(views.map((r) => [r.name, figures(r)]));
+    want.total = ["done", "failed", "dropped", "open"].reduce(
+      (t, k) => ({ ...t, [k]: views.reduce((n, r) => n + figures(r)[k], 0) }), {});
+    for (const r of views) {
+      const all = figures(r).done + figures(r).failed + figures(r).dropped;
+      if (all !== 2) problems.push(`${r.name}: the service counts ${all} finished tasks of its 2: ${JSON.stringify(r.tasks)}`);
+    }
+    try {
+      await page.waitForFunction((w) => {
+        const read = (tr) => tr && Object.fromEntries(["done", "failed", "dropped", "open"].map((k) => [k, Number(tr.querySelector("td." + k).textContent)]));
+        const shown = Object.fromEntries(Object.keys(w).map((k) =>
+          [k, read(document.querySelector(k === "total" ? "#fleet-totals tr.total" : `#fleet-totals tr[data-robot="${k}"]`))]));
+        return !document.querySelector("#fleet-section").hidden && JSON.stringify(shown) === JSON.stringify(w);
+      }, {}, want);
+    } catch (err) {
+      problems.push("the page's totals never showed " + JSON.stringify(want) + ": " + err.message + "; shown: " +
+        JSON.stringify(await page.$$eval("#fleet-totals tr", (rows) => rows.map((r) => r.textContent))));
+    }
+    await page.screenshot({ path: path.join(out, "7-fleet-totals.png"), fullPage: true });
+    step("the fleet's totals per robot and in all: " + JSON.stringify(want.total));
+  } catch (err) {
+    problems.push(err.stack || String(err));
+    if (page) await page.screenshot({ path: path.join(out, "fleet-failure.png"), fullPage: true }).catch(() => {});
+  } finally {
+    await browser.close();
+    server.kill("SIGTERM");
+    await new Promise((resolve) => server.once("exit", resolve));
+    fs.rmSync(data, { recursive: true, force: true });
+    if (problems.length) fs.writeFileSync(path.join(out, "fleet-server.log"), log());
+  }
+  if (problems.length) die(1, "fleet: " + problems.join("\n") + "\nthe service's last words:\n" + log().split("\n").slice(-40).join("\n"));
 }
 
 main().catch((err) => die(1, err.stack || String(err)));
