@@ -8,8 +8,9 @@
 //
 //   cmake --build build --target bench_fleet_sim_scale
 //   build/bench/bench_fleet_sim_scale [robots=100] [tasks_per_day=10000] [days=7] [wings=14]
-//                                     [allocator=fleet] [seed=1] [folder=/tmp/rondo-fleet-sim-scale]
+//                                     [allocator=fleet] [seed=1] [folder=/tmp/rondo-fleet-sim-scale] [hours]
 //   # a smaller run first: build/bench/bench_fleet_sim_scale 10 1000 1
+//   # `hours`: stop that long after the start (RunRequest::run_for), for a size whose day is too long
 //
 // The folder gets the deployment (building/) and the run (run/, removed first: every run is fresh).
 #include <fmt/format.h>
@@ -100,13 +101,17 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::filesystem::remove_all(folder / "run");
-  fmt::print("# {} robots, {} tasks a day, {} days, {} wings, allocator {}, seed {}; load average {}\n", b.robots,
-             b.tasks_per_day, b.days, b.wings, b.allocator, b.seed, bench::load_average());
+  std::optional<int> hours;
+  if (argc > 8 && !(hours = whole(argc, argv, 8, "hours", 24))) return 2;
+  fmt::print("# {} robots, {} tasks a day, {} days{}, {} wings, allocator {}, seed {}; load average {}\n", b.robots,
+             b.tasks_per_day, b.days, hours ? fmt::format(" (the first {} h only)", *hours) : "", b.wings, b.allocator,
+             b.seed, bench::load_average());
 
   std::vector<double> rss_mib;
   app::RunRequest request;
   request.deployment = *deployment;
   request.out = folder / "run";
+  if (hours) request.run_for = std::chrono::hours(*hours);
   const Time start = deployment->zone.at(deployment->start, Duration{0});
   request.wrap_listener = [&](exec::Executor& ex) { return std::make_unique<DayMemory>(ex, start, rss_mib); };
   const double t0 = bench::steady_seconds();
@@ -122,7 +127,9 @@ int main(int argc, char** argv) {
   const Json run = Json::parse(run_json, nullptr, /*allow_exceptions=*/false);
   const Json& report = result->report;
   fmt::print("# day  wall_s  cpu_s  rss_mib_at_end\n");
-  for (int d = 0; d < b.days; ++d) {
+  // The days run (fewer than asked with `hours`).
+  const std::size_t days_run = run.is_object() ? run["day_wall_seconds"].size() : 0;
+  for (int d = 0; static_cast<std::size_t>(d) < days_run; ++d) {
     const auto i = static_cast<std::size_t>(d);
     const auto number = [&](const char* key) {
       return run.is_object() && run[key].size() > i && run[key][i].is_number() ? run[key][i].get<double>() : 0.0;
