@@ -32,6 +32,14 @@ inline double seconds_of(const std::function<void()>& work) {
   return thread_seconds() - start;
 }
 
+// The q-quantile of `v` (0 <= q <= 1) as the sample nearest the rank q (n - 1); 0 for no samples.
+inline double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const auto i = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
+  return v[std::min(i, v.size() - 1)];
+}
+
 // The median of `v` (the mean of the middle two for an even count). Precondition: v is not empty.
 inline double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());

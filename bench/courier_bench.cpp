@@ -27,11 +27,7 @@ namespace {
 using namespace rondo;
 using namespace rondo::exec;
 
-double quantile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  const auto i = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
-  return v[std::min(i, v.size() - 1)];
-}
+using rondo::bench::quantile;
 
 Task half(const std::string& job, DeliveryRole role, const std::string& node, Time release, Time deadline) {
   Task t;

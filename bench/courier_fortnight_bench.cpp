@@ -30,12 +30,7 @@ namespace {
 
 using namespace rondo;
 
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const auto i = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
-  return v[std::min(i, v.size() - 1)];
-}
+using rondo::bench::quantile;
 
 // Forwards every callback to the executor; times each break until its reschedule.
 class TimingListener final : public exec::RobotListener {

@@ -40,12 +40,7 @@ namespace {
 
 using namespace rondo;
 
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const auto i = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
-  return v[std::min(i, v.size() - 1)];
-}
+using rondo::bench::quantile;
 
 // A row: wall milliseconds (p50, p99, max) and the thread's CPU milliseconds (p50, p99); the machine
 // is shared, so the CPU time says what the work costs whatever else runs.

@@ -113,14 +113,19 @@ TEST(SchedulerTravel, NewModelsEmptyTheCache) {
   EXPECT_EQ(travel.lower_bound(0, 1), seconds(40));
 }
 
+// Daily rhythms with random phases (a generated property input), each edge patchable after.
+std::shared_ptr<plan::testing::PatchableEdgeModels> patchable_rhythmic_models(const map::TopoMap& map) {
+  const auto phase = *rc::gen::container<std::vector<double>>(map.edge_count(), rc::gen::inRange(0, 24));
+  auto base = rhythmic_models(phase, 1.5, 0.8);
+  return std::make_shared<plan::testing::PatchableEdgeModels>(
+      map.edge_count(), [base](map::EdgeIndex e, Time t) { return base->outcome(e, t); });
+}
+
 // After any sequence of one-edge updates (and snapshot swaps), every cached travel time and lower
 // bound equals what a fresh cache over a fresh planner gives: the entries kept were untouched.
 RC_GTEST_PROP(SchedulerTravel, CachedAnswersEqualAFreshCacheAfterOneEdgeUpdates, ()) {
   const map::TopoMap map = scenario_map();
-  const auto phase = *rc::gen::container<std::vector<double>>(map.edge_count(), rc::gen::inRange(0, 24));
-  auto base = rhythmic_models(phase, 1.5, 0.8);
-  auto models = std::make_shared<plan::testing::PatchableEdgeModels>(
-      map.edge_count(), [base](map::EdgeIndex e, Time t) { return base->outcome(e, t); });
+  auto models = patchable_rhythmic_models(map);
   plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
   TravelCache cache(map, models, planner, minutes(15));
   const int steps = *rc::gen::inRange(1, 40);
@@ -148,10 +153,7 @@ RC_GTEST_PROP(SchedulerTravel, CachedAnswersEqualAFreshCacheAfterOneEdgeUpdates,
 // cache's, read directly.
 RC_GTEST_PROP(SchedulerTravel, ItsTableAnswersAsTheCacheDoes, ()) {
   const map::TopoMap map = scenario_map();
-  const auto phase = *rc::gen::container<std::vector<double>>(map.edge_count(), rc::gen::inRange(0, 24));
-  auto base = rhythmic_models(phase, 1.5, 0.8);
-  auto models = std::make_shared<plan::testing::PatchableEdgeModels>(
-      map.edge_count(), [base](map::EdgeIndex e, Time t) { return base->outcome(e, t); });
+  auto models = patchable_rhythmic_models(map);
   plan::TravelPlanner planner(map, models, {.slot_width = minutes(15)});
   TravelCache cache(map, models, planner, minutes(15));
   const std::vector<map::NodeIndex> nodes{0, 1, 2, 3, 4, 2};  // two locations on one node
