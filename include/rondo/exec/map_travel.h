@@ -170,8 +170,8 @@ class TravelCache {
 
 // What a solve reads again and again: the value at a slot start between two of a problem's
 // locations. A solver's label extensions ask for the same few slots of the same pairs thousands
-// of times, and each TravelCache read is two ordered-map lookups and a version check (about 75 %
-// of a lone robot's run in the fleet example, docs/fleet.md). So each problem's oracle keeps the
+// of times, and each TravelCache read is two ordered-map lookups and a version check (more than
+// half of a lone robot's run in the fleet example, docs/fleet.md). So each problem's oracle keeps the
 // values it has read, in a table per slot start, for as long as the models stay at the version
 // they were read at; a change of version empties it. Every value is the cache's, to the bit.
 class SlotTable {
