@@ -1,7 +1,10 @@
 #include "rondo/plan/journeys.h"
 
 #include <algorithm>
+#include <map>
 #include <numeric>
+#include <string_view>
+#include <utility>
 
 namespace rondo::plan {
 namespace {
@@ -27,13 +30,19 @@ std::vector<Journey> cut_journeys(std::span<const Traversal> log, const JourneyR
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return log[a].start < log[b].start; });
   std::vector<Journey> out;
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    const Traversal& b = log[order[k]];
-    if (k == 0 || !continues(log[order[k - 1]], b, rule)) {
+  // Per robot, its journey so far (an index into `out`) and that journey's last attempt: a fleet's
+  // robots move at once, so an attempt continues only its own robot's journey.
+  std::map<std::string_view, std::pair<std::size_t, std::size_t>> current;
+  for (const std::size_t i : order) {
+    const Traversal& b = log[i];
+    auto [it, first] = current.try_emplace(b.robot, out.size(), i);
+    if (first || !continues(log[it->second.second], b, rule)) {
+      it->second.first = out.size();
       out.push_back({.attempts = {}, .start = b.start, .end = b.start, .origin = b.from, .destination = b.from});
     }
-    Journey& j = out.back();
-    j.attempts.push_back(order[k]);
+    it->second.second = i;
+    Journey& j = out[it->second.first];
+    j.attempts.push_back(i);
     j.end = std::max(j.end, end_of(b));
     j.destination = left_at(b);
     j.succeeded = b.success;

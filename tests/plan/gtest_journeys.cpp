@@ -59,8 +59,31 @@ TEST(Journeys, EndsDurationAndOutcome) {
   EXPECT_FALSE(js[1].succeeded);
 }
 
+Traversal by(std::string robot, Traversal t) {
+  t.robot = std::move(robot);
+  return t;
+}
+
+// A fleet's robots feed one log: their attempts interleave in time, and one robot's attempt that
+// happens to start where another's ended continues nothing of the other's.
+TEST(Journeys, EachRobotHasItsOwn) {
+  const std::vector<Traversal> log = {
+      by("r1", attempt("A", "B", 0, 10, true)), by("r2", attempt("B", "C", 10, 5, true)),
+      by("r1", attempt("B", "D", 11, 5, true)), by("r2", attempt("C", "A", 15, 5, true))};
+  const auto js = cut_journeys(log);
+  ASSERT_EQ(js.size(), 2u);
+  EXPECT_EQ(js[0].attempts, (std::vector<std::size_t>{0, 2}));
+  EXPECT_EQ(js[0].destination, "D");
+  EXPECT_EQ(js[1].attempts, (std::vector<std::size_t>{1, 3}));
+  EXPECT_EQ(js[1].origin, "B");
+  EXPECT_EQ(js[1].destination, "A");
+}
+
 RC_GTEST_PROP(Journeys, PartitionTheLogAndFollowTheRule, ()) {
   const std::vector<std::string> nodes = {"A", "B", "C"};
+  // One robot, or two whose attempts interleave.
+  const std::vector<std::string> robots =
+      *rc::gen::element(std::vector<std::string>{""}, std::vector<std::string>{"r1", "r2"});
   const int n = *rc::gen::inRange(0, 40);
   std::vector<Traversal> log;
   double t = 0;
@@ -69,7 +92,7 @@ RC_GTEST_PROP(Journeys, PartitionTheLogAndFollowTheRule, ()) {
     auto to = *rc::gen::elementOf(nodes);
     if (to == from) to = from == "A" ? "B" : "A";
     const double seconds = *rc::gen::inRange(1, 30);
-    log.push_back(attempt(from, to, t, seconds, *rc::gen::arbitrary<bool>()));
+    log.push_back(by(*rc::gen::elementOf(robots), attempt(from, to, t, seconds, *rc::gen::arbitrary<bool>())));
     t += seconds + *rc::gen::inRange(-1, 9);
   }
   const auto js = cut_journeys(log);
@@ -85,12 +108,20 @@ RC_GTEST_PROP(Journeys, PartitionTheLogAndFollowTheRule, ()) {
       RC_ASSERT(gap <= rule.max_gap);
       RC_ASSERT(b.from == (a.success ? a.to : a.from));
     }
-    if (k > 0) {  // maximal: the first attempt of a journey does not continue the previous one
-      const Traversal& a = log[js[k - 1].attempts.back()];
-      const Traversal& b = log[js[k].attempts.front()];
-      const Duration gap = b.start - (a.start + a.duration);
-      RC_ASSERT(!(gap >= -rule.tolerance && gap <= rule.max_gap && b.from == (a.success ? a.to : a.from)));
-    }
+    for (std::size_t i = 1; i < js[k].attempts.size(); ++i)
+      RC_ASSERT(log[js[k].attempts[i]].robot == log[js[k].attempts[0]].robot);
+    if (k > 0) RC_ASSERT(js[k - 1].start <= js[k].start);
+  }
+  // Maximal: the first attempt of a journey does not continue its robot's journey before it.
+  for (std::size_t k = 0; k < js.size(); ++k) {
+    const Traversal& b = log[js[k].attempts.front()];
+    const Journey* before = nullptr;
+    for (std::size_t m = 0; m < k; ++m)
+      if (log[js[m].attempts.front()].robot == b.robot) before = &js[m];
+    if (before == nullptr) continue;
+    const Traversal& a = log[before->attempts.back()];
+    const Duration gap = b.start - (a.start + a.duration);
+    RC_ASSERT(!(gap >= -rule.tolerance && gap <= rule.max_gap && b.from == (a.success ? a.to : a.from)));
   }
   RC_ASSERT(std::all_of(seen.begin(), seen.end(), [](int s) { return s == 1; }));
 }

@@ -5,7 +5,8 @@
 //   for (const Journey& j : js) if (j.succeeded) use(j.seconds(), j.origin, j.destination);
 //
 // The rule (docs/planning.md). Sort the attempts by start time (ties keep log order). An attempt
-// b continues the journey of the attempt a just before it when both hold:
+// b continues the journey of the attempt a just before it of the same robot (Traversal::robot; a
+// fleet's robots feed one log, and move at once) when both hold:
 //   - b starts within [-tolerance, max_gap] of a's end (a.start + a.duration); the tolerance covers
 //     start times logged in whole seconds;
 //   - b starts where a left the robot: a's `to` after a success, a's `from` after a failure (the
