@@ -1,7 +1,7 @@
-// What the building learns, and learns again every night: the edge models from the traversal log
-// of the last `refit_window` (with the week from the weekly memory, building_weekly.cpp, and the
-// attempt laws under a risk bound), the door models from the door observations, and (restored after
-// a restart) the loading times.
+// What the building learns, and learns again every night: the robots' speeds and the edge models
+// (in the fleet's standard time) from the traversal log of the last `refit_window` (with the week from the weekly
+// memory, building_weekly.cpp, and the attempt laws under a risk bound), the door models from the door observations,
+// and (restored after a restart) the loading times.
 #include <fmt/format.h>
 
 #include "attempt_laws.h"
@@ -30,6 +30,9 @@ bool Building::refit() {
     return false;
   }
   if (log->empty()) return false;
+  // One set of models for every robot: each attempt in the fleet's standard time.
+  speeds = learn::RobotSpeeds::fit(*log);
+  if (!speeds.factors().empty()) *log = speeds.standardised(*log);
   const std::vector<learn::EdgeSpec> specs = plan::edge_specs(map);
   // Local time of day; hourly duration bins (a robot's own log has many attempts per edge and
   // hour; sparse bins shrink towards the edge's whole-day table).

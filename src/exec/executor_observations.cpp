@@ -292,7 +292,8 @@ bool Executor::opportunity_fits(const TaskId& id, bool interrupt, const std::vec
                           .capacity = options_.capacity,
                           .on_board = std::move(load),
                           .risk_alpha = options_.risk_alpha,
-                          .specs = building_.spec_tasks.get()};
+                          .specs = building_.spec_tasks.get(),
+                          .speed = building_.speeds.factor(options_.robot_name)};
   const map::NodeIndex end = r.task.end_node.empty() ? start : *map_.find_node(r.task.end_node);
   refresh_learned_durations(pending.ids);
   auto solved = schedule_pending(in, pending, end, ends, std::nullopt);

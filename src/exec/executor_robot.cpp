@@ -27,10 +27,11 @@ void Executor::learn_from(const EdgeAttempt& a) {
     const Traversal t{.edge_id = edge.id, .from = edge.from, .to = edge.to, .start = a.start, .duration = a.duration,
                       .success = a.succeeded(), .robot = options_.robot_name};
     if (auto ok = store::add_traversal(store_, t); !ok) book_.write_error(ok.error().message);
-    // The online model of the edge: the next estimate reads it.
-    models_.observe(
-        a.edge,
-        {.start = a.start, .end = a.start + a.duration, .seconds = to_seconds(a.duration), .success = a.succeeded()});
+    // The online model of the edge, in the fleet's standard time: the next estimate reads it.
+    models_.observe(a.edge, {.start = a.start,
+                             .end = a.start + a.duration,
+                             .seconds = building_.speeds.standard_seconds(options_.robot_name, to_seconds(a.duration)),
+                             .success = a.succeeded()});
     ++stats_.navigation_attempts;
     if (a.succeeded()) ++stats_.navigation_successes;
     // A failed door edge is weak evidence of a shut door (door_models.h); what the door model

@@ -156,7 +156,8 @@ std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_
                     .capacity = options_.capacity,
                     .on_board = on_board_when_free(),
                     .risk_alpha = options_.risk_alpha,
-                    .specs = building_.spec_tasks.get()};
+                    .specs = building_.spec_tasks.get(),
+                    .speed = building_.speeds.factor(options_.robot_name)};
   if (options_.battery_planning) {
     read_battery();
     charging_->drift().observe(clock_.now(), charging_->level());

@@ -278,9 +278,19 @@ std::int64_t* SlotTable::cell(Time slot_start, Duration slot_width, std::size_t 
   return &row[to];
 }
 
+namespace {
+
+// A standard time as a robot of factor `speed` takes it.
+Duration at_speed(Duration standard, double speed) {
+  if (speed == 1.0 || standard >= kUnreachable) return standard;
+  return Duration{static_cast<std::int64_t>(std::llround(static_cast<double>(standard.count()) / speed))};
+}
+
+}  // namespace
+
 SchedulerQuantileTravel::SchedulerQuantileTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes,
-                                                 double level)
-    : cache_(&cache), nodes_(std::move(nodes)), level_(level), values_(nodes_.size()) {}
+                                                 double level, double speed)
+    : cache_(&cache), nodes_(std::move(nodes)), level_(level), speed_(speed), values_(nodes_.size()) {}
 
 Duration SchedulerQuantileTravel::travel(schedule::LocationIndex from, schedule::LocationIndex to, Time depart) const {
   const map::NodeIndex a = nodes_[from], b = nodes_[to];
@@ -288,12 +298,12 @@ Duration SchedulerQuantileTravel::travel(schedule::LocationIndex from, schedule:
   const std::uint64_t version = cache_->models_version();
   return cache_->interpolate(depart, [&](Time slot) {
     return values_.get(version, slot, cache_->slot_width(), from, to,
-                       [&] { return cache_->quantile_at_slot(a, b, slot, level_); });
+                       [&] { return at_speed(cache_->quantile_at_slot(a, b, slot, level_), speed_); });
   });
 }
 
-SchedulerTravel::SchedulerTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes)
-    : cache_(&cache), nodes_(std::move(nodes)), values_(nodes_.size()) {
+SchedulerTravel::SchedulerTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes, double speed)
+    : cache_(&cache), nodes_(std::move(nodes)), speed_(speed), values_(nodes_.size()) {
   cache_->begin_problem();
 }
 
@@ -302,12 +312,13 @@ Duration SchedulerTravel::travel(schedule::LocationIndex from, schedule::Locatio
   if (a == b) return Duration{0};
   const std::uint64_t version = cache_->models_version();
   return cache_->interpolate(depart, [&](Time slot) {
-    return values_.get(version, slot, cache_->slot_width(), from, to, [&] { return cache_->at_slot(a, b, slot); });
+    return values_.get(version, slot, cache_->slot_width(), from, to,
+                       [&] { return at_speed(cache_->at_slot(a, b, slot), speed_); });
   });
 }
 
 Duration SchedulerTravel::lower_bound(schedule::LocationIndex from, schedule::LocationIndex to) const {
-  return cache_->lower_bound(nodes_[from], nodes_[to]);
+  return at_speed(cache_->lower_bound(nodes_[from], nodes_[to]), speed_);
 }
 
 }  // namespace rondo::exec

@@ -20,8 +20,8 @@ void NavigateStep::start() {
   const Time now = ctx_.clock.now();
   const map::NodeIndex here = ctx_.robot.location();
   started_ = now;
-  expected_ = ctx_.travel.travel(here, target_, now);
-  if (purpose_ == Purpose::kToStart) offline_expected_ = ctx_.offline_travel.travel(here, target_, now);
+  expected_ = ctx_.own(ctx_.travel.travel(here, target_, now));
+  if (purpose_ == Purpose::kToStart) offline_expected_ = ctx_.own(ctx_.offline_travel.travel(here, target_, now));
   if (purpose_ != Purpose::kToStart && here == target_) return end({.status = StepEnd::Status::kDone});
   const std::string& to = ctx_.map.node(target_).name;
   const std::string& from = ctx_.map.node(here).name;
@@ -51,7 +51,7 @@ void NavigateStep::start() {
     // task's latest start: a journey within the learned spread of travel times is not a fault, and
     // is stopped only past the (1 − navigation_alpha)-quantile.
     const double level = 1.0 - o.navigation_alpha.value_or(*o.risk_alpha);
-    const Duration q = ctx_.travel.quantile_travel(here, target_, now, level);
+    const Duration q = ctx_.own(ctx_.travel.quantile_travel(here, target_, now, level));
     if (q < kUnreachable && q + o.navigation_slack > limit.after)
       limit = {.after = q + o.navigation_slack,
                .reason = fmt::format("navigation overrun: still travelling after {}, the limit is the {:g} "
@@ -208,7 +208,7 @@ std::optional<Time> NavigateStep::window_open_until() const {
   const map::NodeIndex heading = ctx_.map.to_index(*edge_);
   Duration rest{0};
   if (heading != target_) {
-    rest = ctx_.travel.quantile_travel(heading, target_, now, 1.0 - *o.risk_alpha);
+    rest = ctx_.own(ctx_.travel.quantile_travel(heading, target_, now, 1.0 - *o.risk_alpha));
     if (rest >= kUnreachable) return std::nullopt;
   }
   const Time until = ctx_.book.at(*task_).latest_start(o.on_demand_patience) - rest;
@@ -310,7 +310,7 @@ std::optional<StepEnd> NavigateStep::leave_later(map::NodeIndex here, Time now) 
     Time leave = now;
     Time arrive = now + expected_;
     for (Time t = ctx_.travel.slot_start(now) + ctx_.options.slot_width; t <= latest; t += ctx_.options.slot_width) {
-      const Duration d = ctx_.travel.at_slot(here, target_, t);
+      const Duration d = ctx_.own(ctx_.travel.at_slot(here, target_, t));
       if (d < kUnreachable && t + d < arrive) {
         leave = t;
         arrive = t + d;
@@ -351,7 +351,7 @@ std::optional<std::string> NavigateStep::not_worth_trying(const EdgeAttempt& fai
   const Time now = ctx_.clock.now();
   const map::NodeIndex here = ctx_.robot.location();
   if (here == target_) return std::nullopt;
-  const Duration left = ctx_.travel.travel(here, target_, now);
+  const Duration left = ctx_.own(ctx_.travel.travel(here, target_, now));
   if (left >= kUnreachable) return std::nullopt;  // no way at all from here: advance() says so
   const map::Edge& e = ctx_.map.edge(failed.edge);
   // A run of failures (by this journey and those before it) that the live model gave less than

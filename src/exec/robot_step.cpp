@@ -1,6 +1,11 @@
+#include "rondo/exec/map_travel.h"
 #include "steps.h"
 
 namespace rondo::exec {
+
+Duration StepContext::own(Duration standard) const {
+  return standard >= kUnreachable ? standard : speeds.own_time(options.robot_name, standard);
+}
 
 void RobotStep::halt() {
   if (halting_ || ended()) return;

@@ -80,10 +80,11 @@ Duration SpecPrice::lower_bound(map::NodeIndex from) const {
 }
 
 void set_travel(schedule::Problem& problem, const TravelCache& cache, const std::vector<map::NodeIndex>& nodes,
-                std::optional<double> risk_alpha, const std::vector<SpecPrice>& specs) {
-  problem.travel = std::make_shared<SchedulerTravel>(cache, nodes);
+                std::optional<double> risk_alpha, const std::vector<SpecPrice>& specs, double speed) {
+  problem.travel = std::make_shared<SchedulerTravel>(cache, nodes, speed);
   problem.window_travel.reset();
-  if (risk_alpha) problem.window_travel = std::make_shared<SchedulerQuantileTravel>(cache, nodes, 1.0 - *risk_alpha);
+  if (risk_alpha)
+    problem.window_travel = std::make_shared<SchedulerQuantileTravel>(cache, nodes, 1.0 - *risk_alpha, speed);
   if (specs.empty()) return;
   problem.travel = std::make_shared<WithSpecs>(problem.travel, nodes, specs);
   if (problem.window_travel) problem.window_travel = std::make_shared<WithSpecs>(problem.window_travel, nodes, specs);
@@ -171,14 +172,15 @@ Result<PendingProblem> pending_problem(const ScheduleInputs& in, const PendingTa
   for (map::NodeIndex n : nodes) problem.location_names.push_back(in.map.node(n).name);
   problem.robot.location = 0;
   problem.robot.time = free;
-  set_travel(problem, in.travel, nodes, in.risk_alpha, specs);
+  set_travel(problem, in.travel, nodes, in.risk_alpha, specs, in.speed);
 
   RONDO_RETURN_IF_ERROR(schedule::validate(problem));
   PendingProblem out{.request = {.problem = std::move(problem), .new_tasks = {}, .zone = in.zone},
                      .nodes = std::move(nodes),
                      .risk_alpha = in.risk_alpha,
                      .battery = std::move(battery),
-                     .specs = std::move(specs)};
+                     .specs = std::move(specs),
+                     .speed = in.speed};
   schedule::TryScheduleRequest& request = out.request;
   for (std::size_t i = pending.old_count; i < pending.ids.size(); ++i) request.new_tasks.push_back(i);
   for (std::size_t i = pending.first_reoffered; i < pending.ids.size(); ++i) request.cannot_preempt.push_back(i);

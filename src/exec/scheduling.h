@@ -91,6 +91,7 @@ struct ScheduleInputs {
   std::optional<double> risk_alpha{};     // ExecutorOptions::risk_alpha
   std::optional<BatteryInputs> battery{};  // planned charging, when on
   const SpecTasks* specs = nullptr;        // prices spec tasks (none: the book has none)
+  double speed = 1.0;                      // the robot's factor on the travel cache's standard times
 };
 
 // A scheduling problem built from the book (on the clock's thread), ready to solve anywhere: the
@@ -102,13 +103,14 @@ struct PendingProblem {
   std::optional<double> risk_alpha{};  // the window travel's level is 1 − risk_alpha
   std::optional<ChargePlan> battery{};  // planned charging: the dock is one of `nodes`
   std::vector<SpecPrice> specs{};       // the spec tasks' locations and their travel
+  double speed = 1.0;                   // ScheduleInputs::speed
 };
 
 // The problem's travel, and its window travel under a chance constraint, over `cache` and `nodes`;
 // travel to a spec task's location as `specs` price it (the window travel too: a spec task's journey
-// is priced at its expected time).
+// is priced at its expected time). `speed`: the robot's factor (SchedulerTravel).
 void set_travel(schedule::Problem& problem, const TravelCache& cache, const std::vector<map::NodeIndex>& nodes,
-                std::optional<double> risk_alpha, const std::vector<SpecPrice>& specs = {});
+                std::optional<double> risk_alpha, const std::vector<SpecPrice>& specs = {}, double speed = 1.0);
 
 // One reschedule between its two halves: which tasks, and their problem.
 struct ScheduleCall {

@@ -119,14 +119,19 @@ AllocationProblem allocation_problem(const std::vector<AllocationUnit>& units,
   for (std::size_t i = 0; i < out.robots.size(); ++i) {
     const exec::Executor& robot = *robots[out.robots[i]];
     const auto [at, free] = robot.free_at();
-    const auto speed = speed_factors.find(robot.name());
+    // Its pace as learned from the fleet's traversals (Building::speeds), else as declared.
+    const auto declared = speed_factors.find(robot.name());
+    const auto learned = building.speeds.factors().find(robot.name());
+    const double speed = learned != building.speeds.factors().end() ? learned->second
+                         : declared != speed_factors.end()          ? declared->second
+                                                                    : 1.0;
     p.robots.push_back({.name = robot.name(),
                         .location = build.location(at),
                         .free_from = free,
                         .end = std::nullopt,
                         .actions = {},
                         .capacity = robot.capacity(),
-                        .speed_factor = speed == speed_factors.end() ? 1.0 : speed->second,
+                        .speed_factor = speed,
                         .travel = nullptr});
     // What it has planned stays on it.
     for (const TaskId& id : robot.activity().planned) {

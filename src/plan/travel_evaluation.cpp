@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "rondo/learn/robot_speeds.h"
 #include "rondo/plan/distance_prior.h"
 #include "rondo/plan/exact_solver.h"
 #include "rondo/plan/learned_edge_models.h"
@@ -22,6 +23,7 @@ struct ScoredJourney {
   std::vector<EdgeIndex> route;
   NodeIndex origin = 0;
   NodeIndex destination = 0;
+  std::string robot;  // who made it (Traversal::robot)
 };
 
 struct Context {
@@ -48,6 +50,7 @@ void select_journeys(Context& c, TravelEvaluation& out) {
     ScoredJourney s;
     s.start = j.start;
     s.seconds = j.seconds();
+    s.robot = c.log[j.attempts.front()].robot;
     bool on_map = true;
     for (std::size_t a : j.attempts) {
       if (!c.log[a].success) continue;
@@ -88,8 +91,10 @@ struct Errors {
   std::vector<double> route, od;
 };
 
-// Scores one fitted model set; `online` also feeds it the attempts after the training window.
-Result<Errors> score(const Context& c, learn::FamilyEdgeModels& models, bool online, const TimeWindow& training) {
+// Scores one fitted model set, fitted in the standard time of `speeds`; `online` also feeds it the
+// attempts after the training window (in standard time). Each journey's estimate is its robot's.
+Result<Errors> score(const Context& c, learn::FamilyEdgeModels& models, const learn::RobotSpeeds& speeds, bool online,
+                     const TimeWindow& training) {
   std::vector<std::optional<std::size_t>> index;
   for (const auto& s : c.specs) index.push_back(models.index_of(s.id));
   Errors out;
@@ -98,17 +103,20 @@ Result<Errors> score(const Context& c, learn::FamilyEdgeModels& models, bool onl
     for (; online && next < c.by_end.size(); ++next) {
       const Traversal& a = c.log[c.by_end[next]];
       if (!(a.start + a.duration < j.start + c.options->start_resolution)) break;
-      if (a.start >= training.to) models.observe(a);
+      if (a.start < training.to) continue;
+      models.observe(speeds.standardised(a));
     }
+    const double pace = speeds.factor(j.robot);
     RONDO_ASSIGN_OR_RETURN(Mdp mdp,
                            Mdp::from_outcomes(*c.map, outcomes_at(c, models, index, j.start), j.start, c.dead_ends));
     double route = 0;
     for (EdgeIndex e : j.route) route += mdp.expected_crossing_seconds(e);
+    route /= pace;
     // Unusable edges give +inf; keep the summaries finite and say so through a huge error.
     out.route.push_back(std::isfinite(route) ? (route - j.seconds) / j.seconds : 1e9);
     if (j.origin == j.destination) continue;
     RONDO_ASSIGN_OR_RETURN(Solution s, ExactSolver{}.solve(mdp, j.destination));
-    const double od = s.policy.expected_seconds(j.origin);
+    const double od = s.policy.expected_seconds(j.origin) / pace;
     out.od.push_back(std::isfinite(od) ? (od - j.seconds) / j.seconds : 1e9);
   }
   return out;
@@ -152,6 +160,11 @@ ErrorSummary summarize_errors(std::vector<double> v) {
 
 Result<TravelEvaluation> evaluate_travel(const map::TopoMap& map, std::span<const Traversal> log,
                                          const TravelEvaluationOptions& options) {
+  return evaluate_travel(map, log, log, options);
+}
+
+Result<TravelEvaluation> evaluate_travel(const map::TopoMap& map, std::span<const Traversal> training_log,
+                                         std::span<const Traversal> log, const TravelEvaluationOptions& options) {
   Context c{.map = &map,
             .log = log,
             .journeys = {},
@@ -175,14 +188,18 @@ Result<TravelEvaluation> evaluate_travel(const map::TopoMap& map, std::span<cons
     return log[a].start + log[a].duration < log[b].start + log[b].duration;
   });
   for (const TimeWindow& training : options.trainings) {
-    const std::vector<Traversal> train = in_window(log, training);
+    // The robots' paces from the window, and the window's log in the fleet's standard time (a lone
+    // robot's: as it is).
+    std::vector<Traversal> train = in_window(training_log, training);
+    const learn::RobotSpeeds speeds = learn::RobotSpeeds::fit(train);
+    if (!speeds.factors().empty()) train = speeds.standardised(train);
     for (learn::EdgeFamily family : options.families) {
       for (const bool online : {false, true}) {
         learn::EdgeFamilyOptions mo = options.models;
         mo.online = online;
         auto models = learn::fit_edge_family(family, c.specs, train, mo);
         if (!models) return models.error().with_context("training window '" + training.name + "'");
-        RONDO_ASSIGN_OR_RETURN(Errors e, score(c, **models, online, training));
+        RONDO_ASSIGN_OR_RETURN(Errors e, score(c, **models, speeds, online, training));
         const std::string protocol = online ? "online" : "offline";
         out.rows.push_back({training.name, learn::to_string(family), protocol, "route", summarize_errors(e.route)});
         out.rows.push_back({training.name, learn::to_string(family), protocol, "od", summarize_errors(e.od)});

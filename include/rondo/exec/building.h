@@ -16,6 +16,7 @@
 #include "rondo/exec/executor_types.h"
 #include "rondo/exec/map_travel.h"
 #include "rondo/exec/task_book.h"
+#include "rondo/learn/robot_speeds.h"
 #include "rondo/map/topo_map.h"
 #include "rondo/plan/learned_edge_models.h"
 #include "rondo/plan/travel_planner.h"
@@ -46,9 +47,10 @@ class Building {
   // What was learned before a restart, read back from the store: the loading times (of the tasks
   // in the book: restore them first) and the door models. Errors: kStorage.
   Status restore_learning();
-  // The nightly refit (building_learning.cpp): the door models, then the edge models from the
-  // traversal log of the last `refit_window`, with the week (building_weekly.cpp) and the attempt
-  // laws. False when there was nothing to fit, or the store could not be read (a write error).
+  // The nightly refit (building_learning.cpp): the door models, then the robots' speeds and the
+  // edge models from the traversal log of the last `refit_window` in standard time, with the week
+  // (building_weekly.cpp) and the attempt laws. False when there was nothing to fit, or the store could not be read (a
+  // write error).
   bool refit();
 
   Clock& clock;
@@ -66,6 +68,10 @@ class Building {
   plan::TravelPlanner offline_planner;
   TravelCache offline_travel;
   TaskBook book;
+  // Each robot's pace against the fleet's standard robot, fitted at every refit from the window's
+  // log (learn/robot_speeds.h): the edge models learn standard times, and each robot reads them as
+  // its own through its factor. A lone robot's is 1.
+  learn::RobotSpeeds speeds;
   std::unique_ptr<LoadingTimes> loading;               // loading and unloading times, per action and place
   std::unique_ptr<FoundBlocked> found_blocked;         // failures in a row, edges held blocked
   std::unique_ptr<DoorModels> door_models;             // when doors are open, learned

@@ -226,7 +226,9 @@ Duration TravelCache::interpolate(Time depart, const AtSlot& at) const {
 // SchedulerTravel, whose generation it reads in.
 class SchedulerQuantileTravel final : public schedule::TravelOracle {
  public:
-  SchedulerQuantileTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes, double level);
+  // `speed`: the robot's factor (Building::speeds); the cache's standard times are divided by it.
+  SchedulerQuantileTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes, double level,
+                          double speed = 1.0);
   std::size_t location_count() const override { return nodes_.size(); }
   Duration travel(schedule::LocationIndex from, schedule::LocationIndex to, Time depart) const override;
   // Zero: the solvers read lower bounds from the expected travel only.
@@ -237,13 +239,16 @@ class SchedulerQuantileTravel final : public schedule::TravelOracle {
   const TravelCache* cache_;
   std::vector<map::NodeIndex> nodes_;
   double level_;
+  double speed_;
   mutable SlotTable values_;
 };
 
 class SchedulerTravel final : public schedule::TravelOracle {
  public:
-  // Opens a generation of `cache` (TravelCache::begin_problem): make one per problem.
-  SchedulerTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes);
+  // Opens a generation of `cache` (TravelCache::begin_problem): make one per problem. `speed`: the
+  // robot's factor (Building::speeds); the cache's standard times are divided by it, at each slot
+  // start before the interpolation (which keeps FIFO).
+  SchedulerTravel(const TravelCache& cache, std::vector<map::NodeIndex> nodes, double speed = 1.0);
   std::size_t location_count() const override { return nodes_.size(); }
   Duration travel(schedule::LocationIndex from, schedule::LocationIndex to, Time depart) const override;
   Duration lower_bound(schedule::LocationIndex from, schedule::LocationIndex to) const override;
@@ -253,6 +258,7 @@ class SchedulerTravel final : public schedule::TravelOracle {
  private:
   const TravelCache* cache_;
   std::vector<map::NodeIndex> nodes_;
+  double speed_;
   mutable SlotTable values_;
 };
 

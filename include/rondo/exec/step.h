@@ -21,6 +21,7 @@
 #include "rondo/exec/outcome.h"
 #include "rondo/exec/robot.h"
 #include "rondo/exec/task_book.h"
+#include "rondo/learn/robot_speeds.h"
 #include "rondo/map/topo_map.h"
 #include "rondo/plan/edge_model_view.h"
 
@@ -89,8 +90,11 @@ struct StepContext {
   // What journeys found of the edges (failures in a row, edges held blocked), known to every journey.
   FoundBlocked& found_blocked;
   const SpecTasks& specs;  // spec tasks' automata and product plans
+  const learn::RobotSpeeds& speeds;  // the robots' paces (Building::speeds): `travel` is in standard time
 
   std::string clock_text(Time t) const { return zone.format_clock(t); }
+  // A standard travel time (`travel`'s) as this robot takes it.
+  Duration own(Duration standard) const;
 };
 
 class Step {

@@ -9,9 +9,9 @@
 //
 // The problem (docs/fleet.md, "Allocation"):
 // - a robot: where and when it is next free (Executor::free_at), its capacity, its speed factor
-//   (from the options; travel is the building's TravelCache divided by it, as the simulated
-//   robot's edge times are); robots start the problem empty (an object on board is not counted
-//   against the capacity: its drop is a plain task there) and have no dock deadline;
+//   (learned: Building::speeds; before the first refit that has seen it, declared in the options;
+//   travel is the building's TravelCache, in the fleet's standard time, divided by it); robots start the problem empty
+//   (an object on board is not counted against the capacity: its drop is a plain task there) and have no dock deadline;
 // - its planned tasks (Executor::activity().planned), pinned to it: what a robot has planned
 //   stays there; a delivery job whose halves are both planned there stays a pair;
 // - the new units: a delivery job's halves as a pickup and its drop; a unit eligible on one robot
@@ -44,7 +44,8 @@ struct FleetSchedulerAllocatorOptions {
   // Large-neighbourhood-search iterations after the construction (which takes one poll per
   // request): the poll budget is requests + this. docs/fleet.md gives the measured trade-off.
   std::int64_t search_polls = 300;
-  // Per robot name, the factor its travel is divided by (a simulated robot's `speed`); 1 if absent.
+  // Per robot name, the declared factor its travel is divided by (a simulated robot's `speed`) until
+  // a refit has learned its own (Building::speeds); 1 if absent.
   std::map<std::string, double> speed_factors{};
 };
 

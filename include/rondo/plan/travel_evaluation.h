@@ -22,6 +22,10 @@
 //   Round trips (destination = origin) have no od estimate (it would be 0 s, an error of −1
 //   whatever the model): od rows count only the other journeys.
 //   Map edges a family does not know answer with the distance prior.
+// - A fleet's log (attempts of several robots): each training window also gives the robots' paces
+//   (learn::RobotSpeeds), its models are fitted on the window in the fleet's standard time, the
+//   online attempts are observed in it, and a journey's estimates are its robot's (÷ its factor).
+//   A lone robot's log is scored as it is.
 // - Each row summarises the relative errors (estimate − g)/g over the scored journeys.
 #pragma once
 
@@ -86,6 +90,11 @@ struct TravelEvaluation {
 // An error when no journey can be scored, or a training window's models cannot be fitted.
 Result<TravelEvaluation> evaluate_travel(const map::TopoMap& map, std::span<const Traversal> log,
                                          const TravelEvaluationOptions& options);
+// The same with the training windows read from `training_log`, and the journeys scored (and the
+// attempts the online protocol observes) from `test_log`: what one deployment's first days
+// teach about another's journeys (bench_fleet_learning: a lone robot against a fleet).
+Result<TravelEvaluation> evaluate_travel(const map::TopoMap& map, std::span<const Traversal> training_log,
+                                         std::span<const Traversal> test_log, const TravelEvaluationOptions& options);
 
 // {"journeys": N, "test_journeys", "failed", "off_map", "round_trips", "rows": [{"training", "model", "protocol",
 // "estimate", "q10", "q25", "q75", "q90", "mean_abs", "std", "count"}]}
