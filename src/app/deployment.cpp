@@ -229,7 +229,7 @@ Result<Deployment> decode(const Field& root, const std::filesystem::path& file) 
   RONDO_RETURN_IF_ERROR(
       root.expect_keys({"rondo_deployment", "name",    "map",      "time_zone", "dock",     "start", "days",   "seed",
                         "routines",         "world",   "requests", "places",    "executor", "robot", "robots", "docks",
-                        "allocator",        "battery", "store",    "reference"}));
+                        "allocator",        "balance", "battery",  "store",     "reference"}));
   Deployment d;
   d.file = file;
   RONDO_ASSIGN_OR_RETURN(const Field version, root.required("rondo_deployment"));

@@ -23,6 +23,7 @@
 //        speed: 0.8, battery: {...}}
 //   docks: [{node: Dock1, capacity: 2}]   # optional: a dock not listed has room for one robot
 //   allocator: fleet               # optional: fleet (the fleet scheduler, default) or greedy
+//   balance: false                 # optional: spread work and battery across the robots
 //   store: {kind: postgresql, url: "postgresql://rondo@db/fleet", password_file: pw}  # optional;
 //                                   # rondo serve's store (default: rondo.sqlite in its data folder)
 #pragma once
@@ -107,6 +108,7 @@ struct Deployment {
   // not listed here has room for one.
   std::vector<DockSpec> docks;
   AllocatorKind allocator = AllocatorKind::kFleet;
+  bool balance = false;  // `balance:` (fleet::BalancedAllocator around the allocator)
   // `store:`: where `rondo serve` keeps its store; none: rondo.sqlite in its data folder
   // (docs/deployment.md, "The store").
   std::optional<store::StoreLocation> store;

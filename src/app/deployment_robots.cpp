@@ -182,6 +182,9 @@ Status decode_robots(const Field& root, Deployment& d) {
   if (auto f = root.optional("allocator")) {
     RONDO_ASSIGN_OR_RETURN(d.allocator, decode_allocator(*f));
   }
+  if (auto f = root.optional("balance")) {
+    RONDO_ASSIGN_OR_RETURN(d.balance, f->as_bool());
+  }
   if (auto f = root.optional("robots")) {
     if (root.has("battery"))
       return root.error_at("battery", "with robots:, each simulated robot's battery is given in its entry");

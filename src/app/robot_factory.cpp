@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "rondo/fleet/balanced_allocator.h"
 #include "rondo/fleet/fleet_scheduler_allocator.h"
 #include "rondo/sim/sim_robot.h"
 #include "rondo/vda5050/vda5050_robot.h"
@@ -43,11 +44,17 @@ exec::ExecutorOptions robot_options(const Deployment& d, const RobotSpec& spec, 
 }
 
 std::unique_ptr<fleet::Allocator> make_allocator(const Deployment& d) {
-  if (d.allocator == AllocatorKind::kGreedy) return std::make_unique<fleet::GreedyAllocator>();
-  fleet::FleetSchedulerAllocatorOptions options{.seed = d.seed};
-  for (const RobotSpec& r : d.robots)
-    if (!r.vda5050 && r.speed != 1.0) options.speed_factors[r.name] = r.speed;
-  return std::make_unique<fleet::FleetSchedulerAllocator>(std::move(options));
+  std::unique_ptr<fleet::Allocator> allocator;
+  if (d.allocator == AllocatorKind::kGreedy) {
+    allocator = std::make_unique<fleet::GreedyAllocator>();
+  } else {
+    fleet::FleetSchedulerAllocatorOptions options{.seed = d.seed};
+    for (const RobotSpec& r : d.robots)
+      if (!r.vda5050 && r.speed != 1.0) options.speed_factors[r.name] = r.speed;
+    allocator = std::make_unique<fleet::FleetSchedulerAllocator>(std::move(options));
+  }
+  if (d.balance) allocator = std::make_unique<fleet::BalancedAllocator>(std::move(allocator));
+  return allocator;
 }
 
 }  // namespace rondo::app

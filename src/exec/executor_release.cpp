@@ -1,4 +1,6 @@
 // Handing tasks back to the fleet (Executor::release): re-allocation when a robot cannot work.
+#include <fmt/format.h>
+
 #include <set>
 
 #include "deliveries.h"
@@ -17,6 +19,18 @@ std::vector<TaskId> Executor::release() {
 
 const std::vector<TaskId>& Executor::deferred() const {
   return dispatcher_->deferred();
+}
+
+bool Executor::hand_back_running(std::function<void(const TaskId&)> handed) {
+  if (!run_ || run_->waiting() || run_->stopping() || handing_back_) return false;
+  const TaskId id = run_->id();
+  const TaskRecord& r = book_.at(id);
+  if (r.task.has_spec() || r.robot != name() || r.task.robot == name()) return false;
+  if (r.task.delivery) return false;  // its pickup runs, or its item is on board: the job stays here
+  handing_back_ = std::move(handed);
+  run_->stop(TaskRun::Stop::kPreempt, Outcome::kRobotFault,
+             fmt::format("{} cannot work: handed back to the fleet", name()));
+  return true;
 }
 
 std::vector<TaskId> Executor::release(const std::vector<TaskId>& queued) {

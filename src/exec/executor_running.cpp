@@ -107,6 +107,11 @@ void Executor::run_ended(TaskEnd e) {
   if (r.started) stats_.busy += clock_.now() - *r.started;
   std::vector<TaskId> again = std::exchange(after_preempt_, {});
   const bool on_demand = r.task.kind == TaskKind::kOnDemand;
+  if (std::function<void(const TaskId&)> handed = std::exchange(handing_back_, {}); handed && e.requeue) {
+    hand_back(id, e, std::move(handed));
+    if (!again.empty()) reschedule(std::move(again), "after handing back " + id);
+    return next();
+  }
   if (e.requeue && e.edge && !hold_back(id, *e.edge, e.not_before)) {
     e.requeue = false;
     e.state = TaskState::kFailed;
@@ -124,7 +129,12 @@ void Executor::run_ended(TaskEnd e) {
   if (e.requeue) {
     // Preempted: the task keeps its id and goes back to the queue, to be scheduled again.
     requeue_preempted(id, e.outcome, e.reason);
-    if (book_.at(id).state == TaskState::kQueued) again.push_back(id);
+    if (book_.at(id).state == TaskState::kQueued) {
+      if (preempted_ && e.outcome == Outcome::kPreemptedOnDemand)
+        clock_.schedule_after(Duration{0}, [call = preempted_, id] { call(id); });  // to the fleet's pool
+      else
+        again.push_back(id);
+    }
     if (!again.empty()) reschedule(std::move(again), "after preempting " + id);
     return next();
   }
@@ -247,6 +257,16 @@ void Executor::requeue_on_demand(const TaskId& id, Outcome outcome, const std::s
 
 void Executor::on_demand_due() {
   if (!give_way_to_on_demand()) kick();
+}
+
+void Executor::hand_back(const TaskId& id, const TaskEnd& e, std::function<void(const TaskId&)> handed) {
+  if (book_.at(id).task.kind == TaskKind::kOnDemand)
+    book_.transition(id, TaskState::kQueued, e.outcome, e.reason + "; back in the fleet's pool");
+  else
+    requeue_preempted(id, e.outcome, e.reason);  // queued, or failed when its window no longer allows it
+  if (book_.at(id).state != TaskState::kQueued) return;
+  book_.at(id).dropped_for_now.reset();
+  clock_.schedule_after(Duration{0}, [handed = std::move(handed), id] { handed(id); });
 }
 
 void Executor::requeue_preempted(const TaskId& id, Outcome outcome, const std::string& reason) {

@@ -20,6 +20,10 @@ std::chrono::year_month_day next_day(std::chrono::year_month_day d) {
 void Fleet::start() {
   if (started_) return;
   started_ = true;
+  // A fleet of several takes back what an on-demand task preempts (a fleet of one: its robot keeps it).
+  if (robots_.size() > 1)
+    for (const auto& r : robots_)
+      r->on_preempted([this, &robot = *r](const TaskId& id) { offer_preempted(robot, id); });
   for (const auto& r : robots_) r->start();
   create_routine_tasks(building_.zone.local_date(building_.clock.now()));
   for (const auto& r : robots_) r->schedule_restored();

@@ -12,12 +12,32 @@ void Fleet::watch(exec::Executor& robot) {
   });
 }
 
+void Fleet::offer_preempted(exec::Executor& robot, const TaskId& id) {
+  const exec::TaskRecord* r = building_.book.find(id);
+  if (!r || r->state != TaskState::kQueued || r->robot != robot.name()) return;  // moved on meanwhile
+  const std::vector<Allocation> to = allocate({r->task});
+  if (to[0].robot < robots_.size() && robots_[to[0].robot].get() != &robot) {
+    const std::string& name = robots_[to[0].robot]->name();
+    if (building_.book.allocate(id, name))
+      building_.book.note(
+          id, exec::EventKind::kReallocated, exec::Outcome::kPreemptedOnDemand,
+          fmt::format("from {} (preempted by an on-demand task) to {}: {}", robot.name(), name, to[0].why));
+  }
+  hand_out({id});  // to the robot the book names: another, or back to its own
+}
+
 void Fleet::reallocate_from(exec::Executor& robot) {
   if (robot.able()) return;  // the fault cleared, or it is back in service: it keeps its work
   bool others = false;
   for (const auto& r : robots_) others = others || (r.get() != &robot && r->able());
   if (!others) return;
-  const std::vector<TaskId> ids = robot.release();
+  // The running task too, when a fault holds it (out of service, the running task was halted or
+  // finishes): it stops, keeps its progress, and follows once its run has ended.
+  if (robot.paused()) robot.hand_back_running([this, &robot](const TaskId& id) { move_tasks(robot, {id}); });
+  move_tasks(robot, robot.release());
+}
+
+void Fleet::move_tasks(exec::Executor& robot, const std::vector<TaskId>& ids) {
   if (ids.empty()) return;
   std::vector<Task> tasks;
   for (const TaskId& id : ids) tasks.push_back(building_.book.at(id).task);

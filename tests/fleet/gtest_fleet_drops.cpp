@@ -141,6 +141,32 @@ TEST(FleetOnDemand, WhenNoRobotIsFreeInterruptsTheLowestPriorityTask) {
   EXPECT_TRUE(contains(why[0], "to r2: no robot is free; interrupting task b (priority 1)")) << why[0];
 }
 
+// The task interrupted for an on-demand one goes back to the fleet's pool: here only r3, free in a
+// minute, can still start it in its window (r2 runs the on-demand task, r1 works for an hour).
+TEST(FleetOnDemand, TheInterruptedTaskGoesBackToTheFleetsPool) {
+  ScriptedFleet f({{"r1", "Office"}, {"r2", "Dock"}, {"r3", "Kitchen"}});
+  f.fleet().start();
+  ASSERT_TRUE(
+      f.fleet().add_task(own(task("a", "Office", f.at("08:00"), f.at("10:00"), hours(1), 3), "r1"), "test").ok());
+  ASSERT_TRUE(f.fleet().add_task(task("b", "Dock", f.at("08:00"), f.at("09:03"), hours(1), 1), "test").ok());
+  ASSERT_TRUE(f.fleet()
+                  .add_task(own(task("c", "Kitchen", f.at("08:00"), f.at("10:00"), minutes(1), 0, false), "r3"), "test")
+                  .ok());
+  f.settle();
+  ASSERT_EQ(f.robot_of("b"), "r2");
+  ASSERT_TRUE(f.robot(0).acting() && f.robot(1).acting() && f.robot(2).acting());
+  ASSERT_TRUE(f.fleet().add_task(on_demand("now", "Office", minutes(5)), "test").ok());
+  f.settle();
+  EXPECT_EQ(f.robot_of("now"), "r2");
+  EXPECT_EQ(f.robot_of("b"), "r3");
+  const std::vector<std::string> why = reasons(f, "b", "re-allocated");
+  ASSERT_EQ(why.size(), 1u);
+  EXPECT_TRUE(contains(why[0], "from r2 (preempted by an on-demand task) to r3")) << why[0];
+  f.robot(2).finish_action(exec::ActionOutcome::kSucceeded);  // c ends: r3 goes to the Dock for b
+  f.clock().run_until(f.clock().now() + seconds(1));
+  EXPECT_TRUE(f.robot(2).driving());
+}
+
 TEST(FleetAllocated, AFleetOfOneSaysNothingAboutItsChoice) {
   ScriptedFleet f(std::vector<ScriptedFleet::RobotAt>{{"r1", "Office"}});
   f.fleet().start();

@@ -1,6 +1,7 @@
 // Re-allocation (issue 38): a robot that cannot work (a fault that lasts, out of service) hands its
-// unstarted tasks to the robots that can; a fault that clears in time keeps them; a delivery begun
-// on a robot stays on it; a task naming its robot stays.
+// unstarted tasks to the robots that can, and in a fault its running task too, with the actions it
+// did; a fault that clears in time keeps them; a delivery begun on a robot stays on it; a task
+// naming its robot stays.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -52,7 +53,7 @@ struct Busy {
   }
 };
 
-TEST(FleetReallocation, ARobotFaultingMidTaskHandsItsOtherTasksToAnother) {
+TEST(FleetReallocation, ARobotFaultingMidTaskHandsItsTasksToAnotherTheRunningOneToo) {
   Busy b;
   ScriptedFleet& f = b.f;
   ASSERT_TRUE(f.robot(0).acting()) << "r1 works where it stands";
@@ -66,16 +67,41 @@ TEST(FleetReallocation, ARobotFaultingMidTaskHandsItsOtherTasksToAnother) {
   f.clock().run_until(f.clock().now() + minutes(1));
   EXPECT_EQ(held_by(f, "r1", b.ids), r1_before) << "not before reallocate_after (2 min)";
   f.clock().run_until(f.clock().now() + minutes(1) + seconds(1));
-  // Everything r1 had not started went to r2, each with its event; the running one stays on r1.
+  // Everything r1 held went to r2, each with its event: the running one was stopped (its action
+  // cancelled) and re-offered.
+  EXPECT_TRUE(f.robot(0).asked("cancel"));
   for (const std::string& id : r1_before) {
-    const bool moves = std::find(waiting.begin(), waiting.end(), id) != waiting.end();
-    EXPECT_EQ(f.robot_of(id), moves ? "r2" : "r1") << id;
-    EXPECT_EQ(reallocated_events(f, id), moves ? 1 : 0) << id;
+    EXPECT_EQ(f.robot_of(id), "r2") << id;
+    EXPECT_EQ(reallocated_events(f, id), 1) << id;
   }
   EXPECT_TRUE(f.robot(1).busy()) << "r2 is on its way to the Office";
   // r2 does them all while r1 stays in fault.
   work(f, 1, f.at("12:00"));
-  for (const std::string& id : waiting) EXPECT_EQ(f.fleet().book().at(id).state, TaskState::kSucceeded) << id;
+  for (const std::string& id : r1_before) EXPECT_EQ(f.fleet().book().at(id).state, TaskState::kSucceeded) << id;
+}
+
+// The running task keeps its progress: the action it did on r1 is not done again on r2.
+TEST(FleetReallocation, AHandedBackTaskKeepsTheActionsItDid) {
+  ScriptedFleet f({{"r1", "Office"}, {"r2", "Dock"}});
+  f.fleet().start();
+  Task two = task("two", "Office", f.at("08:00"), f.at("12:00"), minutes(10));
+  two.actions = {Action{.name = "open", .args = {}}, Action{.name = "check", .args = {}}};
+  ASSERT_TRUE(f.fleet().add_task(two, "test").ok());
+  f.settle();
+  ASSERT_EQ(f.robot_of("two"), "r1");
+  ASSERT_TRUE(f.robot(0).acting());
+  ASSERT_TRUE(f.robot(0).asked("act open"));
+  f.robot(0).finish_action(exec::ActionOutcome::kSucceeded);
+  f.clock().run_until(f.clock().now() + seconds(1));
+  ASSERT_TRUE(f.robot(0).asked("act check"));
+  f.robot(0).report_fault("lidar");
+  f.clock().run_until(f.clock().now() + minutes(3));
+  EXPECT_EQ(f.robot_of("two"), "r2");
+  EXPECT_EQ(f.fleet().book().at("two").actions_done, 1u);
+  work(f, 1, f.at("12:00"));
+  EXPECT_EQ(f.fleet().book().at("two").state, TaskState::kSucceeded);
+  EXPECT_FALSE(f.robot(1).asked("act open")) << "done on r1 already";
+  EXPECT_TRUE(f.robot(1).asked("act check"));
 }
 
 TEST(FleetReallocation, AFaultThatClearsInTimeKeepsTheTasks) {

@@ -128,6 +128,12 @@ class Executor final : public RobotListener {
   // The same for the given tasks only: those of them the robot holds, has not started, and may hand
   // back.
   std::vector<TaskId> release(const std::vector<TaskId>& ids);
+  // Stops the running task for the fleet to give to another robot (a fault that lasts): one it may
+  // hand back as release() says, and not a spec task. It keeps its progress (the actions done, its
+  // remaining time) and goes back to the queue (outcome kRobotFault), and `handed` is called with
+  // its id from the clock once the run has ended, when it could be queued (its window still allows
+  // it). False when nothing runs, it only waits, or it must stay.
+  bool hand_back_running(std::function<void(const TaskId&)> handed);
   // The fleet's call when the robot stops being able to work: a fault begins, or it is put out of
   // service. It may release() the robot's tasks.
   void on_unable(std::function<void()> call) { unable_ = std::move(call); }
@@ -136,6 +142,10 @@ class Executor final : public RobotListener {
   // offers them to other robots (fleet_drops.cpp); it must not call back into this robot at once.
   void on_dropped(std::function<void(const std::vector<TaskId>&)> call) { dropped_ = std::move(call); }
   void on_free(std::function<void()> call) { free_ = std::move(call); }
+  // The fleet's call when the running task was preempted for an on-demand one and is queued again:
+  // the fleet offers it to every robot (its pool), from the clock. Without it (a fleet of one), the
+  // robot schedules it again with its own work.
+  void on_preempted(std::function<void(const TaskId&)> call) { preempted_ = std::move(call); }
   // The tasks dropped for now that the robot offers again to its scheduler.
   const std::vector<TaskId>& deferred() const;
   bool able() const { return !in_fault_ && !out_of_service_; }
@@ -297,6 +307,9 @@ class Executor final : public RobotListener {
   void look_again_at(Time at);
   void preempt_for(Outcome outcome, const std::string& reason, std::vector<TaskId> then_schedule);
   void requeue_preempted(const TaskId& id, Outcome outcome, const std::string& reason);
+  // The run hand_back_running() stopped has ended: the task is queued (or failed, past its window)
+  // and, queued, `handed` gets it from the clock.
+  void hand_back(const TaskId& id, const TaskEnd& e, std::function<void(const TaskId&)> handed);
   // A way the task needs was found blocked (ExecutorOptions::BlockedEdge::kWait): it is not
   // scheduled before the edge is likely passable again; false when that is not before its latest
   // start, or for an on-demand task not within `on_demand_patience` of its request (the caller
@@ -405,6 +418,7 @@ class Executor final : public RobotListener {
   std::vector<std::unique_ptr<TaskRun>> retired_runs_;  //   freed at the next robot callback
   std::optional<TaskId> confirmed_;                     // its running action was confirmed: its cancel counts as done
   std::vector<TaskId> after_preempt_;   // new tasks to schedule once the preempted task is out
+  std::function<void(const TaskId&)> handing_back_;  // hand_back_running(): called once the run ended
   TimerId look_again_ = 0;              // idle: look again at the queues then
   TimerId offer_again_ = 0;             // offer_again_at_next_slot()
   std::optional<RobotFault> fault_;
@@ -414,6 +428,7 @@ class Executor final : public RobotListener {
   std::function<void()> unable_;        // on_unable()
   std::function<void(const std::vector<TaskId>&)> dropped_;  // on_dropped()
   std::function<void()> free_;                               // on_free()
+  std::function<void(const TaskId&)> preempted_;             // on_preempted()
   std::unique_ptr<Charging> charging_;  // the battery: readings, thresholds, charges
   // assumptions and opportunities
   std::unique_ptr<AssumptionMap> assumption_map_;

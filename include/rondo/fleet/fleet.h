@@ -150,9 +150,15 @@ class Fleet {
   void hand_out(const std::vector<TaskId>& ids);
   // Re-allocation (fleet_reallocation.cpp): a robot that cannot work (ExecutorOptions::
   // reallocate_after after a fault began or it went out of service, and still so) hands back its
-  // unstarted tasks, which go to the robots that can work, each with a `re-allocated` event.
+  // unstarted tasks, which go to the robots that can work, each with a `re-allocated` event; in a
+  // fault, its running task too, with its progress, once its run has stopped
+  // (Executor::hand_back_running).
   void watch(exec::Executor& robot);
   void reallocate_from(exec::Executor& robot);
+  void move_tasks(exec::Executor& robot, const std::vector<TaskId>& ids);
+  // A task preempted on `robot` for an on-demand one goes back to the fleet's pool: allocated again
+  // over every robot (Executor::on_preempted).
+  void offer_preempted(exec::Executor& robot, const TaskId& id);
   // Drops for now, fleet-wide (fleet_drops.cpp): a task a robot drops for now goes to another robot
   // whose schedule it fits, one that has not dropped it within a slot; a robot that finds itself
   // free takes what fits it of the others' drops.
