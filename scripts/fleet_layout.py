@@ -8,12 +8,17 @@ room behind a door on each side of every node (W<n>-<k>E / W<n>-<k>W, 4 m inside
 corridor, behind doors, are the services: pharmacy, laboratory, kitchen, stores, reception; and in
 recesses on its north side, five docks with a charger each (Dock-1 .. Dock-5). 131 nodes.
 
+Traffic (docs/map-format.md, "Traffic"): the main corridor is wide enough for beds to pass each
+other, so each of its waypoints holds two robots side by side (`capacity: 2`); rooms, counters,
+ward corridors and docks (one charger each) hold one. No passage is narrow.
+
   python3 scripts/fleet_layout.py examples/fleet/map.yaml
 """
 import sys
 
 MAIN = 16
 MAIN_STEP = 8.0
+MAIN_CAPACITY = 2  # robots side by side at a main corridor waypoint
 WING_NODES = 5
 WING_STEP = 6.0
 ROOM_DEPTH = 4.0
@@ -29,9 +34,10 @@ DOCKS = [(1, 0), (2, 4), (3, 8), (4, 12), (5, 15)]  # (dock number, main corrido
 def main(out):
     nodes, edges = [], []
 
-    def node(name, x, y, description=None):
+    def node(name, x, y, description=None, capacity=1):
         meta = f", meta: {{description: \"{description}\"}}" if description else ""
-        nodes.append(f"  - {{name: {name}, pose: {{x: {x:.1f}, y: {y:.1f}}}{meta}}}")
+        room = f", capacity: {capacity}" if capacity != 1 else ""
+        nodes.append(f"  - {{name: {name}, pose: {{x: {x:.1f}, y: {y:.1f}}}{meta}{room}}}")
 
     def both(a, b, action=None, door=None, top_speed=None):
         extra = ""
@@ -49,7 +55,7 @@ def main(out):
 
     main_name = [f"Main-{i:02d}" for i in range(MAIN)]
     for i, n in enumerate(main_name):
-        node(n, i * MAIN_STEP, 0.0)
+        node(n, i * MAIN_STEP, 0.0, capacity=MAIN_CAPACITY)
     for i in range(MAIN - 1):
         both(main_name[i], main_name[i + 1])
     for number, at, side in WINGS:

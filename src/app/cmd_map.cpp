@@ -24,6 +24,20 @@ void print_warnings(CommandContext& ctx, const std::vector<std::string>& warning
   for (const std::string& w : warnings) ctx.err << "rondo: warning: " << w << '\n';
 }
 
+// Node capacities and narrow edges: "2 nodes hold more than one robot (up to 3); 4 narrow edges (2
+// single, 2 one-way)".
+std::string traffic_text(const map::MapSummary& s) {
+  std::string text = s.nodes_with_capacity == 0
+                         ? std::string("every node holds one robot")
+                         : fmt::format("{} node{} hold{} more than one robot (up to {})", s.nodes_with_capacity,
+                                       s.nodes_with_capacity == 1 ? "" : "s", s.nodes_with_capacity == 1 ? "s" : "",
+                                       s.largest_capacity);
+  const std::size_t narrow = s.narrow_single + s.narrow_one_way;
+  if (narrow == 0) return text + "; no narrow edges";
+  return text + fmt::format("; {} narrow edge{} ({} single, {} one-way)", narrow, narrow == 1 ? "" : "s",
+                            s.narrow_single, s.narrow_one_way);
+}
+
 void print_table(CommandContext& ctx, const std::string& file, const map::LoadedMap& loaded, const map::MapSummary& s) {
   auto row = [&](std::string_view label, const std::string& value) {
     ctx.out << fmt::format("{:<11}{}\n", label, value);
@@ -39,6 +53,7 @@ void print_table(CommandContext& ctx, const std::string& file, const map::Loaded
     row("extent", fmt::format("x {:.2f} .. {:.2f} m, y {:.2f} .. {:.2f} m ({:.1f} x {:.1f} m)", b.min_x, b.max_x,
                               b.min_y, b.max_y, b.max_x - b.min_x, b.max_y - b.min_y));
   }
+  row("traffic", traffic_text(s));
   row("travel",
       fmt::format("{:.0f} s to cross every edge once at the no-data speed prior", s.nominal_travel_time_total));
   row("connected", s.strongly_connected_components <= 1

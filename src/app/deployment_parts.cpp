@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <map>
 
 #include "rondo/ltl/task_formula.h"
 #include "rondo/map/map_loader.h"
@@ -34,6 +35,26 @@ Result<std::vector<RobotNodes>> robot_nodes(const Deployment& d, const map::Topo
     nodes.push_back(n);
   }
   return nodes;
+}
+
+// Simulated robots of a fleet start no more of them on a node than it holds: else they would
+// collide before the run begins.
+Status check_starts(const Deployment& d, const map::TopoMap& map, const std::vector<RobotNodes>& nodes) {
+  std::map<map::NodeIndex, std::vector<std::size_t>> starts;  // node -> the simulated robots starting there
+  for (std::size_t i = 0; i < d.robots.size(); ++i) {
+    if (d.robots[i].vda5050) continue;
+    std::vector<std::size_t>& here = starts[nodes[i].start];
+    here.push_back(i);
+    const int room = node_room(d, map, nodes[i].start);
+    if (here.size() <= static_cast<std::size_t>(room)) continue;
+    std::string names;
+    for (const std::size_t r : here) names += (names.empty() ? "'" : ", '") + d.robots[r].name + "'";
+    return Error::invalid(fmt::format(
+        "{}.start: node '{}' holds {} robot{} at once, and {} simulated robots start there ({}); give them other "
+        "starts, or the node a capacity on the map",
+        d.robots[i].where, map.node(nodes[i].start).name, room, room == 1 ? "" : "s", here.size(), names));
+  }
+  return Status{};
 }
 
 // Why no robot of the deployment can do `task` (at `path` of the task file): the field's path and
@@ -79,6 +100,11 @@ Status check_robots(const Deployment& d, const Document& doc, const TaskFile& pl
 
 }  // namespace
 
+int node_room(const Deployment& d, const map::TopoMap& map, map::NodeIndex node) {
+  const map::Node& n = map.node(node);
+  return std::max(n.capacity, d.dock_capacity(n.name));
+}
+
 Result<DeploymentParts> load_parts(const Deployment& d) {
   RONDO_ASSIGN_OR_RETURN(map::TopoMap map, map::load_map(d.map));
   const std::optional<map::NodeIndex> dock = map.find_node(d.dock);
@@ -90,6 +116,7 @@ Result<DeploymentParts> load_parts(const Deployment& d) {
     return Error::invalid(fmt::format("{}: executor.return_to: node '{}' is not on the map '{}'", d.file.string(),
                                       d.executor.return_to, map.name()));
   RONDO_ASSIGN_OR_RETURN(std::vector<RobotNodes> robots, robot_nodes(d, map, *dock));
+  RONDO_RETURN_IF_ERROR(check_starts(d, map, robots));
   TaskFile plan;
   if (d.routines) {
     const auto known = [&map](std::string_view node) { return map.find_node(node).has_value(); };
@@ -112,8 +139,8 @@ Result<DeploymentParts> load_parts(const Deployment& d) {
   std::optional<lang::Places> places;
   if (d.places) { RONDO_ASSIGN_OR_RETURN(places, lang::Places::load(*d.places, map)); }
   return DeploymentParts{
-      std::move(map),   *dock, std::move(robots), std::move(plan), std::move(world), std::move(people),
-      std::move(places)};
+      std::move(map),    *dock,  std::move(robots), std::move(plan), std::move(world), std::move(people),
+      std::move(places), nullptr};
 }
 
 }  // namespace rondo::app

@@ -8,6 +8,24 @@
 #include "rondo/vda5050/vda5050_robot.h"
 
 namespace rondo::app {
+namespace {
+
+std::size_t simulated_robots(const Deployment& d) {
+  std::size_t n = 0;
+  for (const RobotSpec& r : d.robots)
+    if (!r.vda5050) ++n;
+  return n;
+}
+
+// The building's traffic: the map's capacities, a listed dock's room where it is larger.
+std::unique_ptr<sim::Traffic> make_traffic(const Deployment& d, const DeploymentParts& parts) {
+  auto traffic = std::make_unique<sim::Traffic>(parts.map, parts.world->traffic);
+  for (const DockSpec& dock : d.docks)
+    if (const auto n = parts.map.find_node(dock.node)) traffic->set_capacity(*n, node_room(d, parts.map, *n));
+  return traffic;
+}
+
+}  // namespace
 
 Result<DeploymentRobot> make_robot(const Deployment& d, const RobotSpec& spec, DeploymentParts& parts,
                                    exec::Clock& clock, map::NodeIndex start, std::uint64_t seed) {
@@ -21,6 +39,7 @@ Result<DeploymentRobot> make_robot(const Deployment& d, const RobotSpec& spec, D
   parts.world->edges->set_seed(d.seed);  // the building's own spells: the deployment's seed, also on resume
   const std::size_t i = static_cast<std::size_t>(&spec - d.robots.data());
   if (i >= parts.robots.size()) return Error::internal("make_robot: a robot that is not the deployment's");
+  if (!parts.traffic && simulated_robots(d) > 1) parts.traffic = make_traffic(d, parts);
   auto sim =
       std::make_unique<sim::SimRobot>(clock, parts.map, *parts.world,
                                       sim::SimRobotOptions{.start = start,
@@ -29,7 +48,8 @@ Result<DeploymentRobot> make_robot(const Deployment& d, const RobotSpec& spec, D
                                                            .battery = d.robots.size() > 1 ? spec.battery : std::nullopt,
                                                            .speed = spec.speed,
                                                            .actions = spec.actions,
-                                                           .name = spec.name});
+                                                           .name = spec.name,
+                                                           .traffic = parts.traffic.get()});
   const sim::SimRobot* s = sim.get();
   return DeploymentRobot{.robot = std::move(sim), .charging_time = [s] { return s->charging_time(); }};
 }

@@ -27,7 +27,9 @@ struct DeploymentRobot {
 
 // `spec` is one of `deployment.robots`. It starts at `start` (a VDA 5050 vehicle then says where it
 // is); `seed` is the simulated robot's, which drives in `parts.world` with the fleet's other
-// simulated robots. `parts` and `clock` must outlive it.
+// simulated robots. With two simulated robots or more, they share `parts.traffic` (made with the
+// first: the map's capacities, a listed dock's room where larger). `parts` and `clock` must
+// outlive it.
 Result<DeploymentRobot> make_robot(const Deployment& deployment, const RobotSpec& spec, DeploymentParts& parts,
                                    exec::Clock& clock, map::NodeIndex start, std::uint64_t seed);
 

@@ -30,6 +30,7 @@
 #include "rondo/store/traversal_log.h"
 #include "run_folder.h"
 #include "run_report.h"
+#include "traffic_report.h"
 
 namespace rondo::app {
 namespace {
@@ -349,6 +350,8 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   result.report["seed"] = d.seed;
   result.report["days"] = d.days;
   result.report["travel_table"] = travel_table(map, log, start, d.days, fleet.zone());
+  // Several simulated robots in one building: their meetings (since this start, on a resumed run).
+  if (s.parts.traffic) result.report["traffic"] = traffic_report(*s.parts.traffic);
   if (d.reference) result.report["reference"] = reference_figures(*d.reference, result.report, d.days);
   RONDO_ASSIGN_OR_RETURN(const std::vector<store::Event> events, store::read_events(db));
   result.report["weeks"] = weekly_summary(log, events, start, end);

@@ -14,6 +14,19 @@
 
 namespace rondo::map {
 
+namespace {
+
+// What an imported map cannot say: its format has no field for traffic (tmap2's restrictions choose
+// robots and tasks, not how many at once).
+std::string no_traffic_warning(MapFormat format) {
+  return fmt::format(
+      "{} maps have no node capacity and no narrow edges: every node holds one robot and robots pass each other on "
+      "every edge (a converted map may add capacity and narrow: docs/map-format.md)",
+      format == MapFormat::kTmap2 ? "tmap2" : "STRANDS");
+}
+
+}  // namespace
+
 const char* to_string(MapFormat format) {
   switch (format) {
     case MapFormat::kRondo:
@@ -46,7 +59,7 @@ Result<LoadedMap> load_map_file(const std::filesystem::path& file) {
   if (is_tmap) {
     auto map = parse_strands_tmap(*text, file.string());
     if (!map) return map.error();
-    return LoadedMap{std::move(*map), MapFormat::kStrandsTmap};
+    return LoadedMap{std::move(*map), MapFormat::kStrandsTmap, {no_traffic_warning(MapFormat::kStrandsTmap)}};
   }
   auto doc = Document::parse(*text, is_json ? DocumentFormat::kJson : DocumentFormat::kYaml, file.string());
   if (!doc) return doc.error();
@@ -55,6 +68,7 @@ Result<LoadedMap> load_map_file(const std::filesystem::path& file) {
   if (claims_tmap2 || is_tmap2_document(*doc)) {
     auto in = tmap2_map_from_document(*doc);
     if (!in) return in.error();
+    in->warnings.push_back(no_traffic_warning(MapFormat::kTmap2));
     return LoadedMap{std::move(in->map), MapFormat::kTmap2, std::move(in->warnings)};
   }
   if (is_rondo_map_document(*doc)) {
@@ -64,7 +78,8 @@ Result<LoadedMap> load_map_file(const std::filesystem::path& file) {
   }
   auto map = strands_map_from_document(*doc);
   if (!map) return map.error();
-  return LoadedMap{std::move(*map), is_json ? MapFormat::kStrandsJson : MapFormat::kStrandsYaml};
+  const MapFormat format = is_json ? MapFormat::kStrandsJson : MapFormat::kStrandsYaml;
+  return LoadedMap{std::move(*map), format, {no_traffic_warning(format)}};
 }
 
 Result<TopoMap> load_map(const std::filesystem::path& file) {

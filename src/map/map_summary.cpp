@@ -22,6 +22,8 @@ MapSummary summarize(const TopoMap& map) {
       s.longest_edge = edge.id;
     }
     if (edge.top_speed) ++s.edges_with_top_speed;
+    if (edge.narrow == Narrow::kSingle) ++s.narrow_single;
+    if (edge.narrow == Narrow::kOneWay) ++s.narrow_one_way;
     s.nominal_travel_time_total += to_seconds(nominal_travel_time(map, e));
     if (edge.door) {
       auto it = std::find_if(s.doors.begin(), s.doors.end(), [&](const DoorSummary& d) { return d.id == *edge.door; });
@@ -31,6 +33,8 @@ MapSummary summarize(const TopoMap& map) {
   }
   for (const Node& n : map.nodes()) {
     if (!n.influence.empty()) ++s.nodes_with_influence;
+    if (n.capacity > 1) ++s.nodes_with_capacity;
+    s.largest_capacity = std::max(s.largest_capacity, n.capacity);
   }
   s.strongly_connected_components = strongly_connected_components(map).size();
   s.warnings = map_warnings(map);
@@ -59,6 +63,9 @@ Json to_json(const MapSummary& s) {
       s.longest_edge.empty() ? Json(nullptr) : Json{{"id", s.longest_edge}, {"length_m", s.longest_edge_length}};
   j["edges_with_top_speed"] = s.edges_with_top_speed;
   j["nodes_with_influence"] = s.nodes_with_influence;
+  j["nodes_with_capacity"] = s.nodes_with_capacity;
+  j["largest_capacity"] = s.largest_capacity;
+  j["narrow_edges"] = Json{{"single", s.narrow_single}, {"one_way", s.narrow_one_way}};
   j["strongly_connected"] = s.strongly_connected_components <= 1;
   j["strongly_connected_components"] = s.strongly_connected_components;
   j["nominal_travel_time_total_s"] = s.nominal_travel_time_total;

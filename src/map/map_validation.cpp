@@ -49,6 +49,9 @@ void check_node(const std::vector<Node>& nodes, std::size_t i, std::unordered_ma
     }
   }
   if (!n.meta.is_null() && !n.meta.is_object()) add("meta", "must be a mapping");
+  if (n.capacity < 1 || n.capacity > kMaxNodeCapacity) {
+    add("capacity", fmt::format("must be a whole number of robots from 1 to {}, not {}", kMaxNodeCapacity, n.capacity));
+  }
 }
 
 void check_edge(const std::vector<Edge>& edges, std::size_t i,
@@ -97,6 +100,29 @@ std::vector<bool> reachable(const TopoMap& map, const std::vector<NodeIndex>& st
     }
   }
   return seen;
+}
+
+// The passages whose edges carry different narrow marks (one direction marked, the other not, or
+// marked otherwise): one sentence per pair of nodes, at its first edge.
+void narrow_mismatch_warnings(const TopoMap& map, std::vector<std::string>& out) {
+  for (EdgeIndex e = 0; e < map.edge_count(); ++e) {
+    const NodeIndex a = map.from_index(e), b = map.to_index(e);
+    std::optional<EdgeIndex> other;  // another edge of the passage, marked otherwise
+    bool earlier = false;            // the passage was looked at already, at a lower edge
+    for (NodeIndex from : {a, b}) {
+      for (EdgeIndex o : map.out_edges(from)) {
+        if (map.to_index(o) != (from == a ? b : a)) continue;
+        earlier = earlier || o < e;
+        if (!other && map.edge(o).narrow != map.edge(e).narrow) other = o;
+      }
+    }
+    if (earlier || !other) continue;
+    out.push_back(
+        fmt::format("edges {} (narrow: {}) and {} (narrow: {}) lead between the same two nodes: the "
+                    "simulator takes the passage as {}",
+                    quoted_name(map.edge(e).id), to_string(map.edge(e).narrow), quoted_name(map.edge(*other).id),
+                    to_string(map.edge(*other).narrow), to_string(passage_narrow(map, e))));
+  }
 }
 
 }  // namespace
@@ -180,10 +206,12 @@ std::vector<std::vector<NodeIndex>> strongly_connected_components(const TopoMap&
   return components;
 }
 
-std::vector<std::string> map_warnings(const TopoMap& map) {
-  std::vector<std::string> out;
+namespace {
+
+// The map is not strongly connected: the groups, and each node outside the largest.
+void connectivity_warnings(const TopoMap& map, std::vector<std::string>& out) {
   const auto components = strongly_connected_components(map);
-  if (components.size() <= 1) return out;
+  if (components.size() <= 1) return;
   const std::vector<NodeIndex>& main = components.front();
   out.push_back(
       fmt::format("the map is not strongly connected: {} groups of nodes; the largest holds {} of the {} nodes "
@@ -204,6 +232,14 @@ std::vector<std::string> map_warnings(const TopoMap& map) {
       out.push_back(fmt::format("node {} is a dead end: the robot cannot get back from it to the largest group", name));
     }
   }
+}
+
+}  // namespace
+
+std::vector<std::string> map_warnings(const TopoMap& map) {
+  std::vector<std::string> out;
+  connectivity_warnings(map, out);
+  narrow_mismatch_warnings(map, out);
   return out;
 }
 

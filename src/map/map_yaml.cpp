@@ -31,9 +31,31 @@ Result<std::optional<std::string>> optional_text(const Field& parent, std::strin
   return std::optional<std::string>(std::move(text));
 }
 
+// `capacity`: a whole number of robots, 1 (the default) to kMaxNodeCapacity.
+Result<int> decode_capacity(const Field& node) {
+  auto f = node.optional("capacity");
+  if (!f) return 1;
+  auto n = f->as_int();
+  if (!n || *n < 1 || *n > kMaxNodeCapacity) {
+    return f->error(fmt::format("expected a whole number of robots the place holds at once, from 1 to {}{}",
+                                kMaxNodeCapacity, n ? fmt::format(", not {}", *n) : std::string()));
+  }
+  return static_cast<int>(*n);
+}
+
+// `narrow`: single or one_way; absent, robots pass each other freely.
+Result<Narrow> decode_narrow(const Field& edge) {
+  auto f = edge.optional("narrow");
+  if (!f) return Narrow::kNone;
+  auto word = f->as_string();
+  const std::optional<Narrow> narrow = word ? narrow_from_string(*word) : std::nullopt;
+  if (!narrow) return f->error("expected single (one robot at a time) or one_way (one direction at a time)");
+  return *narrow;
+}
+
 Result<Node> decode_node(const Field& f) {
   RONDO_RETURN_IF_ERROR(
-      f.expect_keys({"name", "pose", "xy_goal_tolerance", "yaw_goal_tolerance", "influence", "meta"}));
+      f.expect_keys({"name", "pose", "xy_goal_tolerance", "yaw_goal_tolerance", "influence", "meta", "capacity"}));
   Node node;
   RONDO_ASSIGN_OR_RETURN(node.name, required_text(f, "name"));
   RONDO_ASSIGN_OR_RETURN(const Field pose, f.required("pose"));
@@ -57,11 +79,12 @@ Result<Node> decode_node(const Field& f) {
     if (!meta->is_object()) return meta->error("expected a mapping of free-form facts about the place");
     node.meta = meta->json();
   }
+  RONDO_ASSIGN_OR_RETURN(node.capacity, decode_capacity(f));
   return node;
 }
 
 Result<Edge> decode_edge(const Field& f) {
-  RONDO_RETURN_IF_ERROR(f.expect_keys({"id", "from", "to", "action", "top_speed", "door"}));
+  RONDO_RETURN_IF_ERROR(f.expect_keys({"id", "from", "to", "action", "top_speed", "door", "narrow"}));
   Edge edge;
   RONDO_ASSIGN_OR_RETURN(edge.from, required_text(f, "from"));
   RONDO_ASSIGN_OR_RETURN(edge.to, required_text(f, "to"));
@@ -73,6 +96,7 @@ Result<Edge> decode_edge(const Field& f) {
     RONDO_ASSIGN_OR_RETURN(edge.top_speed, speed->as_number());
   }
   RONDO_ASSIGN_OR_RETURN(edge.door, optional_text(f, "door"));
+  RONDO_ASSIGN_OR_RETURN(edge.narrow, decode_narrow(f));
   return edge;
 }
 
@@ -150,6 +174,7 @@ Json map_to_json(const TopoMap& map) {
       j["influence"] = std::move(vertices);
     }
     if (!n.meta.is_null()) j["meta"] = n.meta;
+    if (n.capacity != 1) j["capacity"] = n.capacity;
     nodes.push_back(std::move(j));
   }
   Json edges = Json::array();
@@ -161,6 +186,7 @@ Json map_to_json(const TopoMap& map) {
     j["action"] = e.action;
     if (e.top_speed) j["top_speed"] = *e.top_speed;
     if (e.door) j["door"] = *e.door;
+    if (e.narrow != Narrow::kNone) j["narrow"] = to_string(e.narrow);
     edges.push_back(std::move(j));
   }
   Json out = Json::object();

@@ -24,6 +24,24 @@ void build_adjacency(std::size_t node_count, const std::vector<std::pair<NodeInd
 
 }  // namespace
 
+const char* to_string(Narrow narrow) {
+  switch (narrow) {
+    case Narrow::kNone:
+      return "none";
+    case Narrow::kSingle:
+      return "single";
+    case Narrow::kOneWay:
+      return "one_way";
+  }
+  return "none";
+}
+
+std::optional<Narrow> narrow_from_string(std::string_view word) {
+  if (word == "single") return Narrow::kSingle;
+  if (word == "one_way") return Narrow::kOneWay;
+  return std::nullopt;
+}
+
 Result<TopoMap> TopoMap::build(std::string name, std::vector<Node> nodes, std::vector<Edge> edges) {
   const std::vector<MapProblem> problems = find_map_problems(nodes, edges);
   if (!problems.empty()) {
@@ -71,6 +89,19 @@ std::span<const EdgeIndex> TopoMap::out_edges(NodeIndex i) const {
 std::span<const EdgeIndex> TopoMap::in_edges(NodeIndex i) const {
   if (i >= nodes_.size()) throw std::out_of_range(fmt::format("in_edges: no node {}", i));
   return std::span<const EdgeIndex>(in_).subspan(in_start_[i], in_start_[i + 1] - in_start_[i]);
+}
+
+Narrow passage_narrow(const TopoMap& map, EdgeIndex e) {
+  const NodeIndex a = map.from_index(e), b = map.to_index(e);
+  Narrow strictest = Narrow::kNone;
+  for (NodeIndex from : {a, b}) {
+    for (EdgeIndex o : map.out_edges(from)) {
+      if (map.to_index(o) != (from == a ? b : a)) continue;
+      const Narrow mark = map.edge(o).narrow;
+      if (mark == Narrow::kSingle || (mark == Narrow::kOneWay && strictest == Narrow::kNone)) strictest = mark;
+    }
+  }
+  return strictest;
 }
 
 bool TopoMap::operator==(const TopoMap& other) const {

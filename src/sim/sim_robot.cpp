@@ -22,6 +22,7 @@ SimRobot::SimRobot(exec::Clock& clock, const map::TopoMap& map, SimWorld& world,
     throw std::logic_error("SimRobot: start or dock is not a node of the map");
   }
   if (!world.edges) throw std::logic_error("SimRobot: the world has no edges");
+  if (options.traffic) traffic_id_ = options.traffic->join(options.name, options.start, clock.now(), this);
   // The doors the sensor can see from each node: each door once, by one of its edges.
   doors_near_.resize(map.node_count());
   if (world.door_sensor.enabled) {
@@ -46,6 +47,7 @@ SimRobot::SimRobot(exec::Clock& clock, const map::TopoMap& map, SimWorld& world,
 
 SimRobot::~SimRobot() {
   for (const auto& [key, id] : posted_) clock_.cancel(id);
+  if (options_.traffic) options_.traffic->leave(traffic_id_, clock_.now());
 }
 
 std::uint64_t SimRobot::post(Time at, std::function<void()> callback) {
@@ -120,6 +122,7 @@ void SimRobot::rescue_if_stranded() {
   if (!empty_since_) empty_since_ = now;
   if (now - *empty_since_ < *battery_model().rescue_after) return;
   location_ = options_.dock;  // carried back onto the charger: the command fails, from the dock
+  if (options_.traffic) options_.traffic->carry(traffic_id_, location_, now);
   empty_since_.reset();
   ++rescues_;
 }
@@ -133,16 +136,73 @@ void SimRobot::start_edge(map::EdgeIndex edge) {
     job.end = End::kFault;
     job.message = fault_->message;
   } else if (battery_ > 0) {
-    const EdgeSample s = world_.edges->sample_edge(edge, job.start, rng_);
-    job.success = s.success;
-    job.duration = s.duration;
-    if (options_.speed != 1.0)
-      job.duration =
-          Duration{static_cast<Duration::rep>(std::llround(static_cast<double>(s.duration.count()) / options_.speed))};
+    if (options_.traffic && options_.traffic->blocker(traffic_id_, edge)) return hold(std::move(job));
+    sample_edge(job);
   } else {
     job.success = false;  // an empty battery: the robot cannot move
   }
   start(std::move(job));
+}
+
+void SimRobot::sample_edge(Job& job) {
+  const Time now = clock_.now();
+  const EdgeSample s = world_.edges->sample_edge(job.edge, now, rng_);
+  job.success = s.success;
+  job.duration = s.duration;
+  if (options_.speed != 1.0)
+    job.duration =
+        Duration{static_cast<Duration::rep>(std::llround(static_cast<double>(s.duration.count()) / options_.speed))};
+  job.duration += now - job.start;  // the time it was held up
+  if (options_.traffic) {
+    options_.traffic->enter(traffic_id_, job.edge, now);
+    job.entered = true;
+  }
+}
+
+void SimRobot::hold(Job job) {
+  Traffic& traffic = *options_.traffic;
+  traffic.hold(traffic_id_, job.edge, job.start);
+  job_ = std::move(job);
+  job_->held = true;
+  job_->hold_timeout_post = post(job_->start + traffic.options().hold_timeout, [this] {
+    job_->hold_timeout_post = 0;
+    give_up_hold();
+  });
+}
+
+void SimRobot::on_way_may_be_clear() {
+  if (!job_ || !job_->held || job_->recheck_post != 0) return;
+  // Not from inside the traffic's call: on the clock, after what moves now.
+  job_->recheck_post = post(clock_.now(), [this] {
+    job_->recheck_post = 0;
+    look_again();
+  });
+}
+
+void SimRobot::look_again() {
+  if (!job_ || !job_->held || options_.traffic->blocker(traffic_id_, job_->edge)) return;  // still held up
+  leave_hold(HoldUp::End::kPassed);
+  sample_edge(*job_);
+  job_->finish_post = post(job_->start + job_->duration, [this] { finish(); });
+}
+
+void SimRobot::give_up_hold() {
+  const std::optional<Blocker> blocker = options_.traffic->blocker(traffic_id_, job_->edge);
+  if (!blocker) return look_again();  // cleared at this very moment
+  leave_hold(HoldUp::End::kTimedOut);
+  job_->success = false;
+  job_->message = blocker->text();
+  job_->duration = clock_.now() - job_->start;
+  job_->finish_post = post(clock_.now(), [this] { finish(); });
+}
+
+void SimRobot::leave_hold(HoldUp::End how) {
+  if (!job_ || !job_->held) return;
+  options_.traffic->end_hold(traffic_id_, clock_.now(), how);
+  unpost(job_->hold_timeout_post);
+  unpost(job_->recheck_post);
+  job_->hold_timeout_post = job_->recheck_post = 0;
+  job_->held = false;
 }
 
 void SimRobot::run_action(const Action& action, Duration expected) {
@@ -181,6 +241,7 @@ void SimRobot::stop_job(End end, std::string message) {
   route_.clear();
   if (!job_ || job_->end != End::kNatural) return;
   settle_battery();
+  leave_hold(HoldUp::End::kStopped);
   unpost(job_->finish_post);
   job_->end = end;
   job_->message = std::move(message);
@@ -222,6 +283,7 @@ void SimRobot::finish() {
       distance_m_ += metres;
       battery_ = battery_model().after_distance(battery_, metres);
     }
+    if (job.entered) options_.traffic->arrive(traffic_id_, location_, clock_.now());
     // The rest of the committed route goes on after a success; anything else ends the drive.
     if (job.success && job.end == End::kNatural && !route_.empty()) {
       const map::EdgeIndex next = route_.front();
@@ -244,7 +306,7 @@ void SimRobot::deliver(const Job& job) {
       case End::kCancelled: a.outcome = exec::EdgeOutcome::kCancelled; break;
       case End::kFault: a.outcome = exec::EdgeOutcome::kRobotFault; break;
     }
-    if (job.end != End::kNatural) a.message = job.message;
+    if (job.end != End::kNatural || !job.message.empty()) a.message = job.message;
     listener_->on_edge_finished(a);
     return;
   }

@@ -46,6 +46,18 @@ Result<DoorSensor> decode_door_sensor(const Field& f) {
   return d;
 }
 
+// traffic: {hold_timeout: 60s}: how long a robot waits for another to clear its way.
+Result<TrafficOptions> decode_traffic(const Field& f) {
+  RONDO_RETURN_IF_ERROR(f.expect_keys({"hold_timeout"}));
+  TrafficOptions traffic;
+  if (auto v = f.optional("hold_timeout")) {
+    RONDO_ASSIGN_OR_RETURN(traffic.hold_timeout, v->as_duration());
+    if (traffic.hold_timeout <= Duration{0} || traffic.hold_timeout > hours(24))
+      return v->error("must be a duration above 0 and at most 24h, such as 60s");
+  }
+  return traffic;
+}
+
 Result<Confirmation> decode_confirmation(const Field& f, const map::TopoMap& map) {
   RONDO_RETURN_IF_ERROR(f.expect_keys({"actions", "default", "places"}));
   Confirmation c;
@@ -78,9 +90,8 @@ Result<Confirmation> decode_confirmation(const Field& f, const map::TopoMap& map
 }
 
 Result<std::unique_ptr<EdgeWorld>> decode_parametric(const Field& root, const map::TopoMap& map, const TimeZone& zone) {
-  RONDO_RETURN_IF_ERROR(root.expect_keys({"kind", "speed", "failure_probability", "noise", "failed_duration",
-                                          "bursts", "effects", "actions", "battery", "door_sensor",
-                                          "confirmation"}));
+  RONDO_RETURN_IF_ERROR(root.expect_keys({"kind", "speed", "failure_probability", "noise", "failed_duration", "bursts",
+                                          "effects", "actions", "battery", "door_sensor", "confirmation", "traffic"}));
   ParametricSpec spec;
   RONDO_RETURN_IF_ERROR(detail::decode_edge_settings(root, true, spec));
   if (auto effects = root.optional("effects")) {
@@ -96,7 +107,7 @@ Result<std::unique_ptr<EdgeWorld>> decode_parametric(const Field& root, const ma
 Result<std::unique_ptr<EdgeWorld>> decode_replay(const Field& root, const std::filesystem::path& base,
                                                  const map::TopoMap& map, const TimeZone& zone) {
   RONDO_RETURN_IF_ERROR(root.expect_keys({"kind", "logs", "log_timezone", "window", "prior", "actions", "battery",
-                                          "door_sensor", "confirmation"}));
+                                          "door_sensor", "confirmation", "traffic"}));
   ReplayOptions options;
   RONDO_ASSIGN_OR_RETURN(auto logs_field, root.required("logs"));
   RONDO_ASSIGN_OR_RETURN(auto logs, logs_field.as_string());
@@ -149,6 +160,9 @@ Result<SimWorld> decode_world(const Document& doc, const std::filesystem::path& 
   }
   if (auto confirmation = root.optional("confirmation")) {
     RONDO_ASSIGN_OR_RETURN(world.confirmation, decode_confirmation(*confirmation, map));
+  }
+  if (auto traffic = root.optional("traffic")) {
+    RONDO_ASSIGN_OR_RETURN(world.traffic, decode_traffic(*traffic));
   }
   return world;
 }

@@ -147,6 +147,14 @@ INSTANTIATE_TEST_SUITE_P(
                               "deployment.yaml",
                               "{name: r2}",
                               "dock 'ChargingPoint' has room for 1 robot, and 2 robots have it as their dock"},
+                      Mistake{"two-starts-on-one-node",
+                              "robots:\n  - {name: r1, start: WayPoint4}\n  - {name: r2, dock: WayPoint3, start: "
+                              "WayPoint4}\n",
+                              {},
+                              "deployment.yaml",
+                              "{name: r2, dock: WayPoint3",
+                              "robots[1].start: node 'WayPoint4' holds 1 robot at once, and 2 simulated robots start "
+                              "there ('r1', 'r2')"},
                       Mistake{"action-nobody-runs",
                               "robots:\n  - {name: r1, actions: [door_check, extinguisher_check]}\n",
                               {},
@@ -201,6 +209,17 @@ TEST(FleetRun, EveryRobotWorksAndEachTaskRunsOnOneRobot) {
   }
   EXPECT_EQ(allocated, report["tasks"]["added"].get<int>());
   EXPECT_NEAR(distance, report["navigation"]["distance_m"].get<double>(), 0.5);
+  // Three robots in one building: their meetings (docs/simulation.md, "Traffic").
+  ASSERT_TRUE(report.contains("traffic"));
+  const Json& traffic = report["traffic"];
+  EXPECT_EQ(traffic["hold_timeout_s"], 60.0);
+  const Json& holds = traffic["hold_ups"];
+  EXPECT_EQ(holds["count"].get<int>(),
+            holds["passed"].get<int>() + holds["timed_out"].get<int>() + holds["stopped"].get<int>());
+  EXPECT_LE(holds["longest_s"].get<double>(), 60.0);
+  EXPECT_LE(holds["first"].size(), 5u);
+  EXPECT_EQ(traffic["collisions"]["count"].get<int>(),
+            traffic["collisions"]["at_nodes"].get<int>() + traffic["collisions"]["on_narrow_edges"].get<int>());
   for (const char* name : {"r1", "r2", "checker"})
     for (const char* day : {"2026-11-23", "2026-11-24"})
       EXPECT_TRUE(std::filesystem::exists(out / "days" / (std::string(day) + "-" + name + ".svg"))) << name << day;
@@ -220,6 +239,15 @@ TEST(FleetRun, EveryRobotWorksAndEachTaskRunsOnOneRobot) {
     ++with_robot;
   }
   EXPECT_GT(with_robot, 0);
+}
+
+// A robot alone has no traffic: its report has no `traffic` section (and is as it was).
+TEST(FleetRun, ALoneRobotsReportHasNoTraffic) {
+  const auto dir = fresh_dir("alone");
+  const auto r =
+      test::run_cli({"run", test::copy_g4s(dir).string(), "--days", "1", "--out", (dir / "run").string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(Json::parse(r.out).contains("traffic"));
 }
 
 }  // namespace

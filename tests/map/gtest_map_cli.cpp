@@ -1,8 +1,13 @@
 // `rondo map info|check|convert`, run in-process through rondo::app::run.
 #include <gtest/gtest.h>
 
+#include <tuple>
+#include <vector>
+
 #include "app/cli_runner.h"
 #include "map_test_support.h"
+#include "rondo/core/atomic_file.h"
+#include "rondo/core/document.h"
 #include "rondo/map/map_loader.h"
 
 namespace rondo::map {
@@ -51,8 +56,48 @@ TEST(MapCli, InfoTableShowsTheEssentials) {
 TEST(MapCli, CheckValidMapExitsZero) {
   const CliRun r = run_cli({"map", "check", real_map("tsc_1605.yaml").string()});
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("valid strands-yaml map, 67 nodes, 232 edges, 0 warnings"), std::string::npos) << r.out;
-  EXPECT_EQ(r.err, "");
+  EXPECT_NE(r.out.find("valid strands-yaml map, 67 nodes, 232 edges, 1 warning"), std::string::npos) << r.out;
+  // The one warning: what a STRANDS map cannot say.
+  EXPECT_EQ(r.err,
+            "rondo: warning: STRANDS maps have no node capacity and no narrow edges: every node holds one robot and "
+            "robots pass each other on every edge (a converted map may add capacity and narrow: "
+            "docs/map-format.md)\n");
+}
+
+TEST(MapCli, InfoCountsCapacitiesAndNarrowEdges) {
+  const CliRun r = run_cli({"map", "info", fixture("traffic.yaml").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("traffic    2 nodes hold more than one robot (up to 4); 4 narrow edges (2 single, 2 one-way)"),
+            std::string::npos)
+      << r.out;
+  const CliRun office = run_cli({"map", "info", fixture("office.yaml").string()});
+  EXPECT_NE(office.out.find("traffic    every node holds one robot; no narrow edges"), std::string::npos) << office.out;
+  const CliRun j = run_cli({"map", "info", fixture("traffic.yaml").string(), "--json"});
+  ASSERT_EQ(j.exit_code, 0) << j.err;
+  const Json info = Json::parse(j.out);
+  EXPECT_EQ(info["nodes_with_capacity"], 2);
+  EXPECT_EQ(info["narrow_edges"]["single"], 2);
+  EXPECT_EQ(info["narrow_edges"]["one_way"], 2);
+  EXPECT_EQ(info["import_warnings"], Json::array());  // rondo's format says both
+}
+
+TEST(MapCli, BadCapacityOrNarrowExitsTwoNamingLineAndField) {
+  testing::TempDir dir;
+  auto text = read_text_file(fixture("traffic.yaml"));
+  ASSERT_TRUE(text.ok());
+  for (const auto& [from, to, expected] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"capacity: 4}", "capacity: -1}",
+            ":8: nodes[2].capacity: expected a whole number of robots the place holds at once, from 1 to 1000, not -1"},
+           {"narrow: one_way}\n  - {from: Ward", "narrow: twoway}\n  - {from: Ward",
+            ":15: edges[4].narrow: expected single (one robot at a time) or one_way (one direction at a time)"}}) {
+    std::string bad = *text;
+    bad.replace(bad.find(from), from.size(), to);
+    const auto file = dir.path() / "bad.yaml";
+    ASSERT_TRUE(write_file_atomically(file, bad).ok());
+    const CliRun r = run_cli({"map", "check", file.string()});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(file.string() + expected), std::string::npos) << r.err;
+  }
 }
 
 TEST(MapCli, CheckWithWarningsStillExitsZero) {

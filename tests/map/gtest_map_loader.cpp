@@ -107,6 +107,29 @@ TEST(LoadMap, DetectsFormatsOfTheFixtures) {
   }
 }
 
+TEST(LoadMap, ImportedFormatsWarnThatTheyHaveNoCapacityOrNarrowEdges) {
+  const std::vector<std::pair<std::string, std::string>> cases = {{"small.tmap", "STRANDS"},
+                                                                  {"small_strands.yaml", "STRANDS"},
+                                                                  {"small_strands.json", "STRANDS"},
+                                                                  {"lcas_maps_test.tmap2", "tmap2"},
+                                                                  {"lcas_certh_vogui_2sides_policies.tmap2", "tmap2"}};
+  for (const auto& [file, format] : cases) {
+    auto loaded = load_map_file(fixture(file));
+    ASSERT_TRUE(loaded.ok()) << file << ": " << loaded.error().message;
+    ASSERT_FALSE(loaded->import_warnings.empty()) << file;
+    EXPECT_EQ(loaded->import_warnings.back(),
+              format +
+                  " maps have no node capacity and no narrow edges: every node holds one robot and robots pass each "
+                  "other on every edge (a converted map may add capacity and narrow: docs/map-format.md)")
+        << file;
+    for (const Node& n : loaded->map.nodes()) EXPECT_EQ(n.capacity, 1) << file;
+    for (const Edge& e : loaded->map.edges()) EXPECT_EQ(e.narrow, Narrow::kNone) << file;
+  }
+  auto own = load_map_file(fixture("traffic.yaml"));
+  ASSERT_TRUE(own.ok()) << own.error().message;
+  EXPECT_TRUE(own->import_warnings.empty());
+}
+
 TEST(LoadMap, RondoFormatAlsoReadsFromJsonAndYml) {
   TempDir dir;
   const auto json_file = dir.path() / "m.json";

@@ -53,6 +53,21 @@ TEST(MapSummary, JsonHasTheCountsAndUnits) {
   EXPECT_EQ(j["longest_edge"]["id"], "A_B");
 }
 
+TEST(MapSummary, CountsCapacitiesAndNarrowEdges) {
+  auto map = load_map(testing::fixture("traffic.yaml"));
+  ASSERT_TRUE(map.ok()) << map.error().message;
+  const MapSummary s = summarize(*map);
+  EXPECT_EQ(s.nodes_with_capacity, 2u);
+  EXPECT_EQ(s.largest_capacity, 4);
+  EXPECT_EQ(s.narrow_single, 2u);
+  EXPECT_EQ(s.narrow_one_way, 2u);
+  const Json j = to_json(s);
+  EXPECT_EQ(j["nodes_with_capacity"], 2);
+  EXPECT_EQ(j["largest_capacity"], 4);
+  EXPECT_EQ(j["narrow_edges"], (Json{{"single", 2}, {"one_way", 2}}));
+  EXPECT_TRUE(s.warnings.empty());
+}
+
 TEST(MapSummary, MapWithoutEdges) {
   const TopoMap map = testing::build_or_fail({testing::node_at("A", 1, 1)}, {});
   const Json j = to_json(summarize(map));

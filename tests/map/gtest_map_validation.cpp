@@ -42,6 +42,14 @@ Node with_tolerances(Node n, double xy, double yaw) {
   n.yaw_goal_tolerance = yaw;
   return n;
 }
+Node with_capacity(Node n, int capacity) {
+  n.capacity = capacity;
+  return n;
+}
+Edge with_narrow(Edge e, Narrow narrow) {
+  e.narrow = narrow;
+  return e;
+}
 Node with_vertex(Node n, double x, double y) {
   n.influence.push_back({x, y});
   return n;
@@ -119,7 +127,15 @@ INSTANTIATE_TEST_SUITE_P(
         ProblemCase{"empty door",
                     {kA, kB},
                     {with_door(edge("A", "B"), "")},
-                    "edges[0] 'A_B': door: a door id must not be empty"}));
+                    "edges[0] 'A_B': door: a door id must not be empty"},
+        ProblemCase{"capacity 0",
+                    {kA, with_capacity(kB, 0)},
+                    {},
+                    "nodes[1] 'B': capacity: must be a whole number of robots from 1 to 1000, not 0"},
+        ProblemCase{"capacity too large",
+                    {with_capacity(kA, 1001)},
+                    {},
+                    "nodes[0] 'A': capacity: must be a whole number of robots from 1 to 1000, not 1001"}));
 
 TEST(MapProblems, AllProblemsAreListedInOrder) {
   const std::vector<Node> nodes = {kA, node_at("A", kNan, 0)};
@@ -168,6 +184,20 @@ TEST(MapWarnings, NamesDeadEndsUnreachableAndIsolatedNodes) {
   EXPECT_EQ(warnings[1], "node 'Lift' is a dead end: the robot cannot get back from it to the largest group");
   EXPECT_EQ(warnings[2], "node 'In' cannot be reached from the largest group of nodes");
   EXPECT_EQ(warnings[3], "node 'Island' is cut off: no path leads between it and the largest group");
+}
+
+TEST(MapWarnings, NamesAPassageWhoseDirectionsAreMarkedDifferently) {
+  const TopoMap map =
+      build_or_fail({kA, kB, node_at("C", 2, 0)},
+                    {with_narrow(edge("A", "B"), Narrow::kOneWay), edge("B", "A"),
+                     with_narrow(edge("B", "C"), Narrow::kSingle), with_narrow(edge("C", "B"), Narrow::kSingle)});
+  const auto warnings = map_warnings(map);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0],
+            "edges 'A_B' (narrow: one_way) and 'B_A' (narrow: none) lead between the same two nodes: the simulator "
+            "takes the passage as one_way");
+  EXPECT_EQ(passage_narrow(map, 1), Narrow::kOneWay);
+  EXPECT_EQ(passage_narrow(map, 2), Narrow::kSingle);
 }
 
 TEST(StronglyConnectedComponents, LargestFirstEachSorted) {

@@ -115,7 +115,7 @@ INSTANTIATE_TEST_SUITE_P(
                "bad.yaml:2: nodes[0].name: expected text, found an integer"},
         BadMap{"unknown node field", "nodes:\n  - name: A\n    pose: {x: 1, y: 0}\n    colour: red\n",
                "bad.yaml:4: nodes[0].colour: unknown field 'colour' (expected one of: name, pose, xy_goal_tolerance, "
-               "yaw_goal_tolerance, influence, meta)"},
+               "yaw_goal_tolerance, influence, meta, capacity)"},
         BadMap{"unknown pose field", "nodes:\n  - name: A\n    pose: {x: 1, y: 0, z: 0}\n",
                "bad.yaml:3: nodes[0].pose.z: unknown field 'z' (expected one of: x, y, yaw)"},
         BadMap{"influence vertex without y",
@@ -145,10 +145,51 @@ INSTANTIATE_TEST_SUITE_P(
         BadMap{"missing to", kTwoNodes + "edges:\n  - {from: A}\n", "bad.yaml:6: edges[0]: missing field 'to'"},
         BadMap{"unknown edge field", kTwoNodes + "edges:\n  - {from: A, to: B, speed: 1}\n",
                "bad.yaml:6: edges[0].speed: unknown field 'speed' (expected one of: id, from, to, action, top_speed, "
-               "door)"},
+               "door, narrow)"},
+        BadMap{"capacity 0", "nodes:\n  - name: A\n    pose: {x: 1, y: 0}\n    capacity: 0\n",
+               "bad.yaml:4: nodes[0].capacity: expected a whole number of robots the place holds at once, from 1 to "
+               "1000, not 0"},
+        BadMap{"capacity as text", "nodes:\n  - name: A\n    pose: {x: 1, y: 0}\n    capacity: two\n",
+               "bad.yaml:4: nodes[0].capacity: expected a whole number of robots the place holds at once, from 1 to "
+               "1000"},
+        BadMap{"capacity a fraction", kTwoNodes + "  - {name: C, pose: {x: 2, y: 0}, capacity: 1.5}\n",
+               "bad.yaml:5: nodes[2].capacity: expected a whole number of robots the place holds at once, from 1 to "
+               "1000"},
+        BadMap{"narrow wide", kTwoNodes + "edges:\n  - {from: A, to: B}\n  - {from: B, to: A, narrow: wide}\n",
+               "bad.yaml:7: edges[1].narrow: expected single (one robot at a time) or one_way (one direction at a "
+               "time)"},
+        BadMap{"narrow as a flag", kTwoNodes + "edges:\n  - {from: A, to: B, narrow: true}\n",
+               "bad.yaml:6: edges[0].narrow: expected single (one robot at a time) or one_way (one direction at a "
+               "time)"},
         BadMap{"edges not a list", kTwoNodes + "edges: A_B\n", "bad.yaml:5: edges: expected a list"},
         BadMap{"several problems", kTwoNodes + "edges:\n  - {from: A, to: X}\n  - {from: A, to: Y}\n",
                "bad.yaml:6: edges[0].to: no node named 'X' (and 1 more problems)"}));
+
+TEST(MapYaml, ReadsAndWritesCapacityAndNarrowEdges) {
+  const std::string text = kTwoNodes +
+                           "  - {name: Atrium, pose: {x: 2, y: 0}, capacity: 3}\n"
+                           "edges:\n"
+                           "  - {from: A, to: B, narrow: single}\n"
+                           "  - {from: B, to: A, narrow: single}\n"
+                           "  - {from: B, to: Atrium, narrow: one_way}\n"
+                           "  - {from: Atrium, to: B}\n";
+  auto map = parse_map_yaml(text, "m.yaml");
+  ASSERT_TRUE(map.ok()) << map.error().message;
+  EXPECT_EQ(map->node(0).capacity, 1);  // the default: one robot at a time
+  EXPECT_EQ(map->node(2).capacity, 3);
+  EXPECT_EQ(map->edge(0).narrow, Narrow::kSingle);
+  EXPECT_EQ(map->edge(2).narrow, Narrow::kOneWay);
+  EXPECT_EQ(map->edge(3).narrow, Narrow::kNone);        // absent: robots pass each other
+  EXPECT_EQ(passage_narrow(*map, 3), Narrow::kOneWay);  // its reverse marks the passage
+  const std::string written = write_map_yaml(*map);
+  EXPECT_NE(written.find("capacity: 3"), std::string::npos) << written;
+  EXPECT_NE(written.find("narrow: one_way"), std::string::npos) << written;
+  EXPECT_EQ(written.find("capacity: 1"), std::string::npos) << written;  // the default is not written
+  EXPECT_EQ(written.find("narrow: none"), std::string::npos) << written;
+  auto again = parse_map_yaml(written, "again.yaml");
+  ASSERT_TRUE(again.ok()) << again.error().message;
+  EXPECT_EQ(*again, *map);
+}
 
 TEST(MapYaml, WriterOmitsAbsentOptionalsAndQuotesTrickyText) {
   Node a = testing::node_at("true", 0, 0);

@@ -100,6 +100,23 @@ TEST(LoadWorld, TheBatteryDrainsByTheMetreOnlyWhenTheFileSaysSo) {
   EXPECT_EQ(metered->battery.charging_per_hour, 0.4);
 }
 
+TEST(LoadWorld, TheHoldTimeoutOfTheTrafficIsAMinuteUnlessTheFileSays) {
+  auto plain = parse("kind: parametric\n", small_map());
+  ASSERT_TRUE(plain.ok()) << plain.error().message;
+  EXPECT_EQ(plain->traffic.hold_timeout, seconds(60));
+  auto set = parse("kind: parametric\ntraffic: {hold_timeout: 90s}\n", small_map());
+  ASSERT_TRUE(set.ok()) << set.error().message;
+  EXPECT_EQ(set->traffic.hold_timeout, seconds(90));
+  auto zero = parse("kind: parametric\ntraffic: {hold_timeout: 0s}\n", small_map());
+  ASSERT_FALSE(zero.ok());
+  EXPECT_NE(zero.error().message.find("world.yaml:2: traffic.hold_timeout: must be a duration above 0"),
+            std::string::npos)
+      << zero.error().message;
+  auto unknown = parse("kind: parametric\ntraffic: {patience: 1m}\n", small_map());
+  ASSERT_FALSE(unknown.ok());
+  EXPECT_NE(unknown.error().message.find("patience"), std::string::npos) << unknown.error().message;
+}
+
 TEST(LoadWorld, AMissingFileIsNotFound) {
   auto world = load_world("examples/g4s/no-such-world.yaml", small_map(), london());
   ASSERT_FALSE(world.ok());

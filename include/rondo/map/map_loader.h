@@ -30,8 +30,9 @@ const char* to_string(MapFormat format);
 struct LoadedMap {
   TopoMap map;
   MapFormat format = MapFormat::kRondo;
-  // What the file says that rondo reads but does not apply (tmap2 restrictions), one sentence
-  // each; the commands print them as warnings. Empty for the other formats.
+  // What the file says that rondo reads but does not apply (tmap2 restrictions), and what its
+  // format cannot say (node capacity, narrow edges: every tmap2 and STRANDS map), one sentence
+  // each; the commands print them as warnings. Empty for rondo's format.
   std::vector<std::string> import_warnings{};
 };
 

@@ -1,5 +1,5 @@
 // The facts about a map that an engineer checks first: sizes, the motion actions used, doors,
-// extent, edge lengths, connectivity and warnings. `rondo map info` prints it.
+// extent, edge lengths, traffic (node capacities, narrow edges), connectivity and warnings. `rondo map info` prints it.
 //
 //   MapSummary s = summarize(map);
 //   std::cout << s.nodes << " nodes, " << s.total_edge_length << " m of edges\n";
@@ -35,6 +35,10 @@ struct MapSummary {
   std::string longest_edge{};                    // its id; empty for a map without edges
   std::size_t edges_with_top_speed = 0;
   std::size_t nodes_with_influence = 0;
+  std::size_t nodes_with_capacity = 0;  // nodes that hold more than one robot
+  int largest_capacity = 1;             // robots, over every node
+  std::size_t narrow_single = 0;        // edges marked narrow: single
+  std::size_t narrow_one_way = 0;       // edges marked narrow: one_way
   std::size_t strongly_connected_components = 0;
   double nominal_travel_time_total = 0;  // seconds, over all edges, with default options
   std::vector<std::string> warnings{};   // map_warnings()

@@ -38,6 +38,18 @@ inline constexpr double kDefaultXyGoalTolerance = 0.3;   // metres
 inline constexpr double kDefaultYawGoalTolerance = 0.1;  // radians
 // The motion action of an edge that does not name one.
 inline constexpr std::string_view kDefaultAction = "move_base";
+// The most robots a node may say it holds at once (`capacity`).
+inline constexpr int kMaxNodeCapacity = 1000;
+
+// How robots share an edge's passage (docs/map-format.md, "Traffic"): kNone, they pass each other
+// freely; kSingle, one robot at a time, in either direction; kOneWay, several may follow each
+// other, in one direction at a time.
+enum class Narrow { kNone, kSingle, kOneWay };
+
+// "none", "single", "one_way": the words of the map format.
+const char* to_string(Narrow narrow);
+// The mark a map file writes ("single", "one_way"); nothing for any other word.
+std::optional<Narrow> narrow_from_string(std::string_view word);
 
 // A position and heading in the map frame.
 struct Pose {
@@ -64,6 +76,8 @@ struct Node {
   // Free-form facts about the place (e.g. STRANDS `contains` rooms, a `description`): a JSON
   // object, or null when there are none. rondo does not interpret it; it is kept and written back.
   Json meta{};
+  // How many robots the place holds at once (an atrium, a bay with two docks: more than 1).
+  int capacity = 1;
   bool operator==(const Node&) const = default;
 };
 
@@ -76,6 +90,8 @@ struct Edge {
   // The door this edge passes through; both directions through one door share the id, so door
   // models and observations can attach to it. Absent for edges without a door.
   std::optional<std::string> door{};
+  // Whether robots must take turns on it: the passage between its two nodes, both directions.
+  Narrow narrow = Narrow::kNone;
   bool operator==(const Edge&) const = default;
 };
 
@@ -132,5 +148,9 @@ class TopoMap {
   std::vector<std::size_t> in_start_;
   std::vector<EdgeIndex> in_;
 };
+
+// The mark of the passage edge `e` belongs to: the strictest (single, then one_way) of every edge
+// between its two nodes, in either direction, so that marking one direction marks the passage.
+Narrow passage_narrow(const TopoMap& map, EdgeIndex e);
 
 }  // namespace rondo::map

@@ -25,8 +25,12 @@
 // outcome kRobotFault and reports the fault; clear_fault() reports the robot ready. While in fault,
 // drive() and run_action() end at once with kRobotFault.
 // Several SimRobots may share one world (a fleet in one building): its doors and spells are the
-// same for all; each has its own random stream, battery and speed (SimRobotOptions). They pass
-// through each other: there is no traffic between them.
+// same for all; each has its own random stream, battery and speed (SimRobotOptions). Without a
+// Traffic they pass through each other; with one (SimRobotOptions::traffic, shared by all of them)
+// a robot asks it before each edge, and when its way is taken it is held up: it waits at its node,
+// looks again when the traffic says its way may have cleared, and after the traffic's hold_timeout
+// the attempt fails with the blocker's name ("held up by r2 at WayPoint7"). The held time is part
+// of the attempt's duration; a held robot drains its battery as moving (its navigation is on).
 // Figures: distance_m() counts the length of successfully crossed edges only (a failed or
 // cancelled attempt ends where it began and counts 0 m). charging_time() is the time spent idle
 // at the dock. The battery drains by the hour in each mode (BatteryModel) and, at the end of each
@@ -52,6 +56,7 @@
 #include "rondo/map/topo_map.h"
 #include "rondo/sim/rng.h"
 #include "rondo/sim/sim_world.h"
+#include "rondo/sim/traffic.h"
 
 namespace rondo::sim {
 
@@ -66,9 +71,12 @@ struct SimRobotOptions {
   double speed = 1.0;
   std::optional<std::vector<std::string>> actions{};
   std::string name = "robot";
+  // The building's traffic, shared by its robots (traffic.h); nothing: the robot is alone. Must
+  // outlive the robot.
+  Traffic* traffic = nullptr;
 };
 
-class SimRobot final : public exec::Robot {
+class SimRobot final : public exec::Robot, private TrafficListener {
  public:
   SimRobot(exec::Clock& clock, const map::TopoMap& map, SimWorld& world, SimRobotOptions options);
   ~SimRobot() override;
@@ -111,6 +119,11 @@ class SimRobot final : public exec::Robot {
     std::uint64_t interruptible_post = 0;  // 0 when no end of a non-interruptible span is pending
     End end = End::kNatural;
     std::string message{};  // why it failed
+    // With a traffic: waiting at the start node to enter the edge (held), or on it (entered).
+    bool held = false;
+    bool entered = false;
+    std::uint64_t hold_timeout_post = 0;
+    std::uint64_t recheck_post = 0;
   };
 
   // Schedules `callback` on the clock and remembers it until it runs, so that it can be cancelled
@@ -119,6 +132,14 @@ class SimRobot final : public exec::Robot {
   void unpost(std::uint64_t key);
   void start(Job job);
   void start_edge(map::EdgeIndex edge);
+  // Draws the edge from the world at now() (after any hold: the held time comes first).
+  void sample_edge(Job& job);
+  // The traffic's part of an edge: enter at once, or wait (traffic.h).
+  void hold(Job job);
+  void on_way_may_be_clear() override;
+  void look_again();                            // the way may have cleared: enter, or keep waiting
+  void give_up_hold();                          // hold_timeout: the attempt fails, naming the blocker
+  void leave_hold(HoldUp::End how);             // the hold ends: passed, timed out, stopped (cancel, fault)
   void stop_job(End end, std::string message);  // cancel() and inject_fault()
 
   const BatteryModel& battery_model() const { return options_.battery ? *options_.battery : world_.battery; }
@@ -150,6 +171,7 @@ class SimRobot final : public exec::Robot {
   Duration charging_time_{0};
   double distance_m_ = 0;
   std::map<std::uint64_t, exec::TimerId> posted_;
+  Traffic::RobotId traffic_id_ = 0;  // with options_.traffic
   std::uint64_t next_post_ = 1;
 };
 

@@ -25,6 +25,7 @@
 #include "rondo/sim/action_model.h"
 #include "rondo/sim/battery_model.h"
 #include "rondo/sim/edge_world.h"
+#include "rondo/sim/traffic.h"
 
 namespace rondo::sim {
 
@@ -57,6 +58,7 @@ struct SimWorld {
   BatteryModel battery;
   DoorSensor door_sensor;
   Confirmation confirmation;
+  TrafficOptions traffic;  // for a building with several robots (traffic.h)
 };
 
 Result<SimWorld> load_world(const std::filesystem::path& file, const map::TopoMap& map, const TimeZone& zone);
