@@ -3,7 +3,8 @@
 // (the deployment's robots, options and allocator, a store on disk):
 // - one new task among the queued ones: the time of the fleet's Allocator::allocate() for a unit of
 //   one new standard task, every robot eligible, p50 / p99 / max over many new tasks each against
-//   the same fleet (nothing is committed, so each sees the same queue); then the whole of
+//   the same fleet (nothing is committed, so each sees the same queue), by an allocator made for the
+//   samples (under `fleet`, its first sample makes the travel oracle it keeps); then the whole of
 //   Fleet::add_task() for some of them (checked, allocated, stored in one transaction, scheduled by
 //   its robot), which does commit: the queue grows by one each time;
 // - a faulted robot's re-allocation: the robot with the most planned tasks faults, and the time
@@ -33,6 +34,7 @@
 #include "robot_factory.h"
 #include "rondo/exec/clock.h"
 #include "rondo/fleet/fleet.h"
+#include "rondo/fleet/fleet_scheduler_allocator.h"
 #include "rondo/sim/sim_robot.h"
 #include "rondo/store/store.h"
 
@@ -160,6 +162,12 @@ bool measure(const Args& a, const app::Deployment& base, app::AllocatorKind kind
     if (to.size() != 1) fmt::print(stderr, "bench_fleet_allocation_scale: allocate() gave {} answers\n", to.size());
   }
   print_row(name, d.robots.size(), queue, "allocate(1 new task)", allocate_ms, allocate_cpu_ms);
+  if (const auto* fleet_allocator = dynamic_cast<const fleet::FleetSchedulerAllocator*>(allocator.get()))
+    fmt::print(
+        "# {}: of the {} samples, {} inserted into the robots' plans, {} solved whole ({} after an "
+        "insertion left the task out); the first made the held travel oracle\n",
+        name, a.samples, fleet_allocator->counts().inserted, fleet_allocator->counts().solved,
+        fleet_allocator->counts().fell_back);
 
   // The whole of add_task(), committed: the queue grows by one each time.
   std::vector<double> add_ms, add_cpu_ms;

@@ -92,6 +92,44 @@ FleetPlan from_default(const FleetProblem& p, const Schedule& s) {
   return *time_fleet_routes(p, orders);
 }
 
+// The routes of `orders` as the model can hold them: a route that breaks a rule (a window, the
+// capacity, the dock) keeps its tasks in order, less each one that cannot be appended where it
+// stands (and a delivery half whose other half is left out).
+std::vector<std::vector<int>> held_orders(const FleetModel& m, const detail::RouteOps& ops,
+                                          const std::vector<std::vector<std::size_t>>& orders) {
+  std::vector<std::vector<int>> out(static_cast<std::size_t>(m.robots()));
+  for (int r = 0; r < m.robots() && r < static_cast<int>(orders.size()); ++r) {
+    detail::Tour tour{.robot = r};
+    for (std::size_t x : orders[r]) tour.seq.push_back(static_cast<int>(x));
+    ops.update(tour);
+    if (!tour.feasible) {
+      std::vector<int> kept;
+      std::vector<int> left_out;
+      for (int x : tour.seq) {
+        const detail::Request& q = m.requests()[m.request_of(x)];
+        const int partner = x == q.first ? q.drop : q.first;
+        if (partner >= 0 && std::find(left_out.begin(), left_out.end(), partner) != left_out.end()) continue;
+        detail::Tour next{.robot = r, .seq = kept};
+        next.seq.push_back(x);
+        ops.update(next);
+        if (next.feasible) {
+          kept = std::move(next.seq);
+        } else {
+          left_out.push_back(x);
+        }
+      }
+      // A pickup kept whose drop was left out goes too (the drop came after it).
+      std::erase_if(kept, [&](int x) {
+        const detail::Request& q = m.requests()[m.request_of(x)];
+        return q.drop >= 0 && x == q.first && std::find(kept.begin(), kept.end(), q.drop) == kept.end();
+      });
+      tour.seq = std::move(kept);
+    }
+    out[r] = std::move(tour.seq);
+  }
+  return out;
+}
+
 }  // namespace
 
 FleetPlan FleetScheduler::solve(const FleetProblem& problem, const StopCondition& stop) const {
@@ -110,17 +148,26 @@ FleetPlan FleetScheduler::solve(const FleetProblem& problem, const StopCondition
 
 FleetPlan FleetScheduler::insert(const FleetProblem& problem, const FleetPlan& plan, std::size_t task,
                                  const StopCondition& stop) const {
-  const FleetModel model(problem);
-  FleetSearch search(model, options_, stop);
-  std::vector<std::vector<int>> orders(problem.robots.size());
+  std::vector<std::vector<std::size_t>> orders(problem.robots.size());
   for (std::size_t r = 0; r < plan.routes.size() && r < orders.size(); ++r)
     for (const ScheduledTask& e : plan.routes[r])
-      if (e.task != task) orders[r].push_back(static_cast<int>(e.task));
-  FleetSolution s = search.ops().from_orders(orders);
-  const int request = model.request_of(static_cast<int>(task));
-  search.greedy(s, {request}, true, 0.0);
+      if (e.task != task) orders[r].push_back(e.task);
+  return insert(problem, orders, {task}, stop);
+}
+
+FleetPlan FleetScheduler::insert(const FleetProblem& problem, const std::vector<std::vector<std::size_t>>& orders,
+                                 const std::vector<std::size_t>& tasks, const StopCondition& stop) const {
+  const FleetModel model(problem);
+  FleetSearch search(model, options_, stop);
+  FleetSolution s = search.ops().from_orders(held_orders(model, search.routes(), orders));
+  std::vector<int> requests;
+  for (std::size_t t : tasks) {
+    const int q = model.request_of(static_cast<int>(t));
+    if (std::find(requests.begin(), requests.end(), q) == requests.end()) requests.push_back(q);
+  }
+  search.greedy(s, requests, true, 0.0);
   s.cost = search.ops().cost(s);
-  s = search.repair_around(std::move(s), request, options_.repair_iterations);
+  for (int q : requests) s = search.repair_around(std::move(s), q, options_.repair_iterations);
   return to_plan(model, s);
 }
 

@@ -21,6 +21,7 @@ class FleetSearch {
   // A few ruin-and-recreate rounds around one request (insert()'s repair); returns the best.
   FleetSolution repair_around(FleetSolution s, int request, std::size_t iterations);
   const SolutionOps& ops() const { return sol_; }
+  const RouteOps& routes() const { return routes_; }
 
   // Removal heuristics: each takes requests out of `s` into s.unassigned.
   void ruin_random(FleetSolution& s, int count);

@@ -3,6 +3,15 @@
 // solves it on a poll budget, and each unit goes to the robot whose route holds it. The robot then
 // schedules what it was given with its own scheduler, as under GreedyAllocator.
 //
+// Two ways to the plan (docs/fleet.md, "The two ways to a plan"): a large fleet (at least
+// `insert_from_planned` planned tasks) given a few units (at most `insert_units`) keeps every
+// robot's own planned order as its route and inserts the new units into those routes, with a short
+// repair around each (FleetScheduler::insert); anything else, or an insertion that leaves a unit
+// out, is solved whole (FleetScheduler::solve: construction, then `search_polls` iterations). Both
+// read only the fleet's state as it is now, so an answer never depends on the allocations before
+// it; what is kept between allocations is the travel oracle of the insertions (HeldTravel), whose
+// values are the building's cache's whatever it holds.
+//
 //   fleet::Fleet fleet(clock, map, store, zone, options, {},
 //                      std::make_unique<FleetSchedulerAllocator>(FleetSchedulerAllocatorOptions{
 //                          .speed_factors = {{"r3", 0.9}}}));
@@ -31,9 +40,12 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "rondo/fleet/allocation_problem.h"
 #include "rondo/fleet/allocator.h"
+#include "rondo/fleet/held_travel.h"
 #include "rondo/schedule/fleet_plan.h"
 #include "rondo/schedule/fleet_problem.h"
 
@@ -44,25 +56,24 @@ struct FleetSchedulerAllocatorOptions {
   // Large-neighbourhood-search iterations after the construction (which takes one poll per
   // request): the poll budget is requests + this. docs/fleet.md gives the measured trade-off.
   std::int64_t search_polls = 300;
+  // Insertion into the robots' own plans, in place of the whole solve, for a batch of at most
+  // `insert_units` units in the problem when the robots hold at least `insert_from_planned` planned
+  // tasks (below, the whole solve costs a few milliseconds and may reorder their plans better);
+  // `insert_units` 0 turns it off. `repair_rounds`: ruin-and-recreate rounds around each unit.
+  std::size_t insert_units = 4;
+  std::size_t insert_from_planned = 200;
+  std::size_t repair_rounds = 10;
   // Per robot name, the declared factor its travel is divided by (a simulated robot's `speed`) until
   // a refit has learned its own (Building::speeds); 1 if absent.
   std::map<std::string, double> speed_factors{};
 };
 
-// The fleet problem of one allocation, and how it maps back to the fleet.
-struct AllocationProblem {
-  schedule::FleetProblem problem;
-  std::vector<std::size_t> robots;                   // problem robot i is the fleet's robots[i]
-  std::vector<std::vector<std::size_t>> unit_tasks;  // per unit, its problem tasks (empty: not in it)
-  std::size_t planned_tasks = 0;                     // the robots' planned tasks come first
+// How the allocations so far were made (for tests and benches).
+struct AllocationCounts {
+  std::size_t solved = 0;     // the whole problem solved (a large batch, a small fleet)
+  std::size_t inserted = 0;   // the units inserted into the robots' plans
+  std::size_t fell_back = 0;  // an insertion left a unit out, and the whole solve answered
 };
-
-// Builds the problem of `units` (precondition: each has a non-empty `eligible`). A unit is left
-// out (empty unit_tasks) when it is on-demand, or one of its tasks has no window or no start node
-// (a spec task). Robots: those eligible for a unit in the problem, in the fleet's order.
-AllocationProblem allocation_problem(const std::vector<AllocationUnit>& units,
-                                     const std::vector<const exec::Executor*>& robots, const exec::Building& building,
-                                     const std::map<std::string, double>& speed_factors);
 
 class FleetSchedulerAllocator final : public Allocator {
  public:
@@ -74,9 +85,22 @@ class FleetSchedulerAllocator final : public Allocator {
   // choice); nothing before the first.
   const std::optional<AllocationProblem>& last_problem() const { return last_problem_; }
   const std::optional<schedule::FleetPlan>& last_plan() const { return last_plan_; }
+  const AllocationCounts& counts() const { return counts_; }
+  const HeldTravel& held_travel() const { return held_travel_; }
 
  private:
+  // The plan of the problem's units by insertion into the robots' plans; nullopt when the fast way
+  // does not apply or leaves a unit out.
+  std::optional<std::pair<AllocationProblem, schedule::FleetPlan>> insert_units(
+      const std::vector<AllocationUnit>& units, const std::vector<const exec::Executor*>& robots,
+      const exec::Building& building);
+  std::optional<std::pair<AllocationProblem, schedule::FleetPlan>> solve_units(
+      const std::vector<AllocationUnit>& units, const std::vector<const exec::Executor*>& robots,
+      const exec::Building& building) const;
+
   FleetSchedulerAllocatorOptions options_;
+  AllocationCounts counts_;
+  HeldTravel held_travel_;
   std::optional<AllocationProblem> last_problem_;
   std::optional<schedule::FleetPlan> last_plan_;
 };

@@ -3,6 +3,7 @@
 //   FleetScheduler solver({.seed = 7});
 //   FleetPlan plan = solver.solve(problem, stop);                // stop: time, polls, cancel
 //   FleetPlan next = solver.insert(problem_with_one_more, plan, new_task, PollBudgetStop(200));
+//   FleetPlan kept = solver.insert(problem, robots_orders, {new_pickup, new_drop}, PollBudgetStop(20));
 //
 // How (docs/scheduling.md, "The fleet scheduler"):
 // 1. regret-2 insertion builds a first plan (every request's best insertion per robot is cached
@@ -42,10 +43,10 @@ struct FleetProgress {
 struct FleetSchedulerOptions {
   std::uint64_t seed = 1;
   std::size_t route_min_iterations = 20000;  // per attempt to empty one more route
-  std::size_t cycle_iterations = 50000;       // one cooling cycle of the annealing
-  std::size_t repair_iterations = 10;         // after insert()
-  bool improve = true;                        // off: construction only
-  bool single_robot_default = true;           // one robot, sum of ends: DefaultScheduler
+  std::size_t cycle_iterations = 50000;      // one cooling cycle of the annealing
+  std::size_t repair_iterations = 10;        // after insert()
+  bool improve = true;                       // off: construction only
+  bool single_robot_default = true;          // one robot, sum of ends: DefaultScheduler
   // Called after the construction and at every new best plan.
   std::function<void(const FleetProgress&)> on_progress{};
 };
@@ -59,6 +60,14 @@ class FleetScheduler {
   // routes are kept, the task inserted where it costs least, then a short repair around it.
   FleetPlan insert(const FleetProblem& problem, const FleetPlan& plan, std::size_t task,
                    const StopCondition& stop) const;
+  // The routes in `orders` (task indices per robot, in order: a held plan, or each robot's own
+  // plan) are kept, and the requests of `tasks` (in no order) go in one after another where each
+  // costs least, then `repair_iterations` ruin-and-recreate rounds around each, a round kept only
+  // when it improves. A task of `orders` its route can no longer hold (its window, the capacity,
+  // the dock) is left out of it, and so is a half of a delivery whose other half is left out; a
+  // repair may put it back. Deterministic for the seed and a deterministic `stop`.
+  FleetPlan insert(const FleetProblem& problem, const std::vector<std::vector<std::size_t>>& orders,
+                   const std::vector<std::size_t>& tasks, const StopCondition& stop) const;
 
  private:
   FleetSchedulerOptions options_;
