@@ -226,10 +226,10 @@ Status decode_simulated_building(const Field& root, const std::filesystem::path&
 
 Result<Deployment> decode(const Field& root, const std::filesystem::path& file) {
   const std::filesystem::path base = file.parent_path();
-  RONDO_RETURN_IF_ERROR(
-      root.expect_keys({"rondo_deployment", "name",    "map",      "time_zone", "dock",     "start", "days",   "seed",
-                        "routines",         "world",   "requests", "places",    "executor", "robot", "robots", "docks",
-                        "allocator",        "balance", "battery",  "store",     "reference"}));
+  RONDO_RETURN_IF_ERROR(root.expect_keys(
+      {"rondo_deployment", "name",    "map",      "time_zone", "dock",      "start",  "days",   "seed",
+       "routines",         "world",   "requests", "places",    "executor",  "robot",  "robots", "docks",
+       "allocator",        "balance", "battery",  "store",     "reference", "traffic"}));
   Deployment d;
   d.file = file;
   RONDO_ASSIGN_OR_RETURN(const Field version, root.required("rondo_deployment"));

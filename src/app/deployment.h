@@ -24,6 +24,7 @@
 //   docks: [{node: Dock1, capacity: 2}]   # optional: a dock not listed has room for one robot
 //   allocator: fleet               # optional: fleet (the fleet scheduler, default) or greedy
 //   balance: false                 # optional: spread work and battery across the robots
+//   traffic: {reservations: true, lookahead: 2}   # optional: a fleet reserves its way (docs/traffic.md)
 //   store: {kind: postgresql, url: "postgresql://rondo@db/fleet", password_file: pw}  # optional;
 //                                   # rondo serve's store (default: rondo.sqlite in its data folder)
 #pragma once
@@ -109,6 +110,12 @@ struct Deployment {
   std::vector<DockSpec> docks;
   AllocatorKind allocator = AllocatorKind::kFleet;
   bool balance = false;  // `balance:` (fleet::BalancedAllocator around the allocator)
+  // `traffic:` (docs/traffic.md): a fleet's robots reserve their way ahead (on by default with two
+  // robots or more), `lookahead` edges at a time.
+  struct Traffic {
+    bool reservations = true;
+    std::size_t lookahead = 2;
+  } traffic{};
   // `store:`: where `rondo serve` keeps its store; none: rondo.sqlite in its data folder
   // (docs/deployment.md, "The store").
   std::optional<store::StoreLocation> store;

@@ -22,6 +22,7 @@
 #include "rondo/sim/request_generator.h"
 #include "rondo/sim/sim_world.h"
 #include "rondo/sim/traffic.h"
+#include "rondo/traffic/reservations.h"
 
 namespace rondo::app {
 
@@ -42,6 +43,9 @@ struct DeploymentParts {
   // The building's traffic, shared by its simulated robots when there are several (made with the
   // first of them, by make_robot: it refers to `map` where the parts finally live).
   std::unique_ptr<sim::Traffic> traffic{};
+  // The traffic manager's reservations (docs/traffic.md), for a fleet whose robots reserve their
+  // way (reservations_for()).
+  std::unique_ptr<traffic::Reservations> reservations{};
 };
 
 // The robots a node holds at once: its capacity on the map, or a listed dock's room when larger.

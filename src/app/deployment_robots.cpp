@@ -185,6 +185,17 @@ Status decode_robots(const Field& root, Deployment& d) {
   if (auto f = root.optional("balance")) {
     RONDO_ASSIGN_OR_RETURN(d.balance, f->as_bool());
   }
+  if (auto f = root.optional("traffic")) {
+    RONDO_RETURN_IF_ERROR(f->expect_keys({"reservations", "lookahead"}));
+    if (auto r = f->optional("reservations")) {
+      RONDO_ASSIGN_OR_RETURN(d.traffic.reservations, r->as_bool());
+    }
+    if (auto l = f->optional("lookahead")) {
+      RONDO_ASSIGN_OR_RETURN(const std::int64_t n, l->as_int());
+      if (n < 1 || n > 100) return l->error(fmt::format("lookahead {} is not in 1..100 edges", n));
+      d.traffic.lookahead = static_cast<std::size_t>(n);
+    }
+  }
   if (auto f = root.optional("robots")) {
     if (root.has("battery"))
       return root.error_at("battery", "with robots:, each simulated robot's battery is given in its entry");

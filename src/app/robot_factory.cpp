@@ -77,4 +77,16 @@ std::unique_ptr<fleet::Allocator> make_allocator(const Deployment& d) {
   return allocator;
 }
 
+traffic::Reservations* reservations_for(const Deployment& d, DeploymentParts& parts) {
+  if (d.robots.size() < 2 || !d.traffic.reservations) return nullptr;
+  if (!parts.reservations) {
+    parts.reservations = std::make_unique<traffic::Reservations>(
+        parts.map, traffic::ReservationOptions{.lookahead = d.traffic.lookahead});
+    for (const DockSpec& dock : d.docks)
+      if (const auto n = parts.map.find_node(dock.node))
+        parts.reservations->set_capacity(*n, node_room(d, parts.map, *n));
+  }
+  return parts.reservations.get();
+}
+
 }  // namespace rondo::app

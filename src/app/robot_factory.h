@@ -40,6 +40,10 @@ exec::ExecutorOptions robot_options(const Deployment& deployment, const RobotSpe
 // as its speed factor (a vehicle's is 1: it reports none) and the deployment's seed, or the greedy.
 std::unique_ptr<fleet::Allocator> make_allocator(const Deployment& deployment);
 
+// The building's reservations (made once, kept in `parts`) when the deployment's robots reserve
+// their way: two robots or more and `traffic: {reservations: true}` (the default); else null.
+traffic::Reservations* reservations_for(const Deployment& deployment, DeploymentParts& parts);
+
 // A VDA 5050 vehicle moves in real time: it needs the system clock (rondo run --realtime).
 inline bool needs_realtime(const Deployment& deployment) {
   return deployment.has_vehicle();

@@ -237,6 +237,7 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
     deployed.push_back(std::move(robot));
   }
   fleet::Fleet fleet(clock, map, db, d.zone, shared, {}, make_allocator(d));
+  fleet.set_reservations(reservations_for(d, s.parts));
   for (std::size_t i = 0; i < d.robots.size(); ++i)
     fleet.add_robot(*deployed[i].robot, robot_options(d, d.robots[i], s.parts.robots[i]));
   exec::Executor& executor = fleet.robot();
@@ -352,6 +353,9 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   result.report["travel_table"] = travel_table(map, log, start, d.days, fleet.zone());
   // Several simulated robots in one building: their meetings (since this start, on a resumed run).
   if (s.parts.traffic) result.report["traffic"] = traffic_report(*s.parts.traffic);
+  if (s.parts.reservations)
+    result.report["traffic"]["reservations"] =
+        reservation_report(*s.parts.reservations, fleet.building().traffic_waits, clock.now());
   if (d.reference) result.report["reference"] = reference_figures(*d.reference, result.report, d.days);
   RONDO_ASSIGN_OR_RETURN(const std::vector<store::Event> events, store::read_events(db));
   result.report["weeks"] = weekly_summary(log, events, start, end);

@@ -6,8 +6,12 @@
 
 #include <cstddef>
 
+#include <vector>
 #include "rondo/core/document.h"
+
+#include "rondo/exec/executor_types.h"
 #include "rondo/sim/traffic.h"
+#include "rondo/traffic/reservations.h"
 
 namespace rondo::app {
 
@@ -17,5 +21,12 @@ inline constexpr std::size_t kTrafficListed = 5;
 // {"hold_timeout_s", "hold_ups": {count, total_s, longest_s, passed, timed_out, stopped, first},
 //  "collisions": {count, at_nodes, on_narrow_edges, first}}; times in UTC.
 Json traffic_report(const sim::Traffic& traffic);
+
+// The reservations' side (docs/traffic.md): {"lookahead", "waits": {count, total_s, longest_s,
+// over_2_min, passed, made_way, stopped, robots: {name: {count, total_s}}, busiest_nodes:
+// [{node, waits, total_s}]}, "resolutions": {deadlocks, parked, unresolved, first}}. A wait still
+// running is counted to `end`.
+Json reservation_report(const traffic::Reservations& reservations, const std::vector<exec::TrafficWait>& waits,
+                        Time end);
 
 }  // namespace rondo::app

@@ -5,7 +5,7 @@
 namespace rondo::exec {
 namespace {
 
-constexpr NameTable<EventKind, 42> kNames{{{
+constexpr NameTable<EventKind, 44> kNames{{{
     {EventKind::kScheduled, "scheduled"},
     {EventKind::kReOffered, "re-offered"},
     {EventKind::kDroppedForNow, "dropped for now"},
@@ -30,6 +30,8 @@ constexpr NameTable<EventKind, 42> kNames{{{
     {EventKind::kArrived, "arrived"},
     {EventKind::kWaits, "waits"},
     {EventKind::kGaveUp, "gave up"},
+    {EventKind::kTrafficWait, "traffic wait"},
+    {EventKind::kMadeWay, "made way"},
     {EventKind::kStopped, "stopped"},
     {EventKind::kFault, "fault"},
     {EventKind::kReady, "ready"},

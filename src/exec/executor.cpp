@@ -12,14 +12,15 @@
 #include "deliveries.h"
 #include "dispatcher.h"
 #include "door_models.h"
+#include "found_blocked.h"
 #include "loading_times.h"
 #include "opportunities.h"
-#include "scheduling.h"
 #include "rondo/learn/weekly_memory.h"
 #include "rondo/map/map_geometry.h"
 #include "rondo/schedule/default_scheduler.h"
-#include "found_blocked.h"
+#include "scheduling.h"
 #include "task_run.h"
+#include "traffic_link.h"
 
 namespace rondo::exec {
 
@@ -56,6 +57,9 @@ Executor::Executor(Building& building, Robot& robot, ExecutorOptions options,
       deliveries_(std::make_unique<Deliveries>()),
       loading_(*building_.loading),
       found_blocked_(*building_.found_blocked),
+      traffic_(building_.reservations ? std::make_unique<TrafficLink>(clock_, *building_.reservations,
+                                                                      building_.traffic_waits, options_.robot_name)
+                                      : nullptr),
       steps_{clock_,
              robot_,
              map_,
@@ -72,7 +76,8 @@ Executor::Executor(Building& building, Robot& robot, ExecutorOptions options,
              [this] { read_battery(); },
              found_blocked_,
              *building_.spec_tasks,
-             building_.speeds},
+             building_.speeds,
+             traffic_.get()},
       assumption_map_(std::make_unique<AssumptionMap>(map_, options_.dock)),
       opportunities_(std::make_unique<Opportunities>()),
       door_models_(*building_.door_models) {
@@ -170,6 +175,10 @@ void Executor::start() {
   if (started_) return;
   started_ = true;
   if (auto up = robot_.activate(); !up) on_fault({.kind = RobotFault::Kind::kError, .message = up.error().message});
+  if (traffic_) {
+    traffic_->join(robot_.location());
+    traffic_->when_parked_asked([this](const traffic::MakeWay& m) { make_way(m); });
+  }
   read_battery();
 }
 

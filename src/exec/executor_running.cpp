@@ -10,6 +10,7 @@
 #include "found_blocked.h"
 #include "rondo/exec/executor.h"
 #include "task_run.h"
+#include "traffic_link.h"
 
 namespace rondo::exec {
 
@@ -30,7 +31,35 @@ void Executor::requeue_waiting(Outcome outcome, const std::string& reason) {
   next();
 }
 
+void Executor::update_parked() {
+  if (traffic_) traffic_->set_parked(!in_fault_ && !robot_.busy() && !trip_ && (!run_ || run_->waiting()));
+}
+
+void Executor::make_way(const traffic::MakeWay& m) {
+  if (in_fault_ || robot_.busy() || trip_ || (run_ && !run_->waiting())) return traffic_->decline(m);
+  const std::string for_robots = traffic_->names(m.for_robots);
+  if (run_) {
+    const TaskId id = run_->id();
+    end_wait();
+    book_.transition(id, TaskState::kQueued, Outcome::kScheduleChanged,
+                     fmt::format("waiting interrupted: making way for {}", for_robots));
+    dispatcher_->put_first_in_plan(id);
+  }
+  const map::NodeIndex to = map_.to_index(m.route.back());
+  book_.note_robot(options_.robot_name, EventKind::kMadeWay, Outcome::kNone,
+                   fmt::format("to {} (parked), making way for {}", map_.node(to).name, for_robots));
+  trip_ = std::make_unique<NavigateStep>(steps_,
+                                         StepHooks{.ended = [this](StepEnd e) { trip_ended(std::move(e)); },
+                                                   .overrun = [](Outcome, const std::string&) {}},
+                                         JourneyPurpose::kMakeWay, std::nullopt, to);
+  trip_->start();
+}
+
 void Executor::next() {
+  struct Park {  // whatever next() decides, the traffic manager knows whether the robot is parked
+    Executor& e;
+    ~Park() { e.update_parked(); }
+  } park{*this};
   if (run_ || trip_ || robot_.busy() || in_fault_) return;  // a fault: on_ready() comes back here
   if (look_again_ != 0) clock_.cancel(look_again_);
   look_again_ = 0;

@@ -9,6 +9,7 @@
 #include "rondo/plan/travel_planner.h"
 #include "steps.h"
 #include "text.h"
+#include "traffic_link.h"
 
 namespace rondo::exec {
 
@@ -22,16 +23,16 @@ void NavigateStep::start() {
   started_ = now;
   expected_ = ctx_.own(ctx_.travel.travel(here, target_, now));
   if (purpose_ == Purpose::kToStart) offline_expected_ = ctx_.own(ctx_.offline_travel.travel(here, target_, now));
-  if (purpose_ != Purpose::kToStart && here == target_) return end({.status = StepEnd::Status::kDone});
+  if (purpose_ != Purpose::kToStart && here == target_) return finish({.status = StepEnd::Status::kDone});
   const std::string& to = ctx_.map.node(target_).name;
   const std::string& from = ctx_.map.node(here).name;
   if (expected_ >= kUnreachable) {
-    return end({.status = StepEnd::Status::kFailed,
-                .outcome = Outcome::kNoRoute,
-                .reason = fmt::format("no route: from {} to {} at {}", from, to, ctx_.clock_text(now))});
+    return finish({.status = StepEnd::Status::kFailed,
+                   .outcome = Outcome::kNoRoute,
+                   .reason = fmt::format("no route: from {} to {} at {}", from, to, ctx_.clock_text(now))});
   }
   if (purpose_ != Purpose::kToEnd) {
-    if (std::optional<StepEnd> wait = leave_later(here, now)) return end(std::move(*wait));
+    if (std::optional<StepEnd> wait = leave_later(here, now)) return finish(std::move(*wait));
   }
   if (task_) {
     ctx_.book.transition(*task_, TaskState::kNavigating, Outcome::kDeparted,
@@ -69,13 +70,81 @@ const char* NavigateStep::errand() const {
     case Purpose::kDock: return "idle: back to the dock";
     case Purpose::kOutOfService: return "out of service: to the dock";
     case Purpose::kCharge: return "to charge";
+    case Purpose::kMakeWay:
+      return "making way";
     case Purpose::kToStart:
     case Purpose::kToEnd: break;
   }
   return "a task's journey";
 }
 
+NavigateStep::~NavigateStep() {
+  if (ctx_.traffic) ctx_.traffic->forget(this);
+}
+
+void NavigateStep::finish(StepEnd e) {
+  release_way();
+  end(std::move(e));
+}
+
+void NavigateStep::release_way() {
+  if (!ctx_.traffic || ctx_.robot.busy()) return;
+  if (waiting_for_way_) {
+    waiting_for_way_ = false;
+    ctx_.traffic->wait_ended(ctx_.clock.now(), "stopped");
+  }
+  ctx_.traffic->stop(this, ctx_.robot.location());
+}
+
+int NavigateStep::rank() const {
+  return task_ ? ctx_.book.at(*task_).task.priority : 0;
+}
+
+void NavigateStep::wait_for_way(map::NodeIndex here) {
+  edge_.reset();  // nothing is driven while it waits: no attempt to watch
+  if (!waiting_for_way_) {
+    waiting_for_way_ = true;
+    ctx_.traffic->wait_began(here, ctx_.clock.now());
+    const std::string text =
+        fmt::format("at {}, its way held by {}", ctx_.map.node(here).name, ctx_.traffic->behind_text());
+    if (task_)
+      ctx_.book.note(*task_, EventKind::kTrafficWait, Outcome::kNone, text);
+    else
+      ctx_.book.note_robot(ctx_.options.robot_name, EventKind::kTrafficWait, Outcome::kNone,
+                           fmt::format("{} ({})", text, errand()));
+  }
+  ctx_.traffic->when_waiting(
+      this,
+      [this] {
+        if (waiting_for_way_ && !halting() && !ended()) advance();
+      },
+      [this](const traffic::MakeWay& m) { make_way(m); });
+}
+
+void NavigateStep::make_way(const traffic::MakeWay& m) {
+  if (!waiting_for_way_ || halting() || ended() || ctx_.robot.busy() || ctx_.in_fault) {
+    ctx_.traffic->stop(this, ctx_.robot.location());
+    return;
+  }
+  waiting_for_way_ = false;
+  const Time now = ctx_.clock.now();
+  ctx_.traffic->wait_ended(now, "made way");
+  const std::string text =
+      fmt::format("to {} ({}), making way for {}", ctx_.map.node(ctx_.map.to_index(m.route.back())).name,
+                  traffic::to_string(m.why), ctx_.traffic->names(m.for_robots));
+  if (task_)
+    ctx_.book.note(*task_, EventKind::kMadeWay, Outcome::kNone, text);
+  else
+    ctx_.book.note_robot(ctx_.options.robot_name, EventKind::kMadeWay, Outcome::kNone, text);
+  edge_ = m.route.front();
+  edge_since_ = now;
+  edge_p_ = std::clamp(ctx_.models.outcome(*edge_, edge_since_).success_probability, 0.0, 1.0);
+  ctx_.before_command();
+  ctx_.robot.drive(Route{.edges = m.route, .committed = m.route.size()});
+}
+
 StepEnd NavigateStep::halted_end() {
+  release_way();
   if (gave_up_) return *gave_up_;
   return {.status = StepEnd::Status::kHalted};
 }
@@ -85,24 +154,35 @@ void NavigateStep::advance() {
   if (here == target_) return arrived();
   if (ctx_.in_fault) return;  // resume() goes on from where the robot is
   if (failed_edges_ >= ctx_.options.max_failed_edges) {
-    return end({.status = StepEnd::Status::kFailed,
-                .outcome = Outcome::kNavigationGaveUp,
-                .reason = fmt::format("navigation gave up: {} failed edge attempts near {}", failed_edges_,
-                                      ctx_.map.node(here).name)});
+    return finish({.status = StepEnd::Status::kFailed,
+                   .outcome = Outcome::kNavigationGaveUp,
+                   .reason = fmt::format("navigation gave up: {} failed edge attempts near {}", failed_edges_,
+                                         ctx_.map.node(here).name)});
   }
   if (!ctx_.planner.policy(target_, ctx_.clock.now()).next_edge(here)) {
-    return end({.status = StepEnd::Status::kFailed,
-                .outcome = Outcome::kNoRoute,
-                .reason = fmt::format("no route: from {} to {} at {}", ctx_.map.node(here).name,
-                                      ctx_.map.node(target_).name, ctx_.clock_text(ctx_.clock.now()))});
+    return finish({.status = StepEnd::Status::kFailed,
+                   .outcome = Outcome::kNoRoute,
+                   .reason = fmt::format("no route: from {} to {} at {}", ctx_.map.node(here).name,
+                                         ctx_.map.node(target_).name, ctx_.clock_text(ctx_.clock.now()))});
   }
-  // The next edge is committed; the rest of the policy's expected route is the horizon.
+  // The next edge is committed; the rest of the policy's expected route is the horizon. With the
+  // traffic manager, what it grants is committed (a VDA 5050 order's base), and nothing granted is
+  // a wait.
   std::vector<map::EdgeIndex> route = expected_route(here);
+  std::size_t committed = 1;
+  if (ctx_.traffic) {
+    committed = ctx_.traffic->request(this, here, route, rank());
+    if (committed == 0) return wait_for_way(here);
+    if (waiting_for_way_) {
+      waiting_for_way_ = false;
+      ctx_.traffic->wait_ended(ctx_.clock.now(), "passed");
+    }
+  }
   edge_ = route.front();
   edge_since_ = ctx_.clock.now();
   edge_p_ = std::clamp(ctx_.models.outcome(*edge_, edge_since_).success_probability, 0.0, 1.0);
   ctx_.before_command();
-  ctx_.robot.drive(Route{.edges = std::move(route), .committed = 1});
+  ctx_.robot.drive(Route{.edges = std::move(route), .committed = committed});
 }
 
 void NavigateStep::overran(const std::string& why) {
@@ -245,17 +325,24 @@ void NavigateStep::arrived() {
     ctx_.book.note_robot(ctx_.options.robot_name, EventKind::kArrived, Outcome::kArrived,
                          fmt::format("at {} ({}) after {}, expected {}", ctx_.map.node(target_).name, errand(),
                                      duration_text(ctx_.clock.now() - started_), duration_text(expected_)));
-  end({.status = StepEnd::Status::kDone});
+  finish({.status = StepEnd::Status::kDone});
 }
 
 void NavigateStep::on_edge_finished(const EdgeAttempt& a) {
+  if (ctx_.traffic) {
+    if (a.outcome == EdgeOutcome::kSucceeded) {
+      ctx_.traffic->crossed(a.edge);
+    } else if (!ctx_.robot.busy()) {
+      ctx_.traffic->stop(this, ctx_.robot.location());  // back at its node (or where it stopped)
+    }
+  }
   // What every journey knows of the edge (FoundBlocked): a run of failures, whichever journey made it.
   if (a.outcome == EdgeOutcome::kSucceeded) ctx_.found_blocked.passed(a.edge);
   if (a.outcome == EdgeOutcome::kFailed)
     ctx_.found_blocked.failed(a.edge, edge_ == a.edge ? edge_p_ : 0.0, ctx_.clock.now());  // 0: no surprise
-  if (a.outcome == EdgeOutcome::kCancelled) return end(halted_end());
+  if (a.outcome == EdgeOutcome::kCancelled) return finish(halted_end());
   if (ctx_.robot.busy()) return;  // more of a committed route to come
-  if (halting()) return end(halted_end());
+  if (halting()) return finish(halted_end());
   if (a.outcome == EdgeOutcome::kFailed) {
     ++failed_edges_;
     if (purpose_ != Purpose::kToEnd && ctx_.options.blocked_edge != ExecutorOptions::BlockedEdge::kRetry) {
@@ -267,10 +354,10 @@ void NavigateStep::on_edge_finished(const EdgeAttempt& a) {
                                              now + hours(24)))
           ctx_.found_blocked.hold(a.edge, open->first);
         monitor_.cancel();
-        return end({.status = wait ? StepEnd::Status::kBlocked : StepEnd::Status::kFailed,
-                    .outcome = Outcome::kNoRouteNow,
-                    .reason = std::move(*why),
-                    .edge = a.edge});
+        return finish({.status = wait ? StepEnd::Status::kBlocked : StepEnd::Status::kFailed,
+                       .outcome = Outcome::kNoRouteNow,
+                       .reason = std::move(*why),
+                       .edge = a.edge});
       }
     }
     // A trip to the charger when the battery matters: an edge more likely than not to fail again is
@@ -278,12 +365,12 @@ void NavigateStep::on_edge_finished(const EdgeAttempt& a) {
     if (!task_ && ctx_.options.battery_planning &&
         ctx_.models.outcome(a.edge, ctx_.clock.now()).success_probability < 0.5) {
       monitor_.cancel();
-      return end({.status = StepEnd::Status::kFailed,
-                  .outcome = Outcome::kNoRouteNow,
-                  .reason = fmt::format("no route to the charger now: {} failed and is more likely than not to fail "
-                                        "again",
-                                        ctx_.map.edge(a.edge).id),
-                  .edge = a.edge});
+      return finish({.status = StepEnd::Status::kFailed,
+                     .outcome = Outcome::kNoRouteNow,
+                     .reason = fmt::format("no route to the charger now: {} failed and is more likely than not to fail "
+                                           "again",
+                                           ctx_.map.edge(a.edge).id),
+                     .edge = a.edge});
     }
   }
   advance();

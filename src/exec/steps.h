@@ -9,6 +9,7 @@
 #include "monitor.h"
 #include "rondo/exec/step.h"
 #include "rondo/plan/spec_planner.h"
+#include "rondo/traffic/reservations.h"
 
 namespace rondo::exec {
 
@@ -79,6 +80,7 @@ class NavigateStep final : public RobotStep, public Arrival {
   // (docs/executor.md, "The window watch").
   static constexpr double kHangFactor = 10;
   NavigateStep(StepContext& ctx, StepHooks hooks, Purpose purpose, std::optional<TaskId> task, map::NodeIndex target);
+  ~NavigateStep() override;
   void start() override;
   void on_edge_finished(const EdgeAttempt& attempt) override;
 
@@ -93,6 +95,14 @@ class NavigateStep final : public RobotStep, public Arrival {
   StepEnd halted_end() override;
   void advance();  // the next edge, or the end
   void arrived();
+  // Every end of the journey: the way it held ahead is released (the robot stands where it is).
+  void finish(StepEnd e);
+  void release_way();
+  // The traffic manager holds the way ahead for others (docs/traffic.md): the journey waits at its
+  // node until told to ask again, or to make way.
+  void wait_for_way(map::NodeIndex here);
+  void make_way(const traffic::MakeWay& make_way);
+  int rank() const;
   // The navigation monitor fired: the task fails, or under the window watch
   // (ExecutorOptions::navigation_window) the journey goes on while the task can still start in its
   // window.
@@ -136,6 +146,7 @@ class NavigateStep final : public RobotStep, public Arrival {
   bool window_watch_ = false;  // the monitor's limit passed while the window was open
   bool hang_check_ = false;    // the monitor was extended to hangs_at(), not to the window's end
   std::optional<StepEnd> gave_up_;  // an own journey's monitor fired: how it ends once halted
+  bool waiting_for_way_ = false;    // held up by another robot's reservation
 };
 
 // A spec task's journey (docs/ltl.md): follows the product policy of its formula node by node from

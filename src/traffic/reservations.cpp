@@ -37,6 +37,19 @@ Reservations::Reservations(const map::TopoMap& map, ReservationOptions options)
     passage_of_[e] = it->second;
   }
   passage_holds_.resize(passage_mark_.size());
+  // Dead ends: nodes whose every edge leads to and from one neighbour (rooms, counters, docks).
+  dead_end_.assign(map.node_count(), false);
+  for (map::NodeIndex n = 0; n < map.node_count(); ++n) {
+    std::optional<map::NodeIndex> only;
+    bool one = true;
+    for (map::EdgeIndex e : map.out_edges(n)) {
+      if (only && *only != map.to_index(e)) one = false;
+      only = map.to_index(e);
+    }
+    for (map::EdgeIndex e : map.in_edges(n))
+      if (only && *only != map.from_index(e)) one = false;
+    dead_end_[n] = one && only.has_value();
+  }
 }
 
 void Reservations::set_capacity(map::NodeIndex node, int capacity) {
@@ -106,7 +119,11 @@ std::vector<RobotId> Reservations::in_the_way(RobotId robot, map::EdgeIndex edge
 }
 
 std::size_t Reservations::unit_length(std::span<const map::EdgeIndex> route, std::size_t i) const {
-  if (passage(route[i]) == kNoPassage) return 1;
+  if (passage(route[i]) == kNoPassage) {
+    // The way into a dead end is granted with the node in front of it: nobody queues there.
+    if (i + 1 < route.size() && passage(route[i + 1]) == kNoPassage && dead_end_[map_.to_index(route[i + 1])]) return 2;
+    return 1;
+  }
   std::size_t j = i;
   while (j < route.size() && passage(route[j]) != kNoPassage) ++j;
   return j - i;
@@ -165,6 +182,15 @@ std::size_t Reservations::request(RobotId robot, map::NodeIndex here, std::span<
   release_ahead(robot, keep);
   const bool released = r.granted.size() < before;
   r.wanted.assign(route.begin(), route.end());
+  const bool was_waiting = r.waiting;
+  // A robot sent aside lets the robots it made way for go first: it waits while any of them waits.
+  std::erase_if(r.yield_to, [&](RobotId o) { return !robots_[o].present || !robots_[o].waiting; });
+  if (!r.yield_to.empty() && r.granted.empty() && !route.empty()) {
+    start_waiting(robot, route[0], r.yield_to);
+    if (released) wake_waiting_on(robot);
+    notify();
+    return 0;
+  }
   std::vector<RobotId> way;
   std::size_t i = r.granted.size();
   while (i < route.size() && i < options_.lookahead) {
@@ -176,6 +202,7 @@ std::size_t Reservations::request(RobotId robot, map::NodeIndex here, std::span<
     for (std::size_t k = i; k < i + n; ++k) grant(robot, route[k]);
     i += n;
   }
+  const std::size_t held = r.granted.size();  // of `route`: a resolution may send it aside instead
   if (r.granted.empty() && !route.empty()) {
     start_waiting(robot, route[0], std::move(way));
     resolve_from(robot);
@@ -183,10 +210,11 @@ std::size_t Reservations::request(RobotId robot, map::NodeIndex here, std::span<
     r.waiting = false;
     r.blockers.clear();
     r.blocked_edge.reset();
+    if (was_waiting) wake_waiting_on(robot);  // a robot that yielded to it may go now
   }
   if (released) wake_waiting_on(robot);
   notify();
-  return robots_[robot].granted.size();
+  return held;
 }
 
 void Reservations::crossed(RobotId robot, map::EdgeIndex edge) {
@@ -217,6 +245,7 @@ void Reservations::stop(RobotId robot, map::NodeIndex here) {
   r.blockers.clear();
   r.blocked_edge.reset();
   r.wanted.clear();
+  r.yield_to.clear();
   wake_waiting_on(robot);
   notify();
 }
@@ -304,29 +333,38 @@ void Reservations::resolve_from(RobotId start) {
       if (stuck[x] && robots_[x].waiting && contains(robots_[x].blockers, blocker)) who.push_back(x);
     return who;
   };
-  for (RobotId x : reached)
-    if (stuck[x] && !robots_[x].waiting && send_aside(x, MakeWay::Why::kParked, waiting_for(x), keep_clear_for(x)))
-      return;
+  // Ways through doors last: a door may be shut, and a robot sent into it comes back to where it was.
+  for (const bool doors : {false, true})
+    for (RobotId x : reached)
+      if (stuck[x] && !robots_[x].waiting &&
+          send_aside(x, MakeWay::Why::kParked, waiting_for(x), keep_clear_for(x), doors))
+        return;
   // A deadlock: the stuck robots wait for each other. The lowest rank moves (the latest to join
   // among equals).
   std::vector<RobotId> order;
   for (RobotId x : reached)
     if (stuck[x] && robots_[x].waiting) order.push_back(x);
+  // One robot waiting for parked robots that cannot move: sending it aside frees nobody.
+  if (order.size() < 2) {
+    ++unresolved_;
+    return;
+  }
   std::sort(order.begin(), order.end(), [&](RobotId a, RobotId b) {
     if (robots_[a].rank != robots_[b].rank) return robots_[a].rank < robots_[b].rank;
     return a > b;
   });
-  for (RobotId x : order) {
-    std::vector<RobotId> others;
-    for (RobotId y : order)
-      if (y != x) others.push_back(y);
-    if (send_aside(x, MakeWay::Why::kDeadlock, std::move(others), keep_clear_for(x))) return;
-  }
+  for (const bool doors : {false, true})
+    for (RobotId x : order) {
+      std::vector<RobotId> others;
+      for (RobotId y : order)
+        if (y != x) others.push_back(y);
+      if (send_aside(x, MakeWay::Why::kDeadlock, std::move(others), keep_clear_for(x), doors)) return;
+    }
   ++unresolved_;
 }
 
-std::optional<std::vector<map::EdgeIndex>> Reservations::way_aside(RobotId robot,
-                                                                   const std::vector<bool>& keep_clear) const {
+std::optional<std::vector<map::EdgeIndex>> Reservations::way_aside(RobotId robot, const std::vector<bool>& keep_clear,
+                                                                   bool through_doors) const {
   const map::NodeIndex from = robots_[robot].at;
   std::vector<std::optional<map::EdgeIndex>> came_by(map_.node_count());
   std::vector<bool> seen(map_.node_count(), false);
@@ -343,7 +381,7 @@ std::optional<std::vector<map::EdgeIndex>> Reservations::way_aside(RobotId robot
     }
     for (map::EdgeIndex e : map_.out_edges(n)) {
       const map::NodeIndex to = map_.to_index(e);
-      if (seen[to] || !in_the_way(robot, e).empty()) continue;
+      if (seen[to] || (!through_doors && map_.edge(e).door) || !in_the_way(robot, e).empty()) continue;
       seen[to] = true;
       came_by[to] = e;
       queue.push_back(to);
@@ -353,17 +391,16 @@ std::optional<std::vector<map::EdgeIndex>> Reservations::way_aside(RobotId robot
 }
 
 bool Reservations::send_aside(RobotId robot, MakeWay::Why why, std::vector<RobotId> for_robots,
-                              const std::vector<bool>& keep_clear) {
-  std::optional<std::vector<map::EdgeIndex>> route = way_aside(robot, keep_clear);
+                              const std::vector<bool>& keep_clear, bool through_doors) {
+  std::optional<std::vector<map::EdgeIndex>> route = way_aside(robot, keep_clear, through_doors);
   if (!route) return false;
   Robot& r = robots_[robot];
   release_ahead(robot, 0);
   for (map::EdgeIndex e : *route) grant(robot, e);
-  r.waiting = false;
-  r.blockers.clear();
-  r.blocked_edge.reset();
+  r.waiting = false;  // its blockers stay: what it waited for, for the record
   r.parked = false;
   r.wanted = *route;
+  r.yield_to = for_robots;
   resolutions_.push_back({.why = why, .robot = robot, .to = map_.to_index(route->back()), .for_robots = for_robots});
   std::erase_if(pending_, [&](const Pending& p) { return p.robot == robot && !p.make_way; });
   pending_.push_back({robot, MakeWay{.why = why, .route = std::move(*route), .for_robots = std::move(for_robots)}});

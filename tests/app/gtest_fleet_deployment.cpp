@@ -220,6 +220,15 @@ TEST(FleetRun, EveryRobotWorksAndEachTaskRunsOnOneRobot) {
   EXPECT_LE(holds["first"].size(), 5u);
   EXPECT_EQ(traffic["collisions"]["count"].get<int>(),
             traffic["collisions"]["at_nodes"].get<int>() + traffic["collisions"]["on_narrow_edges"].get<int>());
+  // They reserve their way (docs/traffic.md): nobody is held up in the simulator, nobody collides;
+  // their waits are the executive's, each ended one way.
+  EXPECT_EQ(holds["count"].get<int>(), 0) << traffic.dump();
+  EXPECT_EQ(traffic["collisions"]["count"].get<int>(), 0) << traffic.dump();
+  ASSERT_TRUE(traffic.contains("reservations"));
+  const Json& waits = traffic["reservations"]["waits"];
+  EXPECT_GE(waits["count"].get<int>(),
+            waits["passed"].get<int>() + waits["made_way"].get<int>() + waits["stopped"].get<int>());
+  EXPECT_EQ(traffic["reservations"]["lookahead"].get<int>(), 2);
   for (const char* name : {"r1", "r2", "checker"})
     for (const char* day : {"2026-11-23", "2026-11-24"})
       EXPECT_TRUE(std::filesystem::exists(out / "days" / (std::string(day) + "-" + name + ".svg"))) << name << day;

@@ -5,11 +5,13 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "rondo/fleet/fleet.h"
 #include "rondo/store/task_table.h"
+#include "rondo/traffic/reservations.h"
 #include "scenario.h"
 #include "scripted_robot.h"
 
@@ -24,9 +26,11 @@ class ScriptedFleet {
     std::string node;
   };
   // `allocator` makes the fleet's allocator (again at each restart); empty: the fleet's default.
-  explicit ScriptedFleet(const std::vector<RobotAt>& robots, std::function<std::unique_ptr<Allocator>()> allocator = {})
+  // `map`: the scenario map unless given; `reserve`: the robots reserve their way (docs/traffic.md).
+  explicit ScriptedFleet(const std::vector<RobotAt>& robots, std::function<std::unique_ptr<Allocator>()> allocator = {},
+                         std::optional<map::TopoMap> map = std::nullopt, bool reserve = false)
       : allocator_(std::move(allocator)),
-        map_(exec::testing::scenario_map()),
+        map_(map ? std::move(*map) : exec::testing::scenario_map()),
         zone_(TimeZone::named("Europe/London").value()),
         clock_(zone_.parse_time("2026-11-23T08:00").value()),
         db_(exec::testing::fresh_db_path()),
@@ -35,6 +39,7 @@ class ScriptedFleet {
       robots_.push_back(std::make_unique<ScriptedRobot>(clock_, map_, *map_.find_node(r.node)));
       names_.push_back(r.name);
     }
+    if (reserve) reservations_ = std::make_unique<traffic::Reservations>(map_);
     make_fleet();
   }
   // The executive is killed and started again on the same store (Fleet::restore): the robots stop
@@ -62,6 +67,7 @@ class ScriptedFleet {
   exec::SimClock& clock() { return clock_; }
   store::Store& store() { return store_; }
   const map::TopoMap& map() const { return map_; }
+  const traffic::Reservations& reservations() const { return *reservations_; }
   Time at(const std::string& local) const { return zone_.parse_time("2026-11-23T" + local).value(); }
   void settle() { clock_.run_until(clock_.now()); }
   // The robot a task is allocated to.
@@ -74,6 +80,7 @@ class ScriptedFleet {
     shared.refit_at.reset();
     fleet_ = std::make_unique<Fleet>(clock_, map_, store_, zone_, shared, nullptr,
                                      allocator_ ? allocator_() : std::unique_ptr<Allocator>{});
+    fleet_->set_reservations(reservations_.get());
     for (std::size_t i = 0; i < robots_.size(); ++i) {
       exec::ExecutorOptions own = shared;
       own.robot_name = names_[i];
@@ -89,6 +96,7 @@ class ScriptedFleet {
   store::Store store_;
   std::vector<std::unique_ptr<ScriptedRobot>> robots_;
   std::vector<std::string> names_;
+  std::unique_ptr<traffic::Reservations> reservations_;  // outlives the fleet
   std::unique_ptr<Fleet> fleet_;
 };
 

@@ -99,6 +99,22 @@ TEST(Reservations, ThreeInACycleTheLowestRankMakesWay) {
   EXPECT_EQ(r.unresolved(), 0u);
 }
 
+TEST(Reservations, TheRobotThatClosesADeadlockMayBeTheOneSentAside) {
+  // A - B, with a siding S off B: r2 at B, of the lower rank, closes the deadlock and is sent aside.
+  const map::TopoMap m = reservation_map({{"A"}, {"B"}, {"S"}}, {{"A", "B", Narrow::kNone}, {"B", "S", Narrow::kNone}});
+  Reservations r(m);
+  Told t1, t2;
+  const RobotId r1 = r.join("r1", node(m, "A"), &t1);
+  const RobotId r2 = r.join("r2", node(m, "B"), &t2);
+  r.set_rank(r1, 5);
+  EXPECT_EQ(r.request(r1, node(m, "A"), path(m, {"A_B"})), 0u);
+  // Nothing of its own route is held (it must not drive B_A), the way aside is, and it is told so.
+  EXPECT_EQ(r.request(r2, node(m, "B"), path(m, {"B_A"})), 0u);
+  EXPECT_EQ(r.granted(r2), path(m, {"B_S"}));
+  ASSERT_EQ(t2.make_way.size(), 1u);
+  EXPECT_EQ(t2.make_way[0].for_robots, std::vector<RobotId>{r1});
+}
+
 TEST(Reservations, ADeadlockWithNowhereToGoIsCountedUnresolved) {
   const map::TopoMap m = reservation_map({{"A"}, {"B"}}, {{"A", "B", Narrow::kNone}});
   Reservations r(m);
@@ -156,6 +172,25 @@ TEST(Reservations, GrantsGoNoFurtherThanTheLookaheadButANarrowSectionIsWhole) {
   EXPECT_EQ(r.request(a, node(m, "B"), path(m, {"B_A"})), 1u);
   EXPECT_TRUE(r.holders(node(m, "C")).empty());
   EXPECT_TRUE(r.passage_holders(*m.find_edge("C_D")).empty());
+}
+
+TEST(Reservations, ADeadEndIsEnteredWithTheNodeInFrontOfIt) {
+  // A - B - C, with a counter K off B (a dead end): r2 is at the counter.
+  const map::TopoMap m =
+      reservation_map({{"A"}, {"B", 2}, {"C"}, {"K"}},
+                      {{"A", "B", Narrow::kNone}, {"B", "C", Narrow::kNone}, {"B", "K", Narrow::kNone}});
+  Reservations r(m);
+  const RobotId a = r.join("r1", node(m, "A"), nullptr);
+  const RobotId k = r.join("r2", node(m, "K"), nullptr);
+  // r1 is not let into B to queue for the counter (B would fill, and r2 could not get out) ...
+  EXPECT_EQ(r.request(a, node(m, "A"), path(m, {"A_B", "B_K"})), 0u);
+  EXPECT_EQ(r.waits_for(a), std::vector<RobotId>{k});
+  // ... but passes B on its way to C.
+  EXPECT_EQ(r.request(a, node(m, "A"), path(m, {"A_B", "B_C"})), 2u);
+  r.stop(a, node(m, "A"));
+  // r2 leaves the counter: r1 gets B and the counter together.
+  r.stop(k, node(m, "C"));
+  EXPECT_EQ(r.request(a, node(m, "A"), path(m, {"A_B", "B_K"})), 2u);
 }
 
 TEST(Reservations, ARobotFoundElsewhereHoldsWhereItIs) {

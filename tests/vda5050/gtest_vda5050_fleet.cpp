@@ -196,13 +196,16 @@ TEST(Vda5050Fleet, TenVehiclesOnOneBrokerEachRunOnlyTheirOwnTasks) {
     ASSERT_TRUE(poll_until([&] { return log_says_ready(dir / fmt::format("{}.log", vehicle_name(i))); }, kDeadline))
         << vehicle_name(i) << " did not say it was ready";
 
-  // The deployment: the ten vehicles as the fleet's robots, each docked where it stands.
+  // The deployment: the ten vehicles as the fleet's robots, each docked where it stands. They do
+  // not reserve their way (docs/traffic.md): the test checks that each vehicle is sent only to its
+  // own tasks' places and its dock, and a vehicle making way for another goes elsewhere.
   {
     const std::filesystem::path source = std::filesystem::absolute("examples/g4s");
     std::ofstream dep(dir / "deployment.yaml");
     dep << "rondo_deployment: 1\nname: vda-fleet\n"
         << "map: " << (source / "map.yaml").string() << "\n"
-        << "time_zone: UTC\ndock: ChargingPoint\nstart: 2026-12-01\ndays: 3\nrobots:\n";
+        << "time_zone: UTC\ndock: ChargingPoint\nstart: 2026-12-01\ndays: 3\n"
+        << "traffic: {reservations: false}\nrobots:\n";
     for (int i = 0; i < kVehicles; ++i)
       dep << fmt::format(
           "  - {{name: {0}, kind: vda5050, broker: \"{1}\", interface_name: uagv, manufacturer: acme, "

@@ -26,6 +26,9 @@ namespace rondo::learn {
 class EdgeModels;
 class WeeklyMemory;
 }  // namespace rondo::learn
+namespace rondo::traffic {
+class Reservations;
+}
 
 namespace rondo::exec {
 
@@ -77,6 +80,10 @@ class Building {
   std::unique_ptr<DoorModels> door_models;             // when doors are open, learned
   std::unique_ptr<learn::WeeklyMemory> weekly_memory;  // null until the first refit
   std::unique_ptr<SpecTasks> spec_tasks;               // spec tasks' automata and product plans
+  // The traffic manager's reservations (docs/traffic.md), when the robots reserve their way (a
+  // fleet's deployment: `traffic: reservations`); owned by the fleet. Null: robots move freely.
+  traffic::Reservations* reservations = nullptr;
+  std::vector<TrafficWait> traffic_waits;  // every journey's wait for another robot, in order
 
  private:
   void refit_doors();

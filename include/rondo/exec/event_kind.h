@@ -39,6 +39,8 @@ enum class EventKind {
   kArrived,               // ... and arrived
   kWaits,                 // ... waits for a way found blocked
   kGaveUp,                // ... ended without arriving
+  kTrafficWait,           // a journey waits for the way another robot holds (a task's or the robot's)
+  kMadeWay,               // a journey sent aside by the traffic manager (a deadlock, or parked in the way)
   kStopped,               // ... was stopped (the schedule changed)
   kFault,                 // the robot reported a fault (or lost its connection)
   kReady,                 // the fault is over

@@ -87,6 +87,12 @@ class Dispatcher;
 class NavigateStep;
 class Opportunities;
 class TaskRun;
+class TrafficLink;
+}  // namespace rondo::exec
+namespace rondo::traffic {
+struct MakeWay;
+}
+namespace rondo::exec {
 
 // What the executor plans with, when the caller wants to choose (as rmf_task::TaskPlanner takes
 // its configuration). Empty parts get the defaults: edge models from the map's distances (refitted
@@ -303,6 +309,10 @@ class Executor final : public RobotListener {
   // The waiting task goes back to the front of the queue (`outcome`, `reason`), and next().
   void requeue_waiting(Outcome outcome, const std::string& reason);
   void go_to_dock(JourneyPurpose purpose);
+  // Traffic (docs/traffic.md): parked when it stands idle or waits for a task's window; asked to
+  // make way, it interrupts the wait and drives aside.
+  void update_parked();
+  void make_way(const traffic::MakeWay& make_way);
   void trip_ended(StepEnd end);
   void look_again_at(Time at);
   void preempt_for(Outcome outcome, const std::string& reason, std::vector<TaskId> then_schedule);
@@ -410,6 +420,7 @@ class Executor final : public RobotListener {
   std::vector<NavigationRecord> navigations_;
   bool in_fault_ = false;
   FoundBlocked& found_blocked_;  // what journeys found of the edges (steps_ holds it)
+  std::unique_ptr<TrafficLink> traffic_;  // its end of the building's reservations; outlives the steps
   StepContext steps_;  // what every step works with
 
   std::unique_ptr<TaskRun> run_;        // the task waited for, navigated to or acted on

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "rondo/core/task.h"
 #include "rondo/core/time.h"
@@ -145,6 +146,17 @@ struct ExecutorStats {
   int background_runs = 0;   // reschedules solved on the worker (background_scheduling)
   int background_stale = 0;  //   of which the answer came too late: the book had moved on
   std::size_t background_travel_policies = 0;  // held by the worker's travel cache, at its last answer
+};
+
+// A journey's wait for the way another robot holds (docs/traffic.md): where, behind whom, and how
+// it ended: "passed" (granted), "made way" (sent aside), "stopped" (the journey ended waiting).
+struct TrafficWait {
+  std::string robot{};
+  std::string node{};                 // where it waited
+  std::vector<std::string> behind{};  // the robots holding its way when it began to wait
+  Time start{};
+  std::optional<Time> end{};
+  std::string how{};
 };
 
 // The battery as the executor saw it (BatteryWatch): readings, the lowest, stays on the charger,

@@ -32,12 +32,15 @@ class TravelPlanner;
 namespace rondo::exec {
 
 class TravelCache;
+class TrafficLink;
 class FoundBlocked;
 class SpecTasks;
 
 // What a journey (exec::NavigateStep) is for: a task's way to its place or to its end place; the
 // executor's own way to the dock when idle, when out of service, or to charge.
-enum class JourneyPurpose { kToStart, kToEnd, kDock, kOutOfService, kCharge };
+// kMakeWay: parked (idle, or waiting for a task's window) on a node another robot needs, it moves
+// aside where the traffic manager sends it (docs/traffic.md).
+enum class JourneyPurpose { kToStart, kToEnd, kDock, kOutOfService, kCharge, kMakeWay };
 
 // How a step ended.
 struct StepEnd {
@@ -91,6 +94,7 @@ struct StepContext {
   FoundBlocked& found_blocked;
   const SpecTasks& specs;  // spec tasks' automata and product plans
   const learn::RobotSpeeds& speeds;  // the robots' paces (Building::speeds): `travel` is in standard time
+  TrafficLink* traffic = nullptr;    // the way reserved ahead (docs/traffic.md); null: the robot moves freely
 
   std::string clock_text(Time t) const { return zone.format_clock(t); }
   // A standard travel time (`travel`'s) as this robot takes it.

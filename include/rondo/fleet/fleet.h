@@ -123,6 +123,9 @@ class Fleet {
   const exec::TravelCache& travel_cache() const { return building_.travel; }
   const TimeZone& zone() const { return building_.zone; }
   const exec::Building& building() const { return building_; }
+  // The building's reservations (docs/traffic.md), before the first add_robot(): every robot then
+  // reserves its way. Must outlive the fleet.
+  void set_reservations(traffic::Reservations* reservations) { building_.reservations = reservations; }
   int refits() const { return refits_; }  // nightly refits that fitted the edge models
   // The learned probability that `door` is open at `t` (nothing before the first refit with data).
   std::optional<double> door_open_probability(const std::string& door, Time t) const;

@@ -14,11 +14,17 @@
 //   robot; one_way: robots in one direction).
 // - A run of narrow edges on a route is granted whole, with the node after it, or not at all: a
 //   robot never waits inside a narrow section.
+// - The way into a dead end (a room, a counter, a dock: one neighbour only) is granted together
+//   with the node in front of it: a robot never waits in front of a dead end, where it would shut
+//   in the robot inside.
 // - Grants go `lookahead` edges ahead (a narrow section may take them further), no further.
 // - A robot granted nothing waits. Whenever a robot starts waiting, the robots it waits for are
 //   followed: a parked robot (set_parked) in the way is asked to make way; a set of robots each
 //   waiting for another of the set (a deadlock) is broken by sending the one of lowest rank to the
-//   nearest node that none of the others needs. Both are sent a route already granted.
+//   nearest node that no waiting robot needs. Both are sent a route already granted; a way without
+//   doors is preferred (for a robot of higher rank too), since a door may be shut. A robot sent
+//   aside is granted nothing more while a robot it made way for still waits (else it would take the
+//   freed way back before them, and the deadlock would form again, and again).
 // Listeners are called after the call that caused them has finished its changes, and may call
 // back in. Only one thread.
 #pragma once
@@ -91,7 +97,8 @@ class Reservations {
   // The robot stands at `here` (its node, re-read: a robot carried elsewhere holds its new node)
   // and asks for `route`, consecutive edges from `here`. Grants what it can (keeping what it held
   // of the same route) and releases what it held off it; returns how many of route's first edges
-  // it now holds. 0 for a non-empty route: it waits until a listener call.
+  // it now holds. 0 for a non-empty route: it waits until a listener call (which may come at once,
+  // before this returns: a deadlock its wait closed may send it aside).
   std::size_t request(RobotId robot, map::NodeIndex here, std::span<const map::EdgeIndex> route);
   // The robot crossed `edge`, the first it held: it stands at the far node, the node left is freed.
   void crossed(RobotId robot, map::EdgeIndex edge);
@@ -105,7 +112,8 @@ class Reservations {
   map::NodeIndex at(RobotId robot) const { return robots_.at(robot).at; }
   const std::vector<map::EdgeIndex>& granted(RobotId robot) const { return robots_.at(robot).granted; }
   bool waiting(RobotId robot) const { return robots_.at(robot).waiting; }
-  // Whom a waiting robot waits for: the holders of the first node or passage it could not have.
+  // Whom a waiting robot waits for: the holders of the first node or passage it could not have
+  // (kept after it was sent aside: what it waited for).
   const std::vector<RobotId>& waits_for(RobotId robot) const { return robots_.at(robot).blockers; }
   // Where the waiting robot waits to go: the edge it could not have.
   std::optional<map::EdgeIndex> waits_at(RobotId robot) const { return robots_.at(robot).blocked_edge; }
@@ -132,6 +140,7 @@ class Reservations {
     std::vector<RobotId> blockers{};
     std::optional<map::EdgeIndex> blocked_edge{};
     std::size_t wait_order = 0;  // when it began to wait (a counter)
+    std::vector<RobotId> yield_to{};  // sent aside for these: they go first while they wait
   };
   struct PassageHold {
     RobotId robot;
@@ -140,7 +149,8 @@ class Reservations {
 
   // Whether `robot` may be granted `edge` now (besides what it holds); who stands in the way.
   std::vector<RobotId> in_the_way(RobotId robot, map::EdgeIndex edge) const;
-  // How many edges from route[i] form one grant: a narrow section whole, else one edge.
+  // How many edges from route[i] form one grant: a narrow section whole; the edge to the node in
+  // front of a dead end with the edge into it; else one edge.
   std::size_t unit_length(std::span<const map::EdgeIndex> route, std::size_t i) const;
   void grant(RobotId robot, map::EdgeIndex edge);
   void release_ahead(RobotId robot, std::size_t keep);
@@ -155,11 +165,12 @@ class Reservations {
   void refresh_blockers(RobotId robot);
   // Follows the waits from `robot`: asks a parked robot to make way, or breaks a deadlock.
   void resolve_from(RobotId robot);
-  // A granted route from where `robot` stands to the nearest node it can have that is not in
-  // `keep_clear` (else to any it can have); nothing when it cannot move at all.
-  std::optional<std::vector<map::EdgeIndex>> way_aside(RobotId robot, const std::vector<bool>& keep_clear) const;
-  bool send_aside(RobotId robot, MakeWay::Why why, std::vector<RobotId> for_robots,
-                  const std::vector<bool>& keep_clear);
+  // The way from where `robot` stands to the nearest node it can have that is not in `keep_clear`,
+  // over edges it can have (through doors or not); nothing when there is none.
+  std::optional<std::vector<map::EdgeIndex>> way_aside(RobotId robot, const std::vector<bool>& keep_clear,
+                                                       bool through_doors) const;
+  bool send_aside(RobotId robot, MakeWay::Why why, std::vector<RobotId> for_robots, const std::vector<bool>& keep_clear,
+                  bool through_doors);
   void notify();
 
   const map::TopoMap& map_;
@@ -167,6 +178,7 @@ class Reservations {
   std::vector<int> capacity_;
   std::vector<std::size_t> passage_of_;                  // per edge: its passage, or kNoPassage
   std::vector<map::Narrow> passage_mark_;                // per passage
+  std::vector<bool> dead_end_;                           // per node: one neighbour only
   std::vector<std::vector<RobotId>> node_holders_;       // per node
   std::vector<std::vector<PassageHold>> passage_holds_;  // per passage
   std::vector<Robot> robots_;

@@ -1,0 +1,90 @@
+// Traffic on scripted robots (issue 42; docs/traffic.md): the robots reserve their way through the
+// scenario map's one hall, whose every room is a dead end. Two robots that want each other's room
+// meet head-on: one is sent aside and both tasks are done; a robot waiting for its task's window
+// in the hall is parked there, and makes way for one that has to pass. Never two robots on a node.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "fleet_fixture.h"
+#include "rondo/store/events.h"
+
+namespace rondo::fleet::testing {
+namespace {
+
+using exec::testing::task;
+
+int events_named(ScriptedFleet& f, const std::string& name) {
+  const auto events = store::read_events(f.store());
+  EXPECT_TRUE(events.ok());
+  if (!events.ok()) return 0;
+  return static_cast<int>(
+      std::count_if(events->begin(), events->end(), [&](const store::Event& e) { return e.event == name; }));
+}
+
+// Every robot does what it is asked, 20 s a step, until `until`; never two on one node.
+void work(ScriptedFleet& f, std::size_t robots, Time until) {
+  while (f.clock().now() < until) {
+    f.clock().run_until(f.clock().now() + seconds(20));
+    for (std::size_t i = 0; i < robots; ++i) {
+      ScriptedRobot& r = f.robot(i);
+      if (r.driving())
+        r.finish_edge(exec::EdgeOutcome::kSucceeded, seconds(20));
+      else if (r.acting())
+        r.finish_action(exec::ActionOutcome::kSucceeded);
+    }
+    f.settle();
+    for (std::size_t i = 0; i < robots; ++i)
+      for (std::size_t j = i + 1; j < robots; ++j)
+        ASSERT_NE(f.robot(i).location(), f.robot(j).location())
+            << "robots " << i << " and " << j << " at " << f.map().node(f.robot(i).location()).name;
+  }
+}
+
+Task for_robot(Task t, const std::string& robot) {
+  t.robot = robot;
+  return t;
+}
+
+TEST(FleetTraffic, TwoRobotsWantingEachOthersRoomOneIsSentAsideAndBothAreDone) {
+  ScriptedFleet f({{"r1", "Office"}, {"r2", "Kitchen"}}, {}, std::nullopt, /*reserve=*/true);
+  f.fleet().start();
+  ASSERT_TRUE(
+      f.fleet().add_task(for_robot(task("a", "Kitchen", f.at("08:00"), f.at("09:00"), minutes(2)), "r1"), "test").ok());
+  ASSERT_TRUE(
+      f.fleet().add_task(for_robot(task("b", "Office", f.at("08:00"), f.at("09:00"), minutes(2)), "r2"), "test").ok());
+  f.settle();
+  // Neither may stand in the hall in front of the other's room: both wait where they are, and the
+  // deadlock is broken at once by sending one of them to a room nobody needs.
+  EXPECT_GE(events_named(f, "traffic wait"), 1);
+  EXPECT_EQ(events_named(f, "made way"), 1);
+  ASSERT_EQ(f.reservations().resolutions().size(), 1u);
+  EXPECT_EQ(f.reservations().resolutions()[0].why, traffic::MakeWay::Why::kDeadlock);
+  work(f, 2, f.at("08:30"));
+  EXPECT_EQ(f.fleet().book().at("a").state, TaskState::kSucceeded);
+  EXPECT_EQ(f.fleet().book().at("b").state, TaskState::kSucceeded);
+  EXPECT_EQ(f.reservations().unresolved(), 0u);
+}
+
+TEST(FleetTraffic, ARobotWaitingForItsWindowInTheHallMakesWayForOneThatPasses) {
+  ScriptedFleet f({{"r1", "Office"}, {"r2", "Hall"}}, {}, std::nullopt, /*reserve=*/true);
+  // r2's task is in the hall itself, from 08:10: it waits there for its window, parked.
+  ASSERT_TRUE(
+      f.fleet().add_task(for_robot(task("w", "Hall", f.at("08:10"), f.at("09:00"), minutes(2)), "r2"), "test").ok());
+  f.fleet().start();
+  f.settle();
+  // r1, idle, goes back to its dock across the hall: r2 is asked to make way, and goes into a room
+  // r1 does not need; its waiting task goes back to its queue.
+  ASSERT_EQ(f.reservations().resolutions().size(), 1u);
+  EXPECT_EQ(f.reservations().resolutions()[0].why, traffic::MakeWay::Why::kParked);
+  const std::string aside = f.map().node(f.reservations().resolutions()[0].to).name;
+  EXPECT_TRUE(aside == "Kitchen" || aside == "Lab") << aside;
+  EXPECT_TRUE(f.robot(1).driving());
+  EXPECT_EQ(events_named(f, "made way"), 1);
+  work(f, 2, f.at("08:40"));
+  EXPECT_EQ(f.map().node(f.robot(0).location()).name, "Dock");
+  EXPECT_EQ(f.fleet().book().at("w").state, TaskState::kSucceeded) << "r2 came back for its own task";
+}
+
+}  // namespace
+}  // namespace rondo::fleet::testing
