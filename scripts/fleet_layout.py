@@ -8,9 +8,10 @@ room behind a door on each side of every node (W<n>-<k>E / W<n>-<k>W, 4 m inside
 corridor, behind doors, are the services: pharmacy, laboratory, kitchen, stores, reception; and in
 recesses on its north side, five docks with a charger each (Dock-1 .. Dock-5). 131 nodes.
 
-Traffic (docs/map-format.md, "Traffic"): the main corridor is wide enough for beds to pass each
-other, so each of its waypoints holds two robots side by side (`capacity: 2`); rooms, counters,
-ward corridors and docks (one charger each) hold one. No passage is narrow.
+Traffic (docs/map-format.md, "Traffic"): the main corridor and the ward corridors are wide enough
+for beds to pass each other, so each of their waypoints holds two robots side by side (`capacity:
+2`): one robot passes another at work on a vitals round; rooms, counters and docks (one charger
+each) hold one. No passage is narrow.
 
   python3 scripts/fleet_layout.py examples/fleet/map.yaml
 """
@@ -19,6 +20,7 @@ import sys
 MAIN = 16
 MAIN_STEP = 8.0
 MAIN_CAPACITY = 2  # robots side by side at a main corridor waypoint
+WING_CAPACITY = 2  # a ward corridor is wide enough for beds too: a robot passes one at work
 WING_NODES = 5
 WING_STEP = 6.0
 ROOM_DEPTH = 4.0
@@ -64,7 +66,7 @@ def main(out):
         for k in range(1, WING_NODES + 1):
             hall = f"W{number}-{k}"
             y = side * (3.0 + (k - 1) * WING_STEP)
-            node(hall, x0, y, f"ward {number}, corridor")
+            node(hall, x0, y, f"ward {number}, corridor", capacity=WING_CAPACITY)
             both(prev, hall)
             prev = hall
             for tag, dx in (("E", 1), ("W", -1)):
