@@ -131,9 +131,10 @@ void Executor::start_run(const TaskId& id, std::optional<Time> wait_until) {
 
 void Executor::run_ended(TaskEnd e) {
   const TaskId id = run_->id();
+  const Time run_since = run_->run_since();
   retire_run();
   const TaskRecord& r = book_.at(id);
-  if (r.started) stats_.busy += clock_.now() - *r.started;
+  stats_.busy += clock_.now() - run_since;  // this run's, not the task's span since its first run
   std::vector<TaskId> again = std::exchange(after_preempt_, {});
   const bool on_demand = r.task.kind == TaskKind::kOnDemand;
   if (std::function<void(const TaskId&)> handed = std::exchange(handing_back_, {}); handed && e.requeue) {

@@ -47,7 +47,8 @@ StepHooks TaskRun::hooks() {
 
 void TaskRun::start() {
   TaskRecord& r = ctx_.book.at(id_);
-  if (!r.started) r.started = ctx_.clock.now();
+  run_since_ = ctx_.clock.now();
+  if (!r.started) r.started = run_since_;
   index_ = 0;
   steps_.front()->start();
 }

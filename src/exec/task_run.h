@@ -36,6 +36,8 @@ class TaskRun {
   bool waiting() const { return current() == wait_; }
   // Since when it acts at its place, and when its actions are expected to end, while it does.
   std::optional<Time> acting_since() const;
+  // When this run began (start()): a task run again after a preemption or a retry has a run each.
+  Time run_since() const { return run_since_; }
   std::optional<Time> acting_until() const;
   // The action the robot runs for it now, while it acts.
   std::optional<std::string> running_action() const;
@@ -67,6 +69,7 @@ class TaskRun {
 
   StepContext& ctx_;
   TaskId id_;
+  Time run_since_{};
   std::function<void(End)> ended_;
   std::vector<std::unique_ptr<Step>> steps_;
   std::size_t index_ = 0;

@@ -274,5 +274,34 @@ TEST(ScriptedRobot, APreemptedTaskKeepsItsProgressAndGoesOnAfterTheActionsItDid)
   EXPECT_EQ(store::get_task(s.store(), "A").value().progress, (Json{{"actions_done", 3}}));
 }
 
+// The robot's busy time counts each run of a task once: a task preempted and run again adds its
+// second run, not its whole span since it first started (report.json's time_s.busy).
+TEST(ScriptedRobot, BusyTimeCountsEachRunOfATaskOnce) {
+  Scripted s;
+  Task a = task("A", "Office", s.at("08:00"), s.at("10:00"), minutes(6));
+  a.actions = {Action{.name = "one", .args = {}}, Action{.name = "two", .args = {}}};
+  ASSERT_TRUE(s.fleet().add_task(a, "test").ok());
+  const Time start = s.clock().now();
+  s.fleet().start();
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
+  s.clock().run_until(s.clock().now() + minutes(2));
+  s.robot().finish_action(ActionOutcome::kSucceeded);
+  s.settle();
+  ASSERT_TRUE(s.fleet().add_task(on_demand("OD", "Lab", minutes(5)), "request").ok());
+  s.settle();  // A is preempted: its first run ends
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Lab"));
+  s.clock().run_until(s.clock().now() + minutes(2));
+  s.robot().finish_action(ActionOutcome::kSucceeded);
+  s.settle();
+  ASSERT_EQ(s.state("OD"), "succeeded");
+  ASSERT_NO_FATAL_FAILURE(s.drive_to("Office"));
+  s.clock().run_until(s.clock().now() + minutes(2));
+  s.robot().finish_action(ActionOutcome::kSucceeded);
+  s.settle();
+  ASSERT_EQ(s.state("A"), "succeeded");
+  // The robot worked without a gap from its start to A's end: A's first run, OD, A's second run.
+  EXPECT_EQ(s.executor().stats().busy, s.clock().now() - start);
+}
+
 }  // namespace
 }  // namespace rondo::exec::testing
