@@ -17,6 +17,8 @@ each) hold one. No passage is narrow.
 """
 import sys
 
+from map_writer import MapWriter
+
 MAIN = 16
 MAIN_STEP = 8.0
 MAIN_CAPACITY = 2  # robots side by side at a main corridor waypoint
@@ -34,26 +36,8 @@ DOCKS = [(1, 0), (2, 4), (3, 8), (4, 12), (5, 15)]  # (dock number, main corrido
 
 
 def main(out):
-    nodes, edges = [], []
-
-    def node(name, x, y, description=None, capacity=1):
-        meta = f", meta: {{description: \"{description}\"}}" if description else ""
-        room = f", capacity: {capacity}" if capacity != 1 else ""
-        nodes.append(f"  - {{name: {name}, pose: {{x: {x:.1f}, y: {y:.1f}}}{meta}{room}}}")
-
-    def both(a, b, action=None, door=None, top_speed=None):
-        extra = ""
-        if action:
-            extra += f", action: {action}"
-        if door:
-            extra += f", door: {door}"
-        if top_speed:
-            extra += f", top_speed: {top_speed}"
-        for f, t in ((a, b), (b, a)):
-            act = extra
-            if action == "docking" and f != a:
-                act = extra.replace("docking", "undocking")
-            edges.append(f"  - {{from: {f}, to: {t}{act}}}")
+    m = MapWriter()
+    node, both = m.node, m.both
 
     main_name = [f"Main-{i:02d}" for i in range(MAIN)]
     for i, n in enumerate(main_name):
@@ -81,15 +65,11 @@ def main(out):
         node(dock, at * MAIN_STEP + 2.0, 1.6, f"charger {number}")
         both(main_name[at], dock, action="docking", top_speed=0.1)
 
-    with open(out, "w") as f:
-        f.write("# The ground floor of a hospital for the fleet example (issue 38), drawn by us: no public\n")
-        f.write("# map has a hundred nodes with doors and docks. Written by scripts/fleet_layout.py; edit\n")
-        f.write("# the script, not this file. rondo map format 1 (docs/map-format.md).\n")
-        f.write(f"# {len(nodes)} nodes, {len(edges)} edges.\n")
-        f.write("rondo_map: 1\nname: hospital\nnodes:\n")
-        f.write("\n".join(nodes) + "\n")
-        f.write("edges:\n")
-        f.write("\n".join(edges) + "\n")
+    m.write(out, "hospital", [
+        "# The ground floor of a hospital for the fleet example (issue 38), drawn by us: no public",
+        "# map has a hundred nodes with doors and docks. Written by scripts/fleet_layout.py; edit",
+        "# the script, not this file. rondo map format 1 (docs/map-format.md).",
+    ])
 
 
 if __name__ == "__main__":

@@ -22,6 +22,8 @@ Dock-20, `capacity: 5`): room for 100 robots. 229 nodes.
 """
 import sys
 
+from map_writer import MapWriter
+
 MAIN = 24
 MAIN_STEP = 8.0
 MAIN_CAPACITY = 2
@@ -52,25 +54,8 @@ def wing_kind(number):
 
 
 def main(out):
-    nodes, edges = [], []
-
-    def node(name, x, y, description=None, capacity=1):
-        meta = f", meta: {{description: \"{description}\"}}" if description else ""
-        room = f", capacity: {capacity}" if capacity != 1 else ""
-        nodes.append(f"  - {{name: {name}, pose: {{x: {x:.1f}, y: {y:.1f}}}{meta}{room}}}")
-
-    def both(a, b, action=None, door=None, top_speed=None, narrow=None):
-        for f, t in ((a, b), (b, a)):
-            extra = ""
-            if action:
-                extra += f", action: {'undocking' if action == 'docking' and f != a else action}"
-            if door:
-                extra += f", door: {door}"
-            if top_speed:
-                extra += f", top_speed: {top_speed}"
-            if narrow:
-                extra += f", narrow: {narrow}"
-            edges.append(f"  - {{from: {f}, to: {t}{extra}}}")
+    m = MapWriter()
+    node, both = m.node, m.both
 
     main_name = [f"Main-{i:02d}" for i in range(MAIN)]
     for i, n in enumerate(main_name):
@@ -102,17 +87,13 @@ def main(out):
         node(dock, x, y, f"dock bay {number}, {DOCK_CAPACITY} chargers", capacity=DOCK_CAPACITY)
         both(main_name[at], dock, action="docking", top_speed=0.1)
 
-    with open(out, "w") as f:
-        f.write("# A research institute for the traffic scaling bench (issue 42; bench/traffic-scale), drawn\n")
-        f.write("# by us. Written by scripts/traffic_layout.py; edit the script, not this file:\n")
-        f.write("#   python3 scripts/traffic_layout.py bench/traffic-scale/map.yaml\n")
-        f.write("# rondo map format 1 (docs/map-format.md). Wings 1, 4, 7, 10: narrow: single; wings 2, 5, 8,\n")
-        f.write("# 11: narrow: one_way; wings 3, 6, 9, 12 ordinary; main corridor capacity 2; 20 dock bays of 5.\n")
-        f.write(f"# {len(nodes)} nodes, {len(edges)} edges.\n")
-        f.write("rondo_map: 1\nname: institute\nnodes:\n")
-        f.write("\n".join(nodes) + "\n")
-        f.write("edges:\n")
-        f.write("\n".join(edges) + "\n")
+    m.write(out, "institute", [
+        "# A research institute for the traffic scaling bench (issue 42; bench/traffic-scale), drawn",
+        "# by us. Written by scripts/traffic_layout.py; edit the script, not this file:",
+        "#   python3 scripts/traffic_layout.py bench/traffic-scale/map.yaml",
+        "# rondo map format 1 (docs/map-format.md). Wings 1, 4, 7, 10: narrow: single; wings 2, 5, 8,",
+        "# 11: narrow: one_way; wings 3, 6, 9, 12 ordinary; main corridor capacity 2; 20 dock bays of 5.",
+    ])
 
 
 if __name__ == "__main__":

@@ -48,11 +48,7 @@ void Executor::make_way(const traffic::MakeWay& m) {
   const map::NodeIndex to = map_.to_index(m.route.back());
   book_.note_robot(options_.robot_name, EventKind::kMadeWay, Outcome::kNone,
                    fmt::format("to {} (parked), making way for {}", map_.node(to).name, for_robots));
-  trip_ = std::make_unique<NavigateStep>(steps_,
-                                         StepHooks{.ended = [this](StepEnd e) { trip_ended(std::move(e)); },
-                                                   .overrun = [](Outcome, const std::string&) {}},
-                                         JourneyPurpose::kMakeWay, std::nullopt, to);
-  trip_->start();
+  start_trip(JourneyPurpose::kMakeWay, to);
 }
 
 void Executor::next() {
@@ -188,11 +184,15 @@ void Executor::go_to_dock(JourneyPurpose purpose) {
   if (robot_.location() == options_.dock) return;
   if (const std::optional<Time> closed = charging_->way_home_closed_until(); closed && clock_.now() < *closed)
     return look_again_at(*closed);
+  start_trip(purpose, options_.dock);
+}
+
+void Executor::start_trip(JourneyPurpose purpose, map::NodeIndex to) {
   // Its monitor's end is its own (NavigateStep::overran): the overrun hook is a task's.
-  trip_ = std::make_unique<NavigateStep>(
-      steps_, StepHooks{.ended = [this](StepEnd e) { trip_ended(std::move(e)); },
-                        .overrun = [](Outcome, const std::string&) {}},
-      purpose, std::nullopt, options_.dock);
+  trip_ = std::make_unique<NavigateStep>(steps_,
+                                         StepHooks{.ended = [this](StepEnd e) { trip_ended(std::move(e)); },
+                                                   .overrun = [](Outcome, const std::string&) {}},
+                                         purpose, std::nullopt, to);
   trip_->start();
 }
 

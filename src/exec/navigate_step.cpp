@@ -107,11 +107,7 @@ void NavigateStep::wait_for_way(map::NodeIndex here) {
     ctx_.traffic->wait_began(here, ctx_.clock.now());
     const std::string text =
         fmt::format("at {}, its way held by {}", ctx_.map.node(here).name, ctx_.traffic->behind_text());
-    if (task_)
-      ctx_.book.note(*task_, EventKind::kTrafficWait, Outcome::kNone, text);
-    else
-      ctx_.book.note_robot(ctx_.options.robot_name, EventKind::kTrafficWait, Outcome::kNone,
-                           fmt::format("{} ({})", text, errand()));
+    note(EventKind::kTrafficWait, task_ ? text : fmt::format("{} ({})", text, errand()));
   }
   ctx_.traffic->when_waiting(
       this,
@@ -127,20 +123,27 @@ void NavigateStep::make_way(const traffic::MakeWay& m) {
     return;
   }
   waiting_for_way_ = false;
-  const Time now = ctx_.clock.now();
-  ctx_.traffic->wait_ended(now, "made way");
-  const std::string text =
-      fmt::format("to {} ({}), making way for {}", ctx_.map.node(ctx_.map.to_index(m.route.back())).name,
-                  traffic::to_string(m.why), ctx_.traffic->names(m.for_robots));
+  ctx_.traffic->wait_ended(ctx_.clock.now(), "made way");
+  note(EventKind::kMadeWay,
+       fmt::format("to {} ({}), making way for {}", ctx_.map.node(ctx_.map.to_index(m.route.back())).name,
+                   traffic::to_string(m.why), ctx_.traffic->names(m.for_robots)));
+  drive(Route{.edges = m.route, .committed = m.route.size()});
+}
+
+// A task's journey writes its task's events, an own journey the robot's.
+void NavigateStep::note(EventKind kind, const std::string& text) {
   if (task_)
-    ctx_.book.note(*task_, EventKind::kMadeWay, Outcome::kNone, text);
+    ctx_.book.note(*task_, kind, Outcome::kNone, text);
   else
-    ctx_.book.note_robot(ctx_.options.robot_name, EventKind::kMadeWay, Outcome::kNone, text);
-  edge_ = m.route.front();
-  edge_since_ = now;
+    ctx_.book.note_robot(ctx_.options.robot_name, kind, Outcome::kNone, text);
+}
+
+void NavigateStep::drive(Route route) {
+  edge_ = route.edges.front();
+  edge_since_ = ctx_.clock.now();
   edge_p_ = std::clamp(ctx_.models.outcome(*edge_, edge_since_).success_probability, 0.0, 1.0);
   ctx_.before_command();
-  ctx_.robot.drive(Route{.edges = m.route, .committed = m.route.size()});
+  ctx_.robot.drive(route);
 }
 
 StepEnd NavigateStep::halted_end() {
@@ -178,11 +181,7 @@ void NavigateStep::advance() {
       ctx_.traffic->wait_ended(ctx_.clock.now(), "passed");
     }
   }
-  edge_ = route.front();
-  edge_since_ = ctx_.clock.now();
-  edge_p_ = std::clamp(ctx_.models.outcome(*edge_, edge_since_).success_probability, 0.0, 1.0);
-  ctx_.before_command();
-  ctx_.robot.drive(Route{.edges = std::move(route), .committed = committed});
+  drive(Route{.edges = std::move(route), .committed = committed});
 }
 
 void NavigateStep::overran(const std::string& why) {

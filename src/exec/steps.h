@@ -103,6 +103,9 @@ class NavigateStep final : public RobotStep, public Arrival {
   void wait_for_way(map::NodeIndex here);
   void make_way(const traffic::MakeWay& make_way);
   int rank() const;
+  // Sends `route` to the robot; its first edge is the attempt the monitor watches.
+  void drive(Route route);
+  void note(EventKind kind, const std::string& text);
   // The navigation monitor fired: the task fails, or under the window watch
   // (ExecutorOptions::navigation_window) the journey goes on while the task can still start in its
   // window.

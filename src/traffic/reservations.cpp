@@ -118,6 +118,14 @@ std::vector<RobotId> Reservations::in_the_way(RobotId robot, map::EdgeIndex edge
   return way;
 }
 
+std::vector<RobotId> Reservations::unit_in_the_way(RobotId robot, std::span<const map::EdgeIndex> unit) const {
+  std::vector<RobotId> way;
+  for (map::EdgeIndex e : unit)
+    for (RobotId b : in_the_way(robot, e))
+      if (!contains(way, b)) way.push_back(b);
+  return way;
+}
+
 std::size_t Reservations::unit_length(std::span<const map::EdgeIndex> route, std::size_t i) const {
   if (passage(route[i]) == kNoPassage) {
     // The way into a dead end is granted with the node in front of it: nobody queues there.
@@ -195,9 +203,7 @@ std::size_t Reservations::request(RobotId robot, map::NodeIndex here, std::span<
   std::size_t i = r.granted.size();
   while (i < route.size() && i < options_.lookahead) {
     const std::size_t n = unit_length(route, i);
-    for (std::size_t k = i; k < i + n; ++k)
-      for (RobotId b : in_the_way(robot, route[k]))
-        if (!contains(way, b)) way.push_back(b);
+    way = unit_in_the_way(robot, route.subspan(i, n));
     if (!way.empty()) break;
     for (std::size_t k = i; k < i + n; ++k) grant(robot, route[k]);
     i += n;
@@ -275,12 +281,7 @@ void Reservations::wake_waiting_on(RobotId released_by) {
 void Reservations::refresh_blockers(RobotId robot) {
   Robot& r = robots_[robot];
   if (!r.waiting || r.wanted.empty()) return;
-  std::vector<RobotId> way;
-  const std::size_t n = unit_length(r.wanted, 0);
-  for (std::size_t k = 0; k < n; ++k)
-    for (RobotId b : in_the_way(robot, r.wanted[k]))
-      if (!contains(way, b)) way.push_back(b);
-  r.blockers = std::move(way);
+  r.blockers = unit_in_the_way(robot, std::span(r.wanted).first(unit_length(r.wanted, 0)));
   if (r.blockers.empty() &&
       std::none_of(pending_.begin(), pending_.end(), [&](const Pending& p) { return p.robot == robot && !p.make_way; }))
     pending_.push_back({robot, std::nullopt});  // its way is clear now: it asks again
@@ -315,7 +316,7 @@ void Reservations::resolve_from(RobotId start) {
       }
     }
   }
-  if (!stuck[start] || (robots_[start].waiting && robots_[start].blockers.empty())) return;
+  if (!stuck[start]) return;
   // What every waiting robot needs (not only these: a robot sent aside for one must not land in
   // another's way): kept clear by whoever is sent aside.
   const auto keep_clear_for = [&](RobotId moving) {

@@ -309,6 +309,7 @@ class Executor final : public RobotListener {
   // The waiting task goes back to the front of the queue (`outcome`, `reason`), and next().
   void requeue_waiting(Outcome outcome, const std::string& reason);
   void go_to_dock(JourneyPurpose purpose);
+  void start_trip(JourneyPurpose purpose, map::NodeIndex to);  // an own journey (trip_)
   // Traffic (docs/traffic.md): parked when it stands idle or waits for a task's window; asked to
   // make way, it interrupts the wait and drives aside.
   void update_parked();

@@ -149,6 +149,8 @@ class Reservations {
 
   // Whether `robot` may be granted `edge` now (besides what it holds); who stands in the way.
   std::vector<RobotId> in_the_way(RobotId robot, map::EdgeIndex edge) const;
+  // Who stands in the way of any edge of one grant (unit_length edges).
+  std::vector<RobotId> unit_in_the_way(RobotId robot, std::span<const map::EdgeIndex> unit) const;
   // How many edges from route[i] form one grant: a narrow section whole; the edge to the node in
   // front of a dead end with the edge into it; else one edge.
   std::size_t unit_length(std::span<const map::EdgeIndex> route, std::size_t i) const;
