@@ -24,7 +24,8 @@
 //   docks: [{node: Dock1, capacity: 2}]   # optional: a dock not listed has room for one robot
 //   allocator: fleet               # optional: fleet (the fleet scheduler, default) or greedy
 //   balance: false                 # optional: spread work and battery across the robots
-//   traffic: {reservations: true, lookahead: 2}   # optional: a fleet reserves its way (docs/traffic.md)
+//   traffic: {reservations: true, lookahead: 2, plan_around: true}   # optional: a fleet reserves its
+//                                   # way and plans around its robots' stops (docs/traffic.md)
 //   store: {kind: postgresql, url: "postgresql://rondo@db/fleet", password_file: pw}  # optional;
 //                                   # rondo serve's store (default: rondo.sqlite in its data folder)
 #pragma once
@@ -111,10 +112,11 @@ struct Deployment {
   AllocatorKind allocator = AllocatorKind::kFleet;
   bool balance = false;  // `balance:` (fleet::BalancedAllocator around the allocator)
   // `traffic:` (docs/traffic.md): a fleet's robots reserve their way ahead (on by default with two
-  // robots or more), `lookahead` edges at a time.
+  // robots or more), `lookahead` edges at a time, and plan around each other's stops (the same).
   struct Traffic {
     bool reservations = true;
     std::size_t lookahead = 2;
+    bool plan_around = true;
   } traffic{};
   // `store:`: where `rondo serve` keeps its store; none: rondo.sqlite in its data folder
   // (docs/deployment.md, "The store").

@@ -22,6 +22,7 @@
 #include "rondo/sim/request_generator.h"
 #include "rondo/sim/sim_world.h"
 #include "rondo/sim/traffic.h"
+#include "rondo/traffic/bookings.h"
 #include "rondo/traffic/reservations.h"
 
 namespace rondo::app {
@@ -46,6 +47,9 @@ struct DeploymentParts {
   // The traffic manager's reservations (docs/traffic.md), for a fleet whose robots reserve their
   // way (reservations_for()).
   std::unique_ptr<traffic::Reservations> reservations{};
+  // The robots' planned stops (docs/traffic.md, "Planning around each other"), for a fleet whose
+  // robots plan around each other (bookings_for()).
+  std::unique_ptr<traffic::Bookings> bookings{};
 };
 
 // The robots a node holds at once: its capacity on the map, or a listed dock's room when larger.

@@ -186,9 +186,12 @@ Status decode_robots(const Field& root, Deployment& d) {
     RONDO_ASSIGN_OR_RETURN(d.balance, f->as_bool());
   }
   if (auto f = root.optional("traffic")) {
-    RONDO_RETURN_IF_ERROR(f->expect_keys({"reservations", "lookahead"}));
+    RONDO_RETURN_IF_ERROR(f->expect_keys({"reservations", "lookahead", "plan_around"}));
     if (auto r = f->optional("reservations")) {
       RONDO_ASSIGN_OR_RETURN(d.traffic.reservations, r->as_bool());
+    }
+    if (auto p = f->optional("plan_around")) {
+      RONDO_ASSIGN_OR_RETURN(d.traffic.plan_around, p->as_bool());
     }
     if (auto l = f->optional("lookahead")) {
       RONDO_ASSIGN_OR_RETURN(const std::int64_t n, l->as_int());

@@ -89,4 +89,14 @@ traffic::Reservations* reservations_for(const Deployment& d, DeploymentParts& pa
   return parts.reservations.get();
 }
 
+traffic::Bookings* bookings_for(const Deployment& d, DeploymentParts& parts) {
+  if (d.robots.size() < 2 || !d.traffic.plan_around) return nullptr;
+  if (!parts.bookings) {
+    parts.bookings = std::make_unique<traffic::Bookings>(parts.map);
+    for (const DockSpec& dock : d.docks)
+      if (const auto n = parts.map.find_node(dock.node)) parts.bookings->set_capacity(*n, node_room(d, parts.map, *n));
+  }
+  return parts.bookings.get();
+}
+
 }  // namespace rondo::app

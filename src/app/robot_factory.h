@@ -43,6 +43,9 @@ std::unique_ptr<fleet::Allocator> make_allocator(const Deployment& deployment);
 // The building's reservations (made once, kept in `parts`) when the deployment's robots reserve
 // their way: two robots or more and `traffic: {reservations: true}` (the default); else null.
 traffic::Reservations* reservations_for(const Deployment& deployment, DeploymentParts& parts);
+// The bookings of the robots' planned stops (made once, kept in `parts`) when they plan around
+// each other: two robots or more and `traffic: {plan_around: true}` (the default); else null.
+traffic::Bookings* bookings_for(const Deployment& deployment, DeploymentParts& parts);
 
 // A VDA 5050 vehicle moves in real time: it needs the system clock (rondo run --realtime).
 inline bool needs_realtime(const Deployment& deployment) {

@@ -238,6 +238,7 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   }
   fleet::Fleet fleet(clock, map, db, d.zone, shared, {}, make_allocator(d));
   fleet.set_reservations(reservations_for(d, s.parts));
+  fleet.set_bookings(bookings_for(d, s.parts));
   for (std::size_t i = 0; i < d.robots.size(); ++i)
     fleet.add_robot(*deployed[i].robot, robot_options(d, d.robots[i], s.parts.robots[i]));
   exec::Executor& executor = fleet.robot();
@@ -356,6 +357,7 @@ Result<RunResult> run_deployment(const RunRequest& request, std::ostream& progre
   if (s.parts.reservations)
     result.report["traffic"]["reservations"] =
         reservation_report(*s.parts.reservations, fleet.building().traffic_waits, clock.now());
+  if (s.parts.bookings) result.report["traffic"]["plan_around"] = plan_around_report(fleet.building().deferrals);
   if (d.reference) result.report["reference"] = reference_figures(*d.reference, result.report, d.days);
   RONDO_ASSIGN_OR_RETURN(const std::vector<store::Event> events, store::read_events(db));
   result.report["weeks"] = weekly_summary(log, events, start, end);

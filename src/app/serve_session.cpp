@@ -283,6 +283,7 @@ Result<ActiveEnd> serve_active(const ServeRequest& request, const store::StoreLo
   }
   fleet::Fleet fleet(clock, parts.map, db, d.zone, shared, {}, make_allocator(d));
   fleet.set_reservations(reservations_for(d, parts));
+  fleet.set_bookings(bookings_for(d, parts));
   for (std::size_t i = 0; i < d.robots.size(); ++i) {
     exec::ExecutorOptions options = robot_options(d, d.robots[i], parts.robots[i]);
     options.background_scheduling = shared.background_scheduling;

@@ -120,6 +120,10 @@ Json reservation_report(const traffic::Reservations& reservations, const std::ve
                                    {"first", std::move(first)}}}};
 }
 
+Json plan_around_report(const exec::TrafficDeferrals& deferrals) {
+  return Json{{"departures_put_off", deferrals.count}, {"put_off_s", to_seconds(deferrals.total)}};
+}
+
 Json traffic_report(const sim::Traffic& traffic) {
   return Json{{"hold_timeout_s", to_seconds(traffic.options().hold_timeout)},
               {"hold_ups", hold_ups_json(traffic)},

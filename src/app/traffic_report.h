@@ -29,4 +29,8 @@ Json traffic_report(const sim::Traffic& traffic);
 Json reservation_report(const traffic::Reservations& reservations, const std::vector<exec::TrafficWait>& waits,
                         Time end);
 
+// Planning around each other (docs/traffic.md): {"departures_put_off", "put_off_s"}, the
+// departures moved so as to arrive after another robot's stop, and by how much in all.
+Json plan_around_report(const exec::TrafficDeferrals& deferrals);
+
 }  // namespace rondo::app

@@ -91,8 +91,8 @@ ScheduleAnswer BackgroundScheduler::solve(ScheduleJob& job, std::stop_token stop
   // their last problem did not change (or drop everything after a refit), as with the live models.
   *models_ = *job.models;
   schedule::TryScheduleRequest& request = job.problem.request;
-  set_travel(request.problem, *travel_, job.problem.nodes, job.problem.risk_alpha, job.problem.specs,
-             job.problem.speed);
+  set_travel(request.problem, *travel_, job.problem.nodes, job.problem.risk_alpha, job.problem.specs, job.problem.speed,
+             job.problem.stops);
   const schedule::DeadlineStop budget(steady_seconds, start + std::chrono::duration<double>(options_.budget).count());
   const TokenStop cancelled(std::move(stop));
   const schedule::AnyStop either({&budget, &cancelled});

@@ -56,12 +56,29 @@ Decision Dispatcher::next(map::NodeIndex here, Time now) {
   // estimated now still counts that way's failures, and leaving early by the travel expected
   // then would reach the way before it is likely open again.
   if (r.not_before && *r.not_before > now) depart = std::max(depart, *r.not_before);
+  // Another robot's stop there: set out so as to arrive when it has left, while the task can still
+  // start in time (else go: the reservations make it wait its turn).
+  Duration delay{0};
+  std::string behind;
+  if (bookings_ && !task.has_spec()) {
+    const map::NodeIndex node = *map_.find_node(task.start_node);
+    const Time arrive = std::max(now, depart) + travel;
+    const Time free = bookings_->earliest(me_, node, arrive, r.remaining());
+    if (free > arrive && free <= latest_start) {
+      delay = free - arrive;
+      depart += delay;
+      const std::optional<traffic::Stop> stop = bookings_->behind(me_, node, arrive, r.remaining());
+      behind = fmt::format("{} stops at {} until about {}", stop ? bookings_->name(stop->robot) : "another robot",
+                           task.start_node, zone_.format_clock(free));
+    }
+  }
   if (now < depart && depart - now > options_.dock_when_waiting_over) {  // a long wait: on the charger
     if (here != options_.dock) return {.kind = Decision::Kind::kDock};
     return {.kind = Decision::Kind::kIdleUntil, .until = depart};
   }
   planned_.erase(planned_.begin());
-  if (now < depart) return {.kind = Decision::Kind::kWait, .task = id, .until = depart};
+  if (now < depart)
+    return {.kind = Decision::Kind::kWait, .task = id, .until = depart, .reason = behind, .traffic_delay = delay};
   return {.kind = Decision::Kind::kRun, .task = id};
 }
 

@@ -19,13 +19,15 @@
 #include "rondo/exec/outcome.h"
 #include "rondo/exec/task_book.h"
 #include "rondo/map/topo_map.h"
+#include "rondo/traffic/bookings.h"
 
 namespace rondo::exec {
 
 struct Decision {
   enum class Kind {
     kRun,        // start `task` now
-    kWait,       // `task` is next but early: wait where the robot is until `until`, then go
+    kWait,       // `task` is next but early: wait where the robot is until `until`, then go (`reason`:
+                 // whose stop it waits to pass, when another robot's; `traffic_delay`: how much later)
     kFail,       // `task` can no longer start in time (`outcome`, `reason`); decide again after it
     kDock,       // go to the dock (idle, or a long wait ahead)
     kIdleUntil,  // on the dock with a long wait ahead: look again at `until`
@@ -39,6 +41,7 @@ struct Decision {
   std::string reason{};
   double level = 1;        // kCharge: the level to reach
   Duration length{0};      // kCharge: planned on the charger
+  Duration traffic_delay{0};  // kWait: how much later it sets out for another robot's stop
 };
 
 // A charge the schedule planned (charge_planning.h): at the dock from `start` to `end`, before
@@ -92,6 +95,12 @@ class Dispatcher {
   std::optional<TaskId> ready_on_demand(Time now) const;
   // Takes a task off every queue.
   void forget(const TaskId& id);
+  // Planning around the other robots' stops (docs/traffic.md): a task's departure moves so that
+  // the robot arrives when it may stop there, if it still starts in time. Null: it does not.
+  void plan_around(const traffic::Bookings* bookings, traffic::BookingRobot me) {
+    bookings_ = bookings;
+    me_ = me;
+  }
 
  private:
   const map::TopoMap& map_;
@@ -100,6 +109,8 @@ class Dispatcher {
   const ExecutorOptions& options_;
   const TimeZone& zone_;
   const SpecTasks* specs_;
+  const traffic::Bookings* bookings_ = nullptr;
+  traffic::BookingRobot me_ = 0;
   std::vector<TaskId> planned_;
   std::deque<TaskId> on_demand_;
   std::vector<TaskId> deferred_;

@@ -90,6 +90,11 @@ Executor::Executor(Building& building, Robot& robot, ExecutorOptions options,
                                                         .travel = travel_,
                                                         .snapshot = offline_models_});
   robot_.set_listener(this);
+  if (building_.bookings) {
+    booking_ = building_.bookings->join(options_.robot_name);
+    dispatcher_->plan_around(building_.bookings, *booking_);
+    building_.bookings->on_changed(*booking_, [this](map::NodeIndex node) { stops_changed(node); });
+  }
   if (options_.forget_finished)
     book_.forget_finished([this] { clock_.schedule_at(clock_.now(), [this] { sweep_finished(); }); });
 }
@@ -105,6 +110,11 @@ void Executor::sweep_finished() {
 
 Executor::~Executor() {
   robot_.set_listener(nullptr);
+  if (booking_) {
+    building_.bookings->on_changed(*booking_, {});
+    building_.bookings->publish(*booking_, {});
+  }
+  if (stops_look_ != 0) clock_.cancel(stops_look_);
   if (look_again_ != 0) clock_.cancel(look_again_);
   if (offer_again_ != 0) clock_.cancel(offer_again_);
 }

@@ -31,31 +31,14 @@ void Executor::requeue_waiting(Outcome outcome, const std::string& reason) {
   next();
 }
 
-void Executor::update_parked() {
-  if (traffic_) traffic_->set_parked(!in_fault_ && !robot_.busy() && !trip_ && (!run_ || run_->waiting()));
-}
-
-void Executor::make_way(const traffic::MakeWay& m) {
-  if (in_fault_ || robot_.busy() || trip_ || (run_ && !run_->waiting())) return traffic_->decline(m);
-  const std::string for_robots = traffic_->names(m.for_robots);
-  if (run_) {
-    const TaskId id = run_->id();
-    end_wait();
-    book_.transition(id, TaskState::kQueued, Outcome::kScheduleChanged,
-                     fmt::format("waiting interrupted: making way for {}", for_robots));
-    dispatcher_->put_first_in_plan(id);
-  }
-  const map::NodeIndex to = map_.to_index(m.route.back());
-  book_.note_robot(options_.robot_name, EventKind::kMadeWay, Outcome::kNone,
-                   fmt::format("to {} (parked), making way for {}", map_.node(to).name, for_robots));
-  start_trip(JourneyPurpose::kMakeWay, to);
-}
-
 void Executor::next() {
-  struct Park {  // whatever next() decides, the traffic manager knows whether the robot is parked
-    Executor& e;
-    ~Park() { e.update_parked(); }
-  } park{*this};
+  struct Traffic {  // whatever next() decides, the traffic manager knows whether the robot is
+    Executor& e;    // parked, and the others where it plans to stop
+    ~Traffic() {
+      e.update_parked();
+      e.publish_stops();
+    }
+  } traffic{*this};
   if (run_ || trip_ || robot_.busy() || in_fault_) return;  // a fault: on_ready() comes back here
   if (look_again_ != 0) clock_.cancel(look_again_);
   look_again_ = 0;
@@ -71,7 +54,11 @@ void Executor::next() {
         return start_run(d.task, std::nullopt);
       case Decision::Kind::kWait:
         if (charge_first(d.task)) return charge();
-        return start_run(d.task, d.until);
+        if (d.traffic_delay > Duration{0}) {
+          ++building_.deferrals.count;
+          building_.deferrals.total += d.traffic_delay;
+        }
+        return start_run(d.task, d.until, d.reason);
       case Decision::Kind::kFail:
         book_.transition(d.task, TaskState::kFailed, d.outcome, d.reason);
         reschedule({}, "task " + d.task + " failed");
@@ -118,8 +105,9 @@ bool Executor::charge_first(const TaskId& id) {
   return true;
 }
 
-void Executor::start_run(const TaskId& id, std::optional<Time> wait_until) {
-  run_ = std::make_unique<TaskRun>(steps_, id, wait_until, [this](TaskEnd e) { run_ended(std::move(e)); });
+void Executor::start_run(const TaskId& id, std::optional<Time> wait_until, std::string behind) {
+  run_ = std::make_unique<TaskRun>(
+      steps_, id, wait_until, [this](TaskEnd e) { run_ended(std::move(e)); }, std::move(behind));
   // An on-demand task runs now: the rest of the day is planned around it.
   if (run_->task().kind == TaskKind::kOnDemand) reschedule({}, "on-demand task " + id + " runs now");
   run_->start();

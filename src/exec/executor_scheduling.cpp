@@ -158,6 +158,7 @@ std::optional<ScheduleCall> Executor::prepare_schedule(std::vector<TaskId>& new_
                     .risk_alpha = options_.risk_alpha,
                     .specs = building_.spec_tasks.get(),
                     .speed = building_.speeds.factor(options_.robot_name)};
+  if (booking_) in.around = PlanAround{.bookings = building_.bookings, .robot = *booking_};
   if (options_.battery_planning) {
     read_battery();
     charging_->drift().observe(clock_.now(), charging_->level());
@@ -257,6 +258,7 @@ void Executor::apply_schedule(const std::vector<TaskId>& ids, const PlannedAnswe
     planned.push_back(id);  // a task being waited for too: kick() reconsiders it
   }
   dispatcher_->follow_schedule(std::move(planned));
+  publish_stops();
   std::vector<TaskId> dropped_now;  // for the fleet, which may find them room on another robot
   for (const schedule::DroppedTask& d : s.dropped) {
     if (d.task >= ids.size()) continue;  // a charge

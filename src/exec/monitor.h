@@ -37,6 +37,7 @@ class Monitor {
   void resume();
   // When it fires, while it runs (not cancelled, fired or suspended).
   std::optional<Time> deadline() const;
+  const std::string& reason() const { return reason_; }
 
  private:
   void set(Duration after);

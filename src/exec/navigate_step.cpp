@@ -13,6 +13,10 @@
 
 namespace rondo::exec {
 
+// How long a journey waits for its way, held by other robots, before it overruns (unless its
+// monitor had more left): the monitor does not count a wait, but a wait is not endless.
+inline constexpr Duration kTrafficPatience = minutes(10);
+
 NavigateStep::NavigateStep(StepContext& ctx, StepHooks hooks, Purpose purpose, std::optional<TaskId> task,
                            map::NodeIndex target)
     : RobotStep(ctx, std::move(hooks)), purpose_(purpose), task_(std::move(task)), target_(target) {}
@@ -89,10 +93,7 @@ void NavigateStep::finish(StepEnd e) {
 
 void NavigateStep::release_way() {
   if (!ctx_.traffic || ctx_.robot.busy()) return;
-  if (waiting_for_way_) {
-    waiting_for_way_ = false;
-    ctx_.traffic->wait_ended(ctx_.clock.now(), "stopped");
-  }
+  if (waiting_for_way_) way_wait_ended("stopped");
   ctx_.traffic->stop(this, ctx_.robot.location());
 }
 
@@ -104,9 +105,16 @@ void NavigateStep::wait_for_way(map::NodeIndex here) {
   edge_.reset();  // nothing is driven while it waits: no attempt to watch
   if (!waiting_for_way_) {
     waiting_for_way_ = true;
-    ctx_.traffic->wait_began(here, ctx_.clock.now());
+    const Time now = ctx_.clock.now();
+    ctx_.traffic->wait_began(here, now);
     const std::string text =
         fmt::format("at {}, its way held by {}", ctx_.map.node(here).name, ctx_.traffic->behind_text());
+    if (const std::optional<Time> deadline = monitor_.deadline()) {
+      before_wait_ = Monitor::Limit{.after = *deadline - now, .reason = monitor_.reason()};
+      const Duration patience = std::max(before_wait_->after, kTrafficPatience);
+      monitor_.extend({.after = patience,
+                       .reason = fmt::format("navigation overrun: waited {} {}", duration_text(patience), text)});
+    }
     note(EventKind::kTrafficWait, task_ ? text : fmt::format("{} ({})", text, errand()));
   }
   ctx_.traffic->when_waiting(
@@ -122,12 +130,19 @@ void NavigateStep::make_way(const traffic::MakeWay& m) {
     ctx_.traffic->stop(this, ctx_.robot.location());
     return;
   }
-  waiting_for_way_ = false;
-  ctx_.traffic->wait_ended(ctx_.clock.now(), "made way");
+  way_wait_ended("made way");
   note(EventKind::kMadeWay,
        fmt::format("to {} ({}), making way for {}", ctx_.map.node(ctx_.map.to_index(m.route.back())).name,
                    traffic::to_string(m.why), ctx_.traffic->names(m.for_robots)));
   drive(Route{.edges = m.route, .committed = m.route.size()});
+}
+
+// The wait for the way ended: the monitor has again what it had left when the wait began.
+void NavigateStep::way_wait_ended(const char* how) {
+  waiting_for_way_ = false;
+  ctx_.traffic->wait_ended(ctx_.clock.now(), how);
+  if (before_wait_ && monitor_.deadline()) monitor_.extend(*before_wait_);
+  before_wait_.reset();
 }
 
 // A task's journey writes its task's events, an own journey the robot's.
@@ -176,10 +191,7 @@ void NavigateStep::advance() {
   if (ctx_.traffic) {
     committed = ctx_.traffic->request(this, here, route, rank());
     if (committed == 0) return wait_for_way(here);
-    if (waiting_for_way_) {
-      waiting_for_way_ = false;
-      ctx_.traffic->wait_ended(ctx_.clock.now(), "passed");
-    }
+    if (waiting_for_way_) way_wait_ended("passed");
   }
   drive(Route{.edges = std::move(route), .committed = committed});
 }

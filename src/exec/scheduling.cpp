@@ -48,6 +48,45 @@ class WithSpecs final : public schedule::TravelOracle {
   std::vector<const SpecPrice*> specs_;
 };
 
+// A travel oracle that arrives no earlier than the robot may stop among the other robots' stops
+// (StopsAhead). Moving an arrival to the earliest free start never moves a later one earlier, so
+// FIFO holds as in the oracle below; the lower bound is the oracle's.
+class AroundStops final : public schedule::TravelOracle {
+ public:
+  AroundStops(std::shared_ptr<const schedule::TravelOracle> base, const StopsAhead& stops)
+      : base_(std::move(base)), stops_(stops) {}
+  std::size_t location_count() const override { return base_->location_count(); }
+  Duration travel(schedule::LocationIndex from, schedule::LocationIndex to, Time depart) const override {
+    const Duration base = base_->travel(from, to, depart);
+    if (from == to || base >= kUnreachable || stops_.at[to].empty()) return base;
+    return traffic::earliest_free(stops_.at[to], stops_.capacity[to], depart + base, stops_.stay[to]) - depart;
+  }
+  Duration lower_bound(schedule::LocationIndex from, schedule::LocationIndex to) const override {
+    return base_->lower_bound(from, to);
+  }
+  bool time_dependent() const override { return true; }
+
+ private:
+  std::shared_ptr<const schedule::TravelOracle> base_;
+  StopsAhead stops_;
+};
+
+// The stops at each location of `problem` that the robot gives way to, from when it is next free.
+StopsAhead stops_ahead(const PlanAround& around, const schedule::Problem& problem,
+                       const std::vector<map::NodeIndex>& nodes, Time free) {
+  StopsAhead s{.at = std::vector<std::vector<traffic::Stop>>(nodes.size()),
+               .capacity = std::vector<int>(nodes.size(), 1),
+               .stay = std::vector<Duration>(nodes.size(), Duration{0})};
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    s.capacity[i] = around.bookings->capacity(nodes[i]);
+    for (const traffic::Stop& stop : around.bookings->gives_way_at(around.robot, nodes[i]))
+      if (stop.to > free) s.at[i].push_back(stop);
+  }
+  for (const schedule::ProblemTask& t : problem.tasks)
+    s.stay[t.start_location] = std::max(s.stay[t.start_location], t.duration);
+  return s;
+}
+
 }  // namespace
 
 Duration SpecPrice::travel(map::NodeIndex from, Time depart) const {
@@ -80,11 +119,16 @@ Duration SpecPrice::lower_bound(map::NodeIndex from) const {
 }
 
 void set_travel(schedule::Problem& problem, const TravelCache& cache, const std::vector<map::NodeIndex>& nodes,
-                std::optional<double> risk_alpha, const std::vector<SpecPrice>& specs, double speed) {
+                std::optional<double> risk_alpha, const std::vector<SpecPrice>& specs, double speed,
+                const std::optional<StopsAhead>& stops) {
   problem.travel = std::make_shared<SchedulerTravel>(cache, nodes, speed);
   problem.window_travel.reset();
   if (risk_alpha)
     problem.window_travel = std::make_shared<SchedulerQuantileTravel>(cache, nodes, 1.0 - *risk_alpha, speed);
+  if (stops) {
+    problem.travel = std::make_shared<AroundStops>(problem.travel, *stops);
+    if (problem.window_travel) problem.window_travel = std::make_shared<AroundStops>(problem.window_travel, *stops);
+  }
   if (specs.empty()) return;
   problem.travel = std::make_shared<WithSpecs>(problem.travel, nodes, specs);
   if (problem.window_travel) problem.window_travel = std::make_shared<WithSpecs>(problem.window_travel, nodes, specs);
@@ -172,7 +216,9 @@ Result<PendingProblem> pending_problem(const ScheduleInputs& in, const PendingTa
   for (map::NodeIndex n : nodes) problem.location_names.push_back(in.map.node(n).name);
   problem.robot.location = 0;
   problem.robot.time = free;
-  set_travel(problem, in.travel, nodes, in.risk_alpha, specs, in.speed);
+  std::optional<StopsAhead> stops;
+  if (in.around.bookings) stops = stops_ahead(in.around, problem, nodes, free);
+  set_travel(problem, in.travel, nodes, in.risk_alpha, specs, in.speed, stops);
 
   RONDO_RETURN_IF_ERROR(schedule::validate(problem));
   PendingProblem out{.request = {.problem = std::move(problem), .new_tasks = {}, .zone = in.zone},
@@ -180,7 +226,8 @@ Result<PendingProblem> pending_problem(const ScheduleInputs& in, const PendingTa
                      .risk_alpha = in.risk_alpha,
                      .battery = std::move(battery),
                      .specs = std::move(specs),
-                     .speed = in.speed};
+                     .speed = in.speed,
+                     .stops = std::move(stops)};
   schedule::TryScheduleRequest& request = out.request;
   for (std::size_t i = pending.old_count; i < pending.ids.size(); ++i) request.new_tasks.push_back(i);
   for (std::size_t i = pending.first_reoffered; i < pending.ids.size(); ++i) request.cannot_preempt.push_back(i);

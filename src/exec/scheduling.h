@@ -9,15 +9,16 @@
 #include <random>
 #include <vector>
 
-#include "rondo/core/timezone.h"
 #include "charge_planning.h"
 #include "deliveries.h"
+#include "rondo/core/timezone.h"
 #include "rondo/exec/map_travel.h"
 #include "rondo/exec/outcome.h"
 #include "rondo/exec/task_book.h"
 #include "rondo/map/topo_map.h"
 #include "rondo/schedule/scheduler.h"
 #include "rondo/schedule/try_schedule.h"
+#include "rondo/traffic/bookings.h"
 
 namespace rondo::exec {
 
@@ -78,6 +79,21 @@ struct SpecPrice {
   Duration lower_bound(map::NodeIndex from) const;
 };
 
+// The other robots' stops this robot gives way to (traffic::Bookings; docs/traffic.md, "Planning
+// around each other"), per location of a problem, as values: travel to a location ends no earlier
+// than the robot may stop there for the longest stay of its tasks there.
+struct StopsAhead {
+  std::vector<std::vector<traffic::Stop>> at;  // per location: the stops it gives way to
+  std::vector<int> capacity;                   // per location: the node's room
+  std::vector<Duration> stay;                  // per location: its tasks' longest stay there
+};
+
+// Where a robot reads the others' stops: the building's bookings and its own place among them.
+struct PlanAround {
+  const traffic::Bookings* bookings = nullptr;
+  traffic::BookingRobot robot = 0;
+};
+
 struct ScheduleInputs {
   const map::TopoMap& map;
   const TravelCache& travel;
@@ -92,6 +108,7 @@ struct ScheduleInputs {
   std::optional<BatteryInputs> battery{};  // planned charging, when on
   const SpecTasks* specs = nullptr;        // prices spec tasks (none: the book has none)
   double speed = 1.0;                      // the robot's factor on the travel cache's standard times
+  PlanAround around{};                     // the others' stops (none: it plans as if alone)
 };
 
 // A scheduling problem built from the book (on the clock's thread), ready to solve anywhere: the
@@ -104,13 +121,16 @@ struct PendingProblem {
   std::optional<ChargePlan> battery{};  // planned charging: the dock is one of `nodes`
   std::vector<SpecPrice> specs{};       // the spec tasks' locations and their travel
   double speed = 1.0;                   // ScheduleInputs::speed
+  std::optional<StopsAhead> stops{};    // the others' stops it plans around (ScheduleInputs::around)
 };
 
 // The problem's travel, and its window travel under a chance constraint, over `cache` and `nodes`;
 // travel to a spec task's location as `specs` price it (the window travel too: a spec task's journey
-// is priced at its expected time). `speed`: the robot's factor (SchedulerTravel).
+// is priced at its expected time). `speed`: the robot's factor (SchedulerTravel). `stops`: an
+// arrival where others stop is moved past them (both oracles).
 void set_travel(schedule::Problem& problem, const TravelCache& cache, const std::vector<map::NodeIndex>& nodes,
-                std::optional<double> risk_alpha, const std::vector<SpecPrice>& specs = {}, double speed = 1.0);
+                std::optional<double> risk_alpha, const std::vector<SpecPrice>& specs = {}, double speed = 1.0,
+                const std::optional<StopsAhead>& stops = std::nullopt);
 
 // One reschedule between its two halves: which tasks, and their problem.
 struct ScheduleCall {

@@ -13,10 +13,11 @@
 
 namespace rondo::exec {
 
-// Early for a task: waits where the robot is until it is time to leave for the window.
+// Early for a task: waits where the robot is until it is time to leave for the window, or to
+// arrive after another robot's stop there (`behind` says whose).
 class WaitStep final : public Step {
  public:
-  WaitStep(StepContext& ctx, StepHooks hooks, TaskId task, Time until);
+  WaitStep(StepContext& ctx, StepHooks hooks, TaskId task, Time until, std::string behind = {});
   ~WaitStep() override;
   void start() override;
   void halt() override;
@@ -28,6 +29,7 @@ class WaitStep final : public Step {
 
   TaskId task_;
   Time until_;
+  std::string behind_;
   Time since_{};
   TimerId timer_ = 0;
 };
@@ -101,6 +103,7 @@ class NavigateStep final : public RobotStep, public Arrival {
   // The traffic manager holds the way ahead for others (docs/traffic.md): the journey waits at its
   // node until told to ask again, or to make way.
   void wait_for_way(map::NodeIndex here);
+  void way_wait_ended(const char* how);  // "passed", "made way", "stopped"
   void make_way(const traffic::MakeWay& make_way);
   int rank() const;
   // Sends `route` to the robot; its first edge is the attempt the monitor watches.
@@ -150,6 +153,8 @@ class NavigateStep final : public RobotStep, public Arrival {
   bool hang_check_ = false;    // the monitor was extended to hangs_at(), not to the window's end
   std::optional<StepEnd> gave_up_;  // an own journey's monitor fired: how it ends once halted
   bool waiting_for_way_ = false;    // held up by another robot's reservation
+  // The monitor's time left and words when the wait for the way began: given back when it ends.
+  std::optional<Monitor::Limit> before_wait_{};
 };
 
 // A spec task's journey (docs/ltl.md): follows the product policy of its formula node by node from

@@ -6,13 +6,14 @@
 
 namespace rondo::exec {
 
-TaskRun::TaskRun(StepContext& ctx, TaskId id, std::optional<Time> wait_until, std::function<void(End)> ended)
+TaskRun::TaskRun(StepContext& ctx, TaskId id, std::optional<Time> wait_until, std::function<void(End)> ended,
+                 std::string behind)
     : ctx_(ctx), id_(std::move(id)), ended_(std::move(ended)) {
   const Task& t = task();
   const map::NodeIndex here = ctx_.robot.location();
   map::NodeIndex place = t.start_node.empty() ? here : *ctx_.map.find_node(t.start_node);
   if (wait_until) {
-    auto w = std::make_unique<WaitStep>(ctx_, hooks(), id_, *wait_until);
+    auto w = std::make_unique<WaitStep>(ctx_, hooks(), id_, *wait_until, std::move(behind));
     wait_ = w.get();
     steps_.push_back(std::move(w));
   }

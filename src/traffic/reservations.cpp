@@ -251,7 +251,8 @@ void Reservations::stop(RobotId robot, map::NodeIndex here) {
   r.blockers.clear();
   r.blocked_edge.reset();
   r.wanted.clear();
-  r.yield_to.clear();
+  // yield_to stays: a robot that has driven aside and stopped there still lets the robots it made
+  // way for go first (else it would take the freed way back before their call to ask again).
   wake_waiting_on(robot);
   notify();
 }

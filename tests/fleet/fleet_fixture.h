@@ -24,11 +24,13 @@ class ScriptedFleet {
   struct RobotAt {
     std::string name;
     std::string node;
+    std::string dock{};  // its own dock; empty: the scenario's Dock
   };
   // `allocator` makes the fleet's allocator (again at each restart); empty: the fleet's default.
-  // `map`: the scenario map unless given; `reserve`: the robots reserve their way (docs/traffic.md).
+  // `map`: the scenario map unless given; `reserve`: the robots reserve their way, `plan_around`:
+  // they plan around each other's stops (docs/traffic.md).
   explicit ScriptedFleet(const std::vector<RobotAt>& robots, std::function<std::unique_ptr<Allocator>()> allocator = {},
-                         std::optional<map::TopoMap> map = std::nullopt, bool reserve = false)
+                         std::optional<map::TopoMap> map = std::nullopt, bool reserve = false, bool plan_around = false)
       : allocator_(std::move(allocator)),
         map_(map ? std::move(*map) : exec::testing::scenario_map()),
         zone_(TimeZone::named("Europe/London").value()),
@@ -38,8 +40,10 @@ class ScriptedFleet {
     for (const RobotAt& r : robots) {
       robots_.push_back(std::make_unique<ScriptedRobot>(clock_, map_, *map_.find_node(r.node)));
       names_.push_back(r.name);
+      docks_.push_back(r.dock.empty() ? "Dock" : r.dock);
     }
     if (reserve) reservations_ = std::make_unique<traffic::Reservations>(map_);
+    if (plan_around) bookings_ = std::make_unique<traffic::Bookings>(map_);
     make_fleet();
   }
   // The executive is killed and started again on the same store (Fleet::restore): the robots stop
@@ -68,6 +72,7 @@ class ScriptedFleet {
   store::Store& store() { return store_; }
   const map::TopoMap& map() const { return map_; }
   const traffic::Reservations& reservations() const { return *reservations_; }
+  const traffic::Bookings& bookings() const { return *bookings_; }
   Time at(const std::string& local) const { return zone_.parse_time("2026-11-23T" + local).value(); }
   void settle() { clock_.run_until(clock_.now()); }
   // The robot a task is allocated to.
@@ -81,9 +86,11 @@ class ScriptedFleet {
     fleet_ = std::make_unique<Fleet>(clock_, map_, store_, zone_, shared, nullptr,
                                      allocator_ ? allocator_() : std::unique_ptr<Allocator>{});
     fleet_->set_reservations(reservations_.get());
+    fleet_->set_bookings(bookings_.get());
     for (std::size_t i = 0; i < robots_.size(); ++i) {
       exec::ExecutorOptions own = shared;
       own.robot_name = names_[i];
+      own.dock = *map_.find_node(docks_[i]);
       fleet_->add_robot(*robots_[i], own);
     }
   }
@@ -96,7 +103,9 @@ class ScriptedFleet {
   store::Store store_;
   std::vector<std::unique_ptr<ScriptedRobot>> robots_;
   std::vector<std::string> names_;
+  std::vector<std::string> docks_;
   std::unique_ptr<traffic::Reservations> reservations_;  // outlives the fleet
+  std::unique_ptr<traffic::Bookings> bookings_;          // outlives the fleet
   std::unique_ptr<Fleet> fleet_;
 };
 

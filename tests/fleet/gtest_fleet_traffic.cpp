@@ -2,6 +2,9 @@
 // scenario map's one hall, whose every room is a dead end. Two robots that want each other's room
 // meet head-on: one is sent aside and both tasks are done; a robot waiting for its task's window
 // in the hall is parked there, and makes way for one that has to pass. Never two robots on a node.
+// Planning around each other: a robot whose task is in a room another robot is on its way to work
+// in waits where it stands until that robot is expected to have left, not at the door, and sets
+// out as soon as that robot is done.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -84,6 +87,59 @@ TEST(FleetTraffic, ARobotWaitingForItsWindowInTheHallMakesWayForOneThatPasses) {
   work(f, 2, f.at("08:40"));
   EXPECT_EQ(f.map().node(f.robot(0).location()).name, "Dock");
   EXPECT_EQ(f.fleet().book().at("w").state, TaskState::kSucceeded) << "r2 came back for its own task";
+}
+
+// r1 sets out for ten minutes' work in the kitchen; then r2 gets two minutes' work there. Each has
+// a room of its own for a dock.
+struct KitchenTwice {
+  explicit KitchenTwice(bool plan_around)
+      : f({{"r1", "Office", "Office"}, {"r2", "Lab", "Lab"}}, {}, std::nullopt, /*reserve=*/true, plan_around) {
+    f.fleet().start();
+    EXPECT_TRUE(f.fleet()
+                    .add_task(for_robot(task("a", "Kitchen", f.at("08:00"), f.at("09:00"), minutes(10)), "r1"), "test")
+                    .ok());
+    f.settle();
+    EXPECT_TRUE(f.robot(0).driving());
+    EXPECT_TRUE(f.fleet()
+                    .add_task(for_robot(task("b", "Kitchen", f.at("08:00"), f.at("09:00"), minutes(2)), "r2"), "test")
+                    .ok());
+    f.settle();
+    work(f, 2, f.at("08:45"));
+    EXPECT_EQ(f.fleet().book().at("a").state, TaskState::kSucceeded);
+    EXPECT_EQ(f.fleet().book().at("b").state, TaskState::kSucceeded);
+  }
+  ScriptedFleet f;
+};
+
+TEST(FleetTraffic, ARobotPlanningAroundAnothersStopWaitsWhereItStandsNotAtTheDoor) {
+  KitchenTwice k(/*plan_around=*/true);
+  EXPECT_EQ(k.f.fleet().building().deferrals.count, 1u);
+  // r1 was done in 20 s, not the 10 min it was expected to take: r2 was told when r1's stop went,
+  // and set out then, not at 08:10. At most it let r1 out of the kitchen.
+  for (const exec::TrafficWait& w : k.f.fleet().building().traffic_waits) {
+    EXPECT_EQ(w.robot, "r2");
+    ASSERT_TRUE(w.end.has_value());
+    EXPECT_LT(*w.end - w.start, minutes(1));
+  }
+  const auto events = store::read_events(k.f.store());
+  ASSERT_TRUE(events.ok());
+  const auto done = std::find_if(events->begin(), events->end(),
+                                 [](const store::Event& e) { return e.task_id == "b" && e.event == "succeeded"; });
+  ASSERT_NE(done, events->end());
+  EXPECT_LT(done->time, k.f.at("08:05"));
+  const auto waited = std::find_if(events->begin(), events->end(), [](const store::Event& e) {
+    return e.task_id == "b" && e.reason.find("when it is free: r1 stops at Kitchen") != std::string::npos;
+  });
+  EXPECT_NE(waited, events->end()) << "r2 says whom it waits for";
+  // Both done: neither plans a stop any more.
+  EXPECT_TRUE(k.f.bookings().booked(0).empty() && k.f.bookings().booked(1).empty());
+}
+
+// Its monitor does not count the wait (before, r2 overran and failed its task waiting at the door).
+TEST(FleetTraffic, WithoutPlanningAroundTheSecondRobotWaitsForTheWayInstead) {
+  KitchenTwice k(/*plan_around=*/false);
+  EXPECT_GE(events_named(k.f, "traffic wait"), 1);
+  EXPECT_EQ(k.f.fleet().building().deferrals.count, 0u);
 }
 
 }  // namespace

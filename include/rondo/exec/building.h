@@ -28,6 +28,7 @@ class WeeklyMemory;
 }  // namespace rondo::learn
 namespace rondo::traffic {
 class Reservations;
+class Bookings;
 }
 
 namespace rondo::exec {
@@ -84,6 +85,10 @@ class Building {
   // fleet's deployment: `traffic: reservations`); owned by the fleet. Null: robots move freely.
   traffic::Reservations* reservations = nullptr;
   std::vector<TrafficWait> traffic_waits;  // every journey's wait for another robot, in order
+  // The robots' planned stops (docs/traffic.md, "Planning around each other"), when they plan
+  // around each other (`traffic: {plan_around: true}`); owned by the fleet. Null: each plans alone.
+  traffic::Bookings* bookings = nullptr;
+  TrafficDeferrals deferrals;  // departures put off for another robot's stop
 
  private:
   void refit_doors();

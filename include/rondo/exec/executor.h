@@ -71,6 +71,7 @@
 #include "rondo/schedule/try_schedule.h"
 #include "rondo/store/requests.h"
 #include "rondo/store/store.h"
+#include "rondo/traffic/bookings.h"
 
 namespace rondo::exec {
 
@@ -303,17 +304,21 @@ class Executor final : public RobotListener {
   void sweep_finished();
   ActionResult confirmed_result(const ActionResult& reported);  // executor_confirm.cpp
   void next();
-  void start_run(const TaskId& id, std::optional<Time> wait_until);
+  void start_run(const TaskId& id, std::optional<Time> wait_until, std::string behind = {});
   void run_ended(TaskEnd end);
   void end_wait();  // the waiting task goes back to the executor, undecided
   // The waiting task goes back to the front of the queue (`outcome`, `reason`), and next().
   void requeue_waiting(Outcome outcome, const std::string& reason);
   void go_to_dock(JourneyPurpose purpose);
   void start_trip(JourneyPurpose purpose, map::NodeIndex to);  // an own journey (trip_)
-  // Traffic (docs/traffic.md): parked when it stands idle or waits for a task's window; asked to
-  // make way, it interrupts the wait and drives aside.
+  // Traffic (executor_traffic.cpp; docs/traffic.md): parked when it stands idle or waits for a
+  // task's window; asked to make way, it interrupts the wait and drives aside. Its stops, the
+  // running task's (committed) and the planned ones, published for the others to plan around.
   void update_parked();
   void make_way(const traffic::MakeWay& make_way);
+  void publish_stops();
+  // Another robot's committed stop came or went at `node`: a wait for a task there is decided again.
+  void stops_changed(map::NodeIndex node);
   void trip_ended(StepEnd end);
   void look_again_at(Time at);
   void preempt_for(Outcome outcome, const std::string& reason, std::vector<TaskId> then_schedule);
@@ -422,6 +427,10 @@ class Executor final : public RobotListener {
   bool in_fault_ = false;
   FoundBlocked& found_blocked_;  // what journeys found of the edges (steps_ holds it)
   std::unique_ptr<TrafficLink> traffic_;  // its end of the building's reservations; outlives the steps
+  std::optional<traffic::BookingRobot> booking_;                  // its place in the building's bookings (plan around)
+  std::optional<std::pair<TaskId, traffic::Booking>> committed_;  // the running task's stop, as set out
+  std::vector<map::NodeIndex> stops_changed_at_;                  // nodes told of since the last look
+  TimerId stops_look_ = 0;                                        // that look
   StepContext steps_;  // what every step works with
 
   std::unique_ptr<TaskRun> run_;        // the task waited for, navigated to or acted on

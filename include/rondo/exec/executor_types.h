@@ -159,6 +159,13 @@ struct TrafficWait {
   std::string how{};
 };
 
+// Departures a robot put off so as to arrive after another robot's stop at its task's place
+// (planning around each other, docs/traffic.md): how many, and by how much in all.
+struct TrafficDeferrals {
+  std::size_t count = 0;
+  Duration total{0};
+};
+
 // The battery as the executor saw it (BatteryWatch): readings, the lowest, stays on the charger,
 // and what it learned of the battery's costs.
 struct BatteryFigures {

@@ -126,6 +126,9 @@ class Fleet {
   // The building's reservations (docs/traffic.md), before the first add_robot(): every robot then
   // reserves its way. Must outlive the fleet.
   void set_reservations(traffic::Reservations* reservations) { building_.reservations = reservations; }
+  // The bookings of the robots' planned stops (docs/traffic.md, "Planning around each other"),
+  // before the first add_robot(): every robot then plans around the others'. Must outlive the fleet.
+  void set_bookings(traffic::Bookings* bookings) { building_.bookings = bookings; }
   int refits() const { return refits_; }  // nightly refits that fitted the edge models
   // The learned probability that `door` is open at `t` (nothing before the first refit with data).
   std::optional<double> door_open_probability(const std::string& door, Time t) const;
