@@ -17,6 +17,7 @@
 #include "steps.h"
 #include "task_run.h"
 #include "text.h"
+#include "traffic_link.h"
 
 namespace rondo::exec {
 
@@ -24,8 +25,14 @@ void Executor::learn_from(const EdgeAttempt& a) {
   const map::Edge& edge = map_.edge(a.edge);
   if (is_learning_data(a.outcome)) {
     // Experience of the way: the traversal log, which the models learn from.
-    const Traversal t{.edge_id = edge.id, .from = edge.from, .to = edge.to, .start = a.start, .duration = a.duration,
-                      .success = a.succeeded(), .robot = options_.robot_name};
+    const Traversal t{.edge_id = edge.id,
+                      .from = edge.from,
+                      .to = edge.to,
+                      .start = a.start,
+                      .duration = a.duration,
+                      .success = a.succeeded(),
+                      .robot = options_.robot_name,
+                      .waited = traffic_ ? traffic_->take_waited(map_.from_index(a.edge)) : Duration{0}};
     if (auto ok = store::add_traversal(store_, t); !ok) book_.write_error(ok.error().message);
     // The online model of the edge, in the fleet's standard time: the next estimate reads it.
     models_.observe(a.edge, {.start = a.start,

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <optional>
+#include <string_view>
 #include <utility>
 
 namespace rondo::exec {
@@ -70,6 +72,7 @@ void TrafficLink::when_waiting(const void* owner, std::function<void()> clear,
 void TrafficLink::wait_began(map::NodeIndex at, Time now) {
   if (wait_) return;
   TrafficWait w{.robot = robot_, .node = reservations_.map().node(at).name, .start = now};
+  wait_at_ = at;
   for (traffic::RobotId b : reservations_.waits_for(id_)) w.behind.push_back(reservations_.name(b));
   wait_ = waits_.size();
   waits_.push_back(std::move(w));
@@ -79,7 +82,13 @@ void TrafficLink::wait_ended(Time now, const char* how) {
   if (!wait_) return;
   waits_[*wait_].end = now;
   waits_[*wait_].how = how;
+  if (std::string_view(how) == "passed") waited_ = std::make_pair(wait_at_, now - waits_[*wait_].start);
   wait_.reset();
+}
+
+Duration TrafficLink::take_waited(map::NodeIndex from) {
+  if (!waited_ || waited_->first != from) return Duration{0};
+  return std::exchange(waited_, std::nullopt)->second;
 }
 
 std::string TrafficLink::names(const std::vector<traffic::RobotId>& robots) const {

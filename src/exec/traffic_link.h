@@ -11,8 +11,10 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rondo/exec/clock.h"
@@ -55,6 +57,9 @@ class TrafficLink final : public traffic::ReservationListener {
   void wait_began(map::NodeIndex at, Time now);
   void wait_ended(Time now, const char* how);
   bool in_wait() const { return wait_.has_value(); }
+  // The last wait that ended with the way granted, taken by the first attempt from where it
+  // waited (the traversal log keeps it apart from the attempt's duration); 0 otherwise.
+  Duration take_waited(map::NodeIndex from);
   // "r2 (at Main-05)": who holds the way it waits for.
   std::string behind_text() const;
   std::string names(const std::vector<traffic::RobotId>& robots) const;
@@ -75,6 +80,8 @@ class TrafficLink final : public traffic::ReservationListener {
   std::function<void(const traffic::MakeWay&)> aside_;
   std::function<void(const traffic::MakeWay&)> parked_aside_;
   std::optional<std::size_t> wait_;  // index into waits_
+  map::NodeIndex wait_at_ = 0;
+  std::optional<std::pair<map::NodeIndex, Duration>> waited_;  // passed: where, how long
   std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
 };
 

@@ -196,6 +196,11 @@ CREATE TRIGGER events_no_delete BEFORE DELETE ON events
 BEGIN SELECT RAISE(ABORT, 'events is append-only'); END;
 )sql";
 
+// A robot's wait for other robots before a traversal (docs/traffic.md), apart from its duration.
+constexpr std::string_view kSchemaV8 = R"sql(
+ALTER TABLE traversals ADD COLUMN waited_ms INTEGER NOT NULL DEFAULT 0;
+)sql";
+
 constexpr Migration kSqliteMigrations[] = {
     {1, "tasks, task_events (append-only), traversals, observations", kSchemaV1},
     {2, "events with subject and outcome code; task source and progress; robot_state; meta", kSchemaV2},
@@ -204,6 +209,7 @@ constexpr Migration kSqliteMigrations[] = {
     {5, "the robot of every task, event, traversal and observation", kSchemaV5},
     {6, "the lease of the active executive (its epoch) and the epoch of every event", kSchemaV6},
     {7, "events about the executive process (subject executive: a takeover)", kSchemaV7},
+    {8, "traversals: the wait for other robots before each attempt", kSchemaV8},
 };
 
 }  // namespace

@@ -17,9 +17,11 @@ namespace {
 // conflict, so live traversals are always stored. True if a row was added.
 bool insert(db::Connection& db, const Traversal& t) {
   const std::optional<std::string> origin = t.origin.empty() ? std::nullopt : std::optional<std::string>(t.origin);
-  return db.exec("INSERT INTO traversals (edge_id, from_node, to_node, start_ms, duration_ms, success, origin, robot) "
-                 "VALUES ($1, $2, $3, $4, $5, $6, $7, $8) ON CONFLICT (origin) DO NOTHING",
-                 {t.edge_id, t.from, t.to, to_db(t.start), to_db(t.duration), t.success ? 1 : 0, origin, t.robot}) == 1;
+  return db.exec(
+             "INSERT INTO traversals (edge_id, from_node, to_node, start_ms, duration_ms, success, origin, robot, "
+             "waited_ms) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9) ON CONFLICT (origin) DO NOTHING",
+             {t.edge_id, t.from, t.to, to_db(t.start), to_db(t.duration), t.success ? 1 : 0, origin, t.robot,
+              to_db(t.waited)}) == 1;
 }
 
 Traversal traversal_from_row(const db::Rows& row) {
@@ -32,6 +34,7 @@ Traversal traversal_from_row(const db::Rows& row) {
   t.success = row.int64(5) != 0;
   if (!row.is_null(6)) t.origin = row.text(6);
   t.robot = row.text(7);
+  t.waited = duration_from_db(row.int64(8));
   return t;
 }
 
@@ -63,7 +66,8 @@ Result<InsertCounts> add_traversals(Store& store, std::span<const Traversal> tra
 Result<std::vector<Traversal>> find_traversals(const Store& store, const TraversalQuery& query) {
   return guarded(store, "reading traversals", [&]() -> Result<std::vector<Traversal>> {
     std::string sql =
-        "SELECT edge_id, from_node, to_node, start_ms, duration_ms, success, origin, robot FROM traversals WHERE TRUE";
+        "SELECT edge_id, from_node, to_node, start_ms, duration_ms, success, origin, robot, waited_ms FROM traversals "
+        "WHERE TRUE";
     db::Params params;
     const auto where = [&](std::string_view condition, db::Param value) {
       params.push_back(std::move(value));

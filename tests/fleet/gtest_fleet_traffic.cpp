@@ -11,6 +11,7 @@
 
 #include "fleet_fixture.h"
 #include "rondo/store/events.h"
+#include "rondo/store/traversal_log.h"
 
 namespace rondo::fleet::testing {
 namespace {
@@ -140,6 +141,18 @@ TEST(FleetTraffic, WithoutPlanningAroundTheSecondRobotWaitsForTheWayInstead) {
   KitchenTwice k(/*plan_around=*/false);
   EXPECT_GE(events_named(k.f, "traffic wait"), 1);
   EXPECT_EQ(k.f.fleet().building().deferrals.count, 0u);
+  // The traversal log keeps the wait apart from the attempt: r2's first edge took 20 s, after a
+  // wait for r1 at its start.
+  const auto log = store::find_traversals(k.f.store(), {.robot = "r2"});
+  ASSERT_TRUE(log.ok());
+  ASSERT_FALSE(log->empty());
+  const Traversal& first = log->front();
+  EXPECT_EQ(first.from, "Lab");
+  EXPECT_EQ(first.duration, seconds(20));
+  const exec::TrafficWait& w = k.f.fleet().building().traffic_waits.front();
+  ASSERT_TRUE(w.end.has_value());
+  EXPECT_EQ(first.waited, *w.end - w.start);
+  EXPECT_GT(first.waited, Duration{0});
 }
 
 }  // namespace

@@ -37,7 +37,9 @@ class TraversalLog : public testing::BackendTest {
 };
 
 TEST_P(TraversalLog, RoundTripsEveryFieldWithAndWithoutOrigin) {
-  const Traversal live = crossing("A_B", 1000, 12345, true);
+  Traversal live = crossing("A_B", 1000, 12345, true);
+  live.robot = "r2";
+  live.waited = milliseconds(41250);  // waited for another robot before it set out
   const Traversal imported = crossing("B_A", 999, 7, false, "witham:B_A.data:3");
   ASSERT_TRUE(*add_traversal(db(), live));
   ASSERT_TRUE(*add_traversal(db(), imported));

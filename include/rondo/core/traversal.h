@@ -24,6 +24,10 @@ struct Traversal {
   // The robot that made the attempt (a fleet's robots feed one log); empty when not known, as in
   // an imported log.
   std::string robot{};
+  // How long the robot waited, before the attempt, for other robots to free the way (the traffic
+  // manager's reservations, docs/traffic.md): the fleet's own traffic, kept apart from `duration`,
+  // the building's, which the models learn from.
+  Duration waited{0};
 
   bool operator==(const Traversal&) const = default;
 };
