@@ -60,17 +60,10 @@ Decision Dispatcher::next(map::NodeIndex here, Time now) {
   // start in time (else go: the reservations make it wait its turn).
   Duration delay{0};
   std::string behind;
-  if (bookings_ && !task.has_spec()) {
-    const map::NodeIndex node = *map_.find_node(task.start_node);
-    const Time arrive = std::max(now, depart) + travel;
-    const Time free = bookings_->earliest(me_, node, arrive, r.remaining());
-    if (free > arrive && free <= latest_start) {
-      delay = free - arrive;
-      depart += delay;
-      const std::optional<traffic::Stop> stop = bookings_->behind(me_, node, arrive, r.remaining());
-      behind = fmt::format("{} stops at {} until about {}", stop ? bookings_->name(stop->robot) : "another robot",
-                           task.start_node, zone_.format_clock(free));
-    }
+  if (const std::optional<PutOff> p = put_off(r, now, depart, travel)) {
+    delay = p->depart - std::max(now, depart);
+    depart = p->depart;
+    behind = p->behind;
   }
   if (now < depart && depart - now > options_.dock_when_waiting_over) {  // a long wait: on the charger
     if (here != options_.dock) return {.kind = Decision::Kind::kDock};
@@ -80,6 +73,28 @@ Decision Dispatcher::next(map::NodeIndex here, Time now) {
   if (now < depart)
     return {.kind = Decision::Kind::kWait, .task = id, .until = depart, .reason = behind, .traffic_delay = delay};
   return {.kind = Decision::Kind::kRun, .task = id};
+}
+
+std::optional<PutOff> Dispatcher::put_off(const TaskRecord& r, Time now, Time depart, Duration travel) const {
+  const Task& task = r.task;
+  if (!bookings_ || task.has_spec() || task.start_node.empty() || !task.window) return std::nullopt;
+  const map::NodeIndex node = *map_.find_node(task.start_node);
+  const Time leave = std::max(now, depart);
+  const Time arrive = leave + travel;
+  const Time free = bookings_->earliest(me_, node, arrive, r.remaining());
+  if (free <= arrive || free > task.window->deadline - r.remaining()) return std::nullopt;
+  const std::optional<traffic::Stop> stop = bookings_->behind(me_, node, arrive, r.remaining());
+  return PutOff{
+      .depart = leave + (free - arrive),
+      .behind = fmt::format("{} stops at {} until about {}", stop ? bookings_->name(stop->robot) : "another robot",
+                            task.start_node, zone_.format_clock(free))};
+}
+
+std::optional<PutOff> Dispatcher::put_off_now(const TaskId& id, map::NodeIndex here, Time now) const {
+  const TaskRecord& r = book_.at(id);
+  const Duration travel = task_travel(travel_, specs_, map_, r, here, now);
+  if (travel >= kUnreachable) return std::nullopt;
+  return put_off(r, now, now, travel);
 }
 
 std::optional<PlannedCharge> Dispatcher::charge_due(Time now) {

@@ -101,6 +101,9 @@ class Dispatcher {
     bookings_ = bookings;
     me_ = me;
   }
+  // When to set out from `here` for a standard task at `now` (its wait is over), if later, for the
+  // stops at its place that the robot gives way to; nothing when it may go.
+  std::optional<PutOff> put_off_now(const TaskId& id, map::NodeIndex here, Time now) const;
 
  private:
   const map::TopoMap& map_;
@@ -108,6 +111,10 @@ class Dispatcher {
   const TaskBook& book_;
   const ExecutorOptions& options_;
   const TimeZone& zone_;
+  // Setting out at `depart` (or now, if later) with `travel` ahead: a later departure for the stops
+  // at the task's place, while the task can still start in time.
+  std::optional<PutOff> put_off(const TaskRecord& r, Time now, Time depart, Duration travel) const;
+
   const SpecTasks* specs_;
   const traffic::Bookings* bookings_ = nullptr;
   traffic::BookingRobot me_ = 0;

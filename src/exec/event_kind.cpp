@@ -5,7 +5,7 @@
 namespace rondo::exec {
 namespace {
 
-constexpr NameTable<EventKind, 44> kNames{{{
+constexpr NameTable<EventKind, 45> kNames{{{
     {EventKind::kScheduled, "scheduled"},
     {EventKind::kReOffered, "re-offered"},
     {EventKind::kDroppedForNow, "dropped for now"},
@@ -32,6 +32,7 @@ constexpr NameTable<EventKind, 44> kNames{{{
     {EventKind::kGaveUp, "gave up"},
     {EventKind::kTrafficWait, "traffic wait"},
     {EventKind::kMadeWay, "made way"},
+    {EventKind::kWaitsLonger, "waits longer"},
     {EventKind::kStopped, "stopped"},
     {EventKind::kFault, "fault"},
     {EventKind::kReady, "ready"},

@@ -106,8 +106,15 @@ bool Executor::charge_first(const TaskId& id) {
 }
 
 void Executor::start_run(const TaskId& id, std::optional<Time> wait_until, std::string behind) {
-  run_ = std::make_unique<TaskRun>(
-      steps_, id, wait_until, [this](TaskEnd e) { run_ended(std::move(e)); }, std::move(behind));
+  std::optional<EarlyWait> wait;
+  if (wait_until) {
+    wait = EarlyWait{.until = *wait_until, .behind = std::move(behind)};
+    if (booking_) {  // planning around each other: the others' stops are read again when it is time
+      wait->longer = [this, id] { return dispatcher_->put_off_now(id, robot_.location(), clock_.now()); };
+      wait->set_out = [this] { publish_stops(); };
+    }
+  }
+  run_ = std::make_unique<TaskRun>(steps_, id, std::move(wait), [this](TaskEnd e) { run_ended(std::move(e)); });
   // An on-demand task runs now: the rest of the day is planned around it.
   if (run_->task().kind == TaskKind::kOnDemand) reschedule({}, "on-demand task " + id + " runs now");
   run_->start();

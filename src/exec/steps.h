@@ -3,7 +3,9 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "monitor.h"
@@ -13,11 +15,21 @@
 
 namespace rondo::exec {
 
+// An early task's wait: until when, whose stop it waits to pass (when another robot's), asked when
+// the time comes whether to wait longer (planning around each other: another robot set out for
+// the place meanwhile), and told once the robot sets out.
+struct EarlyWait {
+  Time until{};
+  std::string behind{};
+  std::function<std::optional<PutOff>()> longer{};
+  std::function<void()> set_out{};
+};
+
 // Early for a task: waits where the robot is until it is time to leave for the window, or to
-// arrive after another robot's stop there (`behind` says whose).
+// arrive after another robot's stop there.
 class WaitStep final : public Step {
  public:
-  WaitStep(StepContext& ctx, StepHooks hooks, TaskId task, Time until, std::string behind = {});
+  WaitStep(StepContext& ctx, StepHooks hooks, TaskId task, EarlyWait wait);
   ~WaitStep() override;
   void start() override;
   void halt() override;
@@ -27,9 +39,10 @@ class WaitStep final : public Step {
  private:
   void stop_timer();
 
+  void arm();
+
   TaskId task_;
-  Time until_;
-  std::string behind_;
+  EarlyWait wait_;
   Time since_{};
   TimerId timer_ = 0;
 };

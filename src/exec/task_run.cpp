@@ -6,14 +6,13 @@
 
 namespace rondo::exec {
 
-TaskRun::TaskRun(StepContext& ctx, TaskId id, std::optional<Time> wait_until, std::function<void(End)> ended,
-                 std::string behind)
+TaskRun::TaskRun(StepContext& ctx, TaskId id, std::optional<EarlyWait> wait, std::function<void(End)> ended)
     : ctx_(ctx), id_(std::move(id)), ended_(std::move(ended)) {
   const Task& t = task();
   const map::NodeIndex here = ctx_.robot.location();
   map::NodeIndex place = t.start_node.empty() ? here : *ctx_.map.find_node(t.start_node);
-  if (wait_until) {
-    auto w = std::make_unique<WaitStep>(ctx_, hooks(), id_, *wait_until, std::move(behind));
+  if (wait) {
+    auto w = std::make_unique<WaitStep>(ctx_, hooks(), id_, std::move(*wait));
     wait_ = w.get();
     steps_.push_back(std::move(w));
   }

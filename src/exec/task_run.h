@@ -24,10 +24,8 @@ class TaskRun {
   enum class Stop { kNone, kOverrun, kCancel, kPreempt };
   using End = TaskEnd;
 
-  // `wait_until`: early, so it first waits where the robot is until then (`behind`: for another
-  // robot's stop at its place, whose).
-  TaskRun(StepContext& ctx, TaskId id, std::optional<Time> wait_until, std::function<void(End)> ended,
-          std::string behind = {});
+  // `wait`: early, so it first waits where the robot is (WaitStep).
+  TaskRun(StepContext& ctx, TaskId id, std::optional<EarlyWait> wait, std::function<void(End)> ended);
   TaskRun(const TaskRun&) = delete;
   TaskRun& operator=(const TaskRun&) = delete;
 

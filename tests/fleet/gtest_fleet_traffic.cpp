@@ -136,6 +136,36 @@ TEST(FleetTraffic, ARobotPlanningAroundAnothersStopWaitsWhereItStandsNotAtTheDoo
   EXPECT_TRUE(k.f.bookings().booked(0).empty() && k.f.bookings().booked(1).empty());
 }
 
+// r2 planned first and waits for its window; r1, which goes before it, then plans the same place
+// at the same time. Both waits end together: r2, whose wait ends first, finds that r1 is due there
+// and waits longer, saying for whom; it sets out when r1 is done.
+TEST(FleetTraffic, ARobotWhoseWaitEndsWhenAnotherIsDueAtItsPlaceWaitsLonger) {
+  ScriptedFleet f({{"r1", "Office", "Office"}, {"r2", "Lab", "Lab"}}, {}, std::nullopt, /*reserve=*/true,
+                  /*plan_around=*/true);
+  f.fleet().start();
+  ASSERT_TRUE(
+      f.fleet().add_task(for_robot(task("b", "Kitchen", f.at("08:10"), f.at("09:00"), minutes(2)), "r2"), "test").ok());
+  f.settle();
+  ASSERT_TRUE(
+      f.fleet().add_task(for_robot(task("a", "Kitchen", f.at("08:10"), f.at("09:00"), minutes(5)), "r1"), "test").ok());
+  f.settle();
+  EXPECT_EQ(f.fleet().book().at("a").state, TaskState::kWaiting);
+  EXPECT_EQ(f.fleet().book().at("b").state, TaskState::kWaiting);
+  work(f, 2, f.at("08:40"));
+  EXPECT_EQ(f.fleet().book().at("a").state, TaskState::kSucceeded);
+  EXPECT_EQ(f.fleet().book().at("b").state, TaskState::kSucceeded);
+  const auto events = store::read_events(f.store());
+  ASSERT_TRUE(events.ok());
+  const auto longer = std::find_if(events->begin(), events->end(),
+                                   [](const store::Event& e) { return e.task_id == "b" && e.event == "waits longer"; });
+  ASSERT_NE(longer, events->end());
+  EXPECT_NE(longer->reason.find("r1 stops at Kitchen"), std::string::npos) << longer->reason;
+  for (const exec::TrafficWait& w : f.fleet().building().traffic_waits) {
+    ASSERT_TRUE(w.end.has_value());
+    EXPECT_LT(*w.end - w.start, minutes(1)) << w.robot << " at " << w.node;
+  }
+}
+
 // Its monitor does not count the wait (before, r2 overran and failed its task waiting at the door).
 TEST(FleetTraffic, WithoutPlanningAroundTheSecondRobotWaitsForTheWayInstead) {
   KitchenTwice k(/*plan_around=*/false);

@@ -41,6 +41,7 @@ enum class EventKind {
   kGaveUp,                // ... ended without arriving
   kTrafficWait,           // a journey waits for the way another robot holds (a task's or the robot's)
   kMadeWay,               // a journey sent aside by the traffic manager (a deadlock, or parked in the way)
+  kWaitsLonger,           // an early task waits on: another robot set out for its place meanwhile
   kStopped,               // ... was stopped (the schedule changed)
   kFault,                 // the robot reported a fault (or lost its connection)
   kReady,                 // the fault is over

@@ -159,6 +159,13 @@ struct TrafficWait {
   std::string how{};
 };
 
+// Setting out later for another robot's stop at a task's place (docs/traffic.md): when, and
+// whose stop ("r1 stops at Kitchen until about 08:10").
+struct PutOff {
+  Time depart{};
+  std::string behind{};
+};
+
 // Departures a robot put off so as to arrive after another robot's stop at its task's place
 // (planning around each other, docs/traffic.md): how many, and by how much in all.
 struct TrafficDeferrals {
