@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Writes a deployment of N robots on the traffic bench's institute (bench/traffic-scale/map.yaml)
 into a folder: deployment.yaml (no `traffic:` section: the executive's default),
-deployment-noreserve.yaml (the same with `traffic: {reservations: false}`), routines.yaml and
+deployment-noreserve.yaml (the same with `traffic: {reservations: false, plan_around: false}`: the
+robots neither reserve nor plan around each other), deployment-alone.yaml
+(reservations, but each robot plans as if alone: `traffic: {plan_around: false}`), routines.yaml and
 requests.yaml. The load grows with N: about 40 tasks per robot a day, spread over the building,
 each with a window of one or two hours.
 
@@ -123,7 +125,9 @@ robots:
     with open(os.path.join(folder, "deployment.yaml"), "w") as f:
         f.write(head + body)
     with open(os.path.join(folder, "deployment-noreserve.yaml"), "w") as f:
-        f.write(head + body + "traffic:\n  reservations: false\n")
+        f.write(head + body + "traffic:\n  reservations: false\n  plan_around: false\n")
+    with open(os.path.join(folder, "deployment-alone.yaml"), "w") as f:
+        f.write(head + body + "traffic:\n  plan_around: false\n")
 
 
 if __name__ == "__main__":
