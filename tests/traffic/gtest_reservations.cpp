@@ -148,6 +148,30 @@ TEST(Reservations, AParkedRobotOnTheOnlyWayIsAskedToMakeWay) {
   EXPECT_EQ(r.request(mover, node(m, "A"), path(m, {"A_B", "B_C"})), 2u);
 }
 
+// Sent aside, the robot arrives and stops there before the robot it made way for has asked again
+// (its call comes later): it does not take the way back first (else the two would make way for
+// each other in turn), but once that robot has gone by.
+TEST(Reservations, ARobotSentAsideKeepsYieldingAfterItStopsThere) {
+  const map::TopoMap m = reservation_map(
+      {{"A"}, {"B"}, {"C"}, {"P"}}, {{"A", "B", Narrow::kNone}, {"B", "C", Narrow::kNone}, {"B", "P", Narrow::kNone}});
+  Reservations r(m);
+  Told t1, t2;
+  const RobotId mover = r.join("r1", node(m, "A"), &t1);
+  const RobotId parked = r.join("r2", node(m, "B"), &t2);
+  r.set_parked(parked, true);
+  EXPECT_EQ(r.request(mover, node(m, "A"), path(m, {"A_B", "B_C"})), 0u);
+  ASSERT_EQ(t2.make_way.size(), 1u);
+  r.crossed(parked, *m.find_edge("B_P"));
+  r.stop(parked, node(m, "P"));
+  // r2 wants to go back to B at once: it waits for r1, which still waits.
+  EXPECT_EQ(r.request(parked, node(m, "P"), path(m, {"P_B"})), 0u);
+  EXPECT_EQ(r.request(mover, node(m, "A"), path(m, {"A_B", "B_C"})), 2u);
+  r.crossed(mover, *m.find_edge("A_B"));
+  r.crossed(mover, *m.find_edge("B_C"));
+  r.stop(mover, node(m, "C"));
+  EXPECT_EQ(r.request(parked, node(m, "P"), path(m, {"P_B"})), 1u);
+}
+
 TEST(Reservations, GrantsGoNoFurtherThanTheLookaheadButANarrowSectionIsWhole) {
   const map::TopoMap m = reservation_map({{"A"}, {"B"}, {"C"}, {"D"}, {"E"}, {"F"}}, {{"A", "B", Narrow::kNone},
                                                                                       {"B", "C", Narrow::kNone},
