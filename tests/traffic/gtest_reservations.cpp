@@ -126,10 +126,14 @@ TEST(Reservations, ADeadlockWithNowhereToGoIsCountedUnresolved) {
   EXPECT_EQ(r.unresolved(), 1u);
 }
 
+// A - B - C, with a recess P off B.
+map::TopoMap recess_map() {
+  return reservation_map({{"A"}, {"B"}, {"C"}, {"P"}},
+                         {{"A", "B", Narrow::kNone}, {"B", "C", Narrow::kNone}, {"B", "P", Narrow::kNone}});
+}
+
 TEST(Reservations, AParkedRobotOnTheOnlyWayIsAskedToMakeWay) {
-  // A - B - C, with a recess P off B.
-  const map::TopoMap m = reservation_map(
-      {{"A"}, {"B"}, {"C"}, {"P"}}, {{"A", "B", Narrow::kNone}, {"B", "C", Narrow::kNone}, {"B", "P", Narrow::kNone}});
+  const map::TopoMap m = recess_map();
   Reservations r(m);
   Told t1, t2;
   const RobotId mover = r.join("r1", node(m, "A"), &t1);
@@ -152,8 +156,7 @@ TEST(Reservations, AParkedRobotOnTheOnlyWayIsAskedToMakeWay) {
 // (its call comes later): it does not take the way back first (else the two would make way for
 // each other in turn), but once that robot has gone by.
 TEST(Reservations, ARobotSentAsideKeepsYieldingAfterItStopsThere) {
-  const map::TopoMap m = reservation_map(
-      {{"A"}, {"B"}, {"C"}, {"P"}}, {{"A", "B", Narrow::kNone}, {"B", "C", Narrow::kNone}, {"B", "P", Narrow::kNone}});
+  const map::TopoMap m = recess_map();
   Reservations r(m);
   Told t1, t2;
   const RobotId mover = r.join("r1", node(m, "A"), &t1);
